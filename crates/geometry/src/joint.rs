@@ -179,7 +179,7 @@ mod tests {
     }
 
     /// The paper's Section IV-A numbers: Joint A at 26° and Joint C at 40° reach ~1.4% strain
-    /// (1.3787% and 1.3949%; the paper's ε_peak, from measured
+    /// (1.3774% and 1.3949%; the paper's ε_peak, from measured
     /// angles, is 1.35% and 1.37%).
     #[test]
     fn paper_peak_strains() {
