@@ -1,0 +1,237 @@
+//! Design files: the paper's Table I quantities plus the fabrication tables, read from TOML and
+//! validated once into a [`Design`].
+//!
+//! A design file holds the Table I keys at the top level and three optional tables whose every
+//! key has a documented default ([`Fabrication`], [`Materials`], [`ProcessChoice`]):
+//!
+//! ```toml
+//! name = "Joint A"
+//! style = "uan"            # or "bsn"
+//! outer_radius_mm = 1.24
+//! inner_radius_mm = 0.875
+//! notch_arc_mm = 5.61      # s_n: arc length of one notch on the outer surface
+//! notch_width_mm = 0.5     # h
+//! notch_spacing_mm = 0.5   # c
+//! notch_count = 10         # N (per side for BSN)
+//! joint_length_mm = 9.5    # L
+//! sensor_arc_mm = 0.4      # s_s: arc between the two arms of a sensor
+//!
+//! [fabrication]            # optional; see `Fabrication` for every key
+//! kerf_mm = 0.03
+//! ```
+//!
+//! Unknown keys are refused, so a misspelt parameter never silently takes its default.
+
+mod fabrication;
+
+use std::path::{Path, PathBuf};
+
+use dlw_geometry::{CrossSection, GeometryError, Joint, NotchStyle};
+use serde::{Deserialize, Serialize};
+
+pub use fabrication::{Fabrication, Materials, ProcessChoice};
+
+/// A design file as written, before validation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DesignFile {
+    /// Human-readable name, printed on drawings and programs.
+    pub name: String,
+    /// Notch style: `uan` or `bsn`.
+    pub style: NotchStyle,
+    /// Outer radius `r_o` (mm).
+    pub outer_radius_mm: f64,
+    /// Inner radius `r_i` (mm).
+    pub inner_radius_mm: f64,
+    /// Arc length of one notch on the outer surface, `s_n` (mm).
+    pub notch_arc_mm: f64,
+    /// Notch width `h` along the tube (mm).
+    pub notch_width_mm: f64,
+    /// Uncut length `c` between neighbouring notches (mm).
+    pub notch_spacing_mm: f64,
+    /// Notch count `N` (per side for BSN).
+    pub notch_count: u32,
+    /// Joint length `L` (mm).
+    pub joint_length_mm: f64,
+    /// Arc between the two arms of a sensor, `s_s` (mm).
+    pub sensor_arc_mm: f64,
+    /// Trace, pad, margin and cutting parameters.
+    #[serde(default)]
+    pub fabrication: Fabrication,
+    /// Material limits.
+    #[serde(default)]
+    pub materials: Materials,
+    /// Which laser process parameter sets the design uses.
+    #[serde(default)]
+    pub process: ProcessChoice,
+}
+
+/// Why a design file was refused.
+#[derive(Debug, thiserror::Error)]
+pub enum DesignError {
+    /// The file could not be read.
+    #[error("cannot read design {path}: {source}")]
+    Read {
+        /// The design file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// The file is not valid TOML for a design (unknown key, wrong type, missing key).
+    #[error("design {path}: {message}")]
+    Parse {
+        /// The design file.
+        path: PathBuf,
+        /// The TOML parser's message, which names the key and line.
+        message: String,
+    },
+    /// A Table I quantity is not physical.
+    #[error("design {name:?}: {source}")]
+    Geometry {
+        /// The design's name.
+        name: String,
+        /// Which value broke which limit.
+        source: GeometryError,
+    },
+}
+
+/// A validated design: the file as written and the joint geometry built from it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Design {
+    /// The design as written (with defaults filled in).
+    pub file: DesignFile,
+    /// The joint geometry shared with the estimator.
+    pub joint: Joint,
+    /// A checksum of the design's canonical TOML (FNV-1a 64, hex), printed in program headers
+    /// so an operator can tell which design a program was made from.
+    pub checksum: String,
+}
+
+impl Design {
+    /// Reads and validates a design file.
+    ///
+    /// # Errors
+    /// [`DesignError`] naming the file, key or value.
+    pub fn load(path: &Path) -> Result<Self, DesignError> {
+        let text = std::fs::read_to_string(path).map_err(|source| DesignError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_toml(&text).map_err(|e| match e {
+            DesignError::Parse { message, .. } => DesignError::Parse {
+                path: path.to_path_buf(),
+                message,
+            },
+            other => other,
+        })
+    }
+
+    /// Parses and validates a design from TOML text.
+    ///
+    /// # Errors
+    /// [`DesignError::Parse`] for malformed TOML or unknown keys, [`DesignError::Geometry`] for
+    /// unphysical Table I values.
+    pub fn from_toml(text: &str) -> Result<Self, DesignError> {
+        let file: DesignFile = toml::from_str(text).map_err(|e| DesignError::Parse {
+            path: PathBuf::from("<text>"),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        Self::from_file(file)
+    }
+
+    /// Validates a design already in memory.
+    ///
+    /// # Errors
+    /// [`DesignError::Geometry`] for unphysical Table I values.
+    pub fn from_file(file: DesignFile) -> Result<Self, DesignError> {
+        let geometry = |source| DesignError::Geometry {
+            name: file.name.clone(),
+            source,
+        };
+        let section = CrossSection::new(
+            file.style,
+            file.outer_radius_mm,
+            file.inner_radius_mm,
+            file.notch_arc_mm,
+            file.sensor_arc_mm,
+        )
+        .map_err(geometry)?;
+        let joint = Joint::new(
+            section,
+            file.notch_width_mm,
+            file.notch_spacing_mm,
+            file.notch_count,
+            file.joint_length_mm,
+        )
+        .map_err(geometry)?;
+        let canonical = toml::to_string(&file).unwrap_or_default();
+        let checksum = format!("{:016x}", fnv1a64(canonical.as_bytes()));
+        Ok(Self {
+            file,
+            joint,
+            checksum,
+        })
+    }
+}
+
+/// FNV-1a, 64 bit: a stable, dependency-free fingerprint (not a security hash).
+fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const JOINT_A: &str = r#"
+name = "Joint A"
+style = "uan"
+outer_radius_mm = 1.24
+inner_radius_mm = 0.875
+notch_arc_mm = 5.61
+notch_width_mm = 0.5
+notch_spacing_mm = 0.5
+notch_count = 10
+joint_length_mm = 9.5
+sensor_arc_mm = 0.4
+"#;
+
+    #[test]
+    fn reads_table_one_keys_with_defaults() {
+        let d = Design::from_toml(JOINT_A).unwrap();
+        assert_eq!(d.file.name, "Joint A");
+        assert_eq!(d.joint.notch_count(), 10);
+        assert_eq!(d.file.fabrication, Fabrication::default());
+        assert_eq!(d.checksum.len(), 16);
+    }
+
+    #[test]
+    fn refuses_unknown_keys_everywhere() {
+        let top = format!("{JOINT_A}\nnotch_depth_mm = 1.0\n");
+        let err = Design::from_toml(&top).unwrap_err().to_string();
+        assert!(err.contains("notch_depth_mm"), "{err}");
+        let nested = format!("{JOINT_A}\n[fabrication]\nkerf = 0.03\n");
+        let err = Design::from_toml(&nested).unwrap_err().to_string();
+        assert!(err.contains("kerf"), "{err}");
+    }
+
+    #[test]
+    fn refuses_unphysical_geometry_with_value() {
+        let bad = JOINT_A.replace("inner_radius_mm = 0.875", "inner_radius_mm = 1.3");
+        let err = Design::from_toml(&bad).unwrap_err().to_string();
+        assert!(
+            err.contains("inner_radius_mm = 1.3") && err.contains("1.24"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn checksum_follows_content() {
+        let a = Design::from_toml(JOINT_A).unwrap();
+        let b = Design::from_toml(&JOINT_A.replace("0.4\n", "0.41\n")).unwrap();
+        assert_ne!(a.checksum, b.checksum);
+        assert_eq!(a.checksum, Design::from_toml(JOINT_A).unwrap().checksum);
+    }
+}
