@@ -1,3 +1,20 @@
 //! `dlw`: from a sensing joint's design to drawings, laser programs and a working sensor.
+//!
+//! `main` parses the command line, runs the command and prints the error chain once.
 
-fn main() {}
+use std::process::ExitCode;
+
+use clap::Parser;
+
+mod cli;
+
+fn main() -> ExitCode {
+    let args = cli::Cli::parse();
+    match cli::run(args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("dlw: error: {err:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

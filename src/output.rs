@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 pub enum OutputError {
     /// The destination's folder does not exist or cannot be written.
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {path}")]
     Io {
         /// The destination.
         path: PathBuf,
@@ -51,7 +51,7 @@ mod tests {
         assert_eq!(std::fs::read(&path).unwrap(), b"hello");
         let missing = dir.path().join("no/such/folder/b.txt");
         let err = write_atomic(&missing, b"x").unwrap_err();
-        assert!(err.to_string().contains("b.txt"), "{err}");
+        assert!(format!("{err:#}").contains("b.txt"), "{err}");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 }

@@ -70,7 +70,7 @@ pub struct DesignFile {
 #[derive(Debug, thiserror::Error)]
 pub enum DesignError {
     /// The file could not be read.
-    #[error("cannot read design {path}: {source}")]
+    #[error("cannot read design {path}")]
     Read {
         /// The design file.
         path: PathBuf,
@@ -86,12 +86,12 @@ pub enum DesignError {
         message: String,
     },
     /// A Table I quantity is not physical.
-    #[error("design {name:?}: {source}")]
+    #[error("design {name:?}: {reason}")]
     Geometry {
         /// The design's name.
         name: String,
         /// Which value broke which limit.
-        source: GeometryError,
+        reason: GeometryError,
     },
 }
 
