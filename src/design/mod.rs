@@ -144,9 +144,9 @@ impl Design {
     /// # Errors
     /// [`DesignError::Geometry`] for unphysical Table I values.
     pub fn from_file(file: DesignFile) -> Result<Self, DesignError> {
-        let geometry = |source| DesignError::Geometry {
+        let geometry = |reason| DesignError::Geometry {
             name: file.name.clone(),
-            source,
+            reason,
         };
         let section = CrossSection::new(
             file.style,
