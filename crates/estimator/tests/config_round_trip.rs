@@ -183,3 +183,4 @@ fn invalid_values_are_refused_at_build_time() {
     let error = Estimator::new(&config).unwrap_err().to_string();
     assert!(error.contains("inner_radius_mm = 1.5"), "{error}");
 }
+
