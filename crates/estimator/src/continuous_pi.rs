@@ -40,6 +40,12 @@ pub struct ContinuousPiConfig {
     pub max_strain: f64,
     /// The inverse stops once the strain is known to within this (fraction, e.g. `1e-12`).
     pub strain_tolerance: f64,
+    /// Resistance changes up to this are taken as no change, so the inverse holds its strain
+    /// (Ω, ≥ 0). Inside a dead band any change moves the strain to the band's edge, so set it
+    /// to the noise level of the (filtered) resistance; 0 holds only on repeats, up to the
+    /// rounding of `R − R_c`.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub resistance_tolerance_ohm: f64,
     /// Initial state `M₀` of every play, in units of `γ`.
     #[cfg_attr(feature = "serde", serde(default))]
     pub initial_state: f64,
@@ -69,6 +75,12 @@ impl ContinuousPiConfig {
         finite("center_ohm", self.center_ohm)?;
         range("min_strain", self.min_strain, "max_strain", self.max_strain)?;
         positive("strain_tolerance", self.strain_tolerance)?;
+        if finite("resistance_tolerance_ohm", self.resistance_tolerance_ohm)? < 0.0 {
+            return Err(EstimatorError::NotPositive {
+                name: "resistance_tolerance_ohm",
+                value: self.resistance_tolerance_ohm,
+            });
+        }
         let mut core = Core {
             len: weights.len(),
             weights: [0.0; MAX_PLAYS],
@@ -201,7 +213,9 @@ pub struct ContinuousPiInverse {
     min_x: f64,
     max_x: f64,
     tolerance: f64,
+    resistance_tolerance: f64,
     previous_x: f64,
+    previous_target: f64,
     rising: bool,
 }
 
@@ -219,7 +233,9 @@ impl ContinuousPiInverse {
             min_x: config.min_strain - config.center_strain,
             max_x: config.max_strain - config.center_strain,
             tolerance: config.strain_tolerance,
+            resistance_tolerance: config.resistance_tolerance_ohm,
             previous_x: 0.0,
+            previous_target: 0.0,
             rising: true,
         };
         inverse.reset();
@@ -238,11 +254,18 @@ impl ContinuousPiInverse {
             );
         }
         let target = resistance_ohm - self.center_ohm;
-        let (now, _) = self.core.trial(self.previous_x);
+        // Compared with the resistance the strain was last solved for, not with the plays'
+        // output there, which differs by up to slope × strain_tolerance. `R − R_c` keeps only
+        // the bits of R above R_c's rounding, so a few ulps of either count as no change.
+        let rounding = 4.0 * f64::EPSILON * (resistance_ohm.abs() + self.center_ohm.abs());
         let mut flags = Flags::empty();
-        let x = if target == now {
+        let x = if (target - self.previous_target).abs()
+            <= f64::max(self.resistance_tolerance, rounding)
+        {
             self.previous_x
         } else {
+            self.previous_target = target;
+            let (now, _) = self.core.trial(self.previous_x);
             let rising = target > now;
             flags |= Flags::when(rising != self.rising, Flags::REVERSAL);
             self.rising = rising;
@@ -294,6 +317,7 @@ impl ContinuousPiInverse {
     pub fn reset(&mut self) {
         self.core.reset();
         self.previous_x = 0.0f64.clamp(self.min_x, self.max_x);
+        self.previous_target = self.core.trial(self.previous_x).0;
         self.rising = true;
     }
 }
@@ -314,6 +338,7 @@ mod tests {
             min_strain: -0.01,
             max_strain: 0.02,
             strain_tolerance: 1e-13,
+            resistance_tolerance_ohm: 0.0,
             initial_state: 0.0,
         }
     }
@@ -382,6 +407,9 @@ mod tests {
         assert_eq!(c.validate(), Err(EstimatorError::NegativeWeight { index: 1, value: -0.1 }));
         let mut c = config(0.0);
         c.strain_tolerance = 0.0;
+        assert!(c.validate().is_err());
+        let mut c = config(0.0);
+        c.resistance_tolerance_ohm = -1.0;
         assert!(c.validate().is_err());
         let mut c = config(0.0);
         c.max_strain = c.min_strain;

@@ -61,6 +61,7 @@ fn continuous_pi() -> ModelConfig {
         min_strain: -0.01,
         max_strain: 0.02,
         strain_tolerance: 1e-12,
+        resistance_tolerance_ohm: 0.5,
         initial_state: 0.0,
     })
 }
