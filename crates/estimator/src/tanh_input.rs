@@ -60,6 +60,13 @@ impl TanhBranch {
         self.a * self.b * (1.0 - t * t)
     }
 
+    /// `(f(x), f'(x))` with one `tanh`.
+    #[inline]
+    pub fn value_and_slope(&self, x: f64) -> (f64, f64) {
+        let t = libm::tanh(self.b * x + self.c);
+        (self.a * t + self.d, self.a * self.b * (1.0 - t * t))
+    }
+
     /// `f⁻¹(μ) = (atanh((μ − d)/a) − c)/b` (Eq. 13), with the `atanh` argument clamped to
     /// `±`[`ATANH_BOUND`]. Returns the strain and whether it was clamped.
     #[inline]
@@ -175,6 +182,7 @@ mod tests {
             (b.value(0.2 + h) - b.value(0.2 - h)) / (2.0 * h),
             max_relative = 1e-8
         );
+        assert_eq!(b.value_and_slope(0.2), (b.value(0.2), b.slope(0.2)));
     }
 
     #[test]
