@@ -9,7 +9,7 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dlw_estimator::{
-    nominal_divider, Coeffs, ContinuousPiConfig, ContinuousPiInverse, EstimatorConfig, Estimator,
+    nominal_divider, Coeffs, ContinuousPiConfig, ContinuousPiInverse, Estimator, EstimatorConfig,
     FilterConfig, GeneralizedPi, JointConfig, ModelConfig, PiConfig, PiInverse,
 };
 use dlw_geometry::NotchStyle;
@@ -90,7 +90,10 @@ fn pi_resistances() -> Vec<f64> {
 }
 
 fn volts(resistances: &[f64]) -> Vec<f64> {
-    resistances.iter().map(|&r| nominal_divider().voltage(r)).collect()
+    resistances
+        .iter()
+        .map(|&r| nominal_divider().voltage(r))
+        .collect()
 }
 
 fn bench(c: &mut Criterion) {
@@ -116,7 +119,9 @@ fn bench(c: &mut Criterion) {
         })
     });
 
-    let linear = EstimatorConfig::nominal_linear(joint(NotchStyle::Uan), 15.3, 215.0e3, nominal_divider()).unwrap();
+    let linear =
+        EstimatorConfig::nominal_linear(joint(NotchStyle::Uan), 15.3, 215.0e3, nominal_divider())
+            .unwrap();
     let v = volts(&resistances);
     let mut est = Box::new(Estimator::new(&linear).unwrap());
     group.bench_function("estimator_linear", |b| {
@@ -148,7 +153,9 @@ fn bench(c: &mut Criterion) {
         })
     });
 
-    let two = EstimatorConfig::nominal_linear(joint(NotchStyle::Bsn), 1.28, 74.0e3, nominal_divider()).unwrap();
+    let two =
+        EstimatorConfig::nominal_linear(joint(NotchStyle::Bsn), 1.28, 74.0e3, nominal_divider())
+            .unwrap();
     let v2: Vec<f64> = v.iter().map(|x| 5.0 - x).collect();
     let mut est = Box::new(Estimator::new(&two).unwrap());
     group.bench_function("estimator_two_sensor_linear", |b| {

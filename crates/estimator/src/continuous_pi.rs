@@ -315,10 +315,12 @@ impl ContinuousPiInverse {
                 return x;
             }
             let newton = x - error / slope;
-            // `!(..)` also catches the NaN of a zero slope in a dead band.
-            let slow = !(2.0 * error.abs() < (step_before * slope).abs());
+            // Written so that the NaN of a zero slope in a dead band counts as not fast and
+            // not inside, which bisects.
+            let fast = 2.0 * error.abs() < (step_before * slope).abs();
+            let inside = newton > low && newton < high;
             step_before = step;
-            if slow || !(newton > low && newton < high) {
+            if !fast || !inside {
                 step = 0.5 * (high - low);
                 x = low + step;
             } else {
@@ -366,7 +368,10 @@ mod tests {
     #[test]
     fn equal_envelopes_round_trip_exactly() {
         let c = config(0.0);
-        let (mut fwd, mut inv) = (ContinuousPi::new(&c).unwrap(), ContinuousPiInverse::new(&c).unwrap());
+        let (mut fwd, mut inv) = (
+            ContinuousPi::new(&c).unwrap(),
+            ContinuousPiInverse::new(&c).unwrap(),
+        );
         for k in 0..300 {
             let strain = 0.005 + 0.008 * libm::sin(k as f64 * 0.05) * libm::cos(k as f64 * 0.013);
             let (back, flags) = inv.step(fwd.step(strain));
@@ -398,7 +403,10 @@ mod tests {
         let mut largest_jump: f64 = 0.0;
         for strain in [0.008_001, 0.008_002, 0.008_001, 0.008_000, 0.008_001] {
             let (r, rj) = (fwd.step(strain), jumping.step(strain));
-            assert!((r - previous).abs() <= 2.0 + 1e-9, "{strain}: {r} vs {previous}");
+            assert!(
+                (r - previous).abs() <= 2.0 + 1e-9,
+                "{strain}: {r} vs {previous}"
+            );
             largest_jump = largest_jump.max((rj - previous_jumping).abs());
             (previous, previous_jumping) = (r, rj);
         }
@@ -423,7 +431,13 @@ mod tests {
     fn refuses_bad_configs() {
         let mut c = config(0.0);
         c.weights = Coeffs::try_from([0.5, -0.1, 0.2, 0.1]).unwrap();
-        assert_eq!(c.validate(), Err(EstimatorError::NegativeWeight { index: 1, value: -0.1 }));
+        assert_eq!(
+            c.validate(),
+            Err(EstimatorError::NegativeWeight {
+                index: 1,
+                value: -0.1
+            })
+        );
         let mut c = config(0.0);
         c.strain_tolerance = 0.0;
         assert!(c.validate().is_err());

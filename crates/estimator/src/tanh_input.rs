@@ -29,7 +29,7 @@ impl TanhBranch {
             finite(name, value)?;
         }
         let slope = a * b;
-        if !(slope > 0.0) {
+        if slope.is_nan() || slope <= 0.0 {
             return Err(EstimatorError::BranchNotIncreasing { name, slope });
         }
         Ok(Self {
@@ -72,14 +72,8 @@ impl TanhBranch {
     #[inline]
     pub fn inverse(&self, mu: f64) -> (f64, bool) {
         let arg = (mu - self.d) * self.inv_a;
-        let clamped = !(arg.abs() <= ATANH_BOUND);
-        let arg = if arg > ATANH_BOUND {
-            ATANH_BOUND
-        } else if arg < -ATANH_BOUND {
-            -ATANH_BOUND
-        } else {
-            arg
-        };
+        let clamped = arg.abs() > ATANH_BOUND;
+        let arg = arg.clamp(-ATANH_BOUND, ATANH_BOUND);
         ((libm::atanh(arg) - self.c) * self.inv_b, clamped)
     }
 }
@@ -172,7 +166,10 @@ mod tests {
     #[test]
     fn eq10_vectors() {
         let b = TanhBranch::new("loading_tanh", [2.0, 3.0, 0.5, -1.0]).unwrap();
-        let table = [(0.0, 2.0 * 0.5f64.tanh() - 1.0), (1.0, 2.0 * 3.5f64.tanh() - 1.0)];
+        let table = [
+            (0.0, 2.0 * 0.5f64.tanh() - 1.0),
+            (1.0, 2.0 * 3.5f64.tanh() - 1.0),
+        ];
         for (x, y) in table {
             assert_relative_eq!(b.value(x), y, epsilon = 1e-15);
         }
