@@ -57,7 +57,10 @@ impl Layout {
             for (arm_end, side) in [(u[0], PadSide::Below), (u[3], PadSide::Above)] {
                 let terminal = pad_terminal(stations.pad_x_mm, centre_mm, offset_mm, side);
                 leads.push((sensor, lead(arm_end, terminal)));
-                pads.push((sensor, square_spiral(terminal, fab.pad_pitch_mm, fab.pad_turns, side)));
+                pads.push((
+                    sensor,
+                    square_spiral(terminal, fab.pad_pitch_mm, fab.pad_turns, side),
+                ));
             }
             sensors.push((sensor, u));
         }
@@ -68,9 +71,11 @@ impl Layout {
             .chain(&leads)
             .chain(&pads)
             .map(|(_, pts)| {
-                let (lo, hi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-                    (lo.min(p.y), hi.max(p.y))
-                });
+                let (lo, hi) = pts
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                        (lo.min(p.y), hi.max(p.y))
+                    });
                 (lo - half_mm, hi + half_mm)
             })
             .collect();
@@ -118,8 +123,14 @@ impl Layout {
             leads: wrap(leads),
             pads: wrap(pads),
             parting: vec![LineString::new(vec![
-                Coord { x: length_mm, y: seam_s_mm },
-                Coord { x: length_mm, y: seam_s_mm + circumference_mm },
+                Coord {
+                    x: length_mm,
+                    y: seam_s_mm,
+                },
+                Coord {
+                    x: length_mm,
+                    y: seam_s_mm + circumference_mm,
+                },
             ])],
         })
     }

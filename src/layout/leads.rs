@@ -9,8 +9,14 @@ pub(crate) fn lead(arm_end: Coord, terminal: Coord) -> Vec<Coord> {
     let jog_x_mm = (arm_end.x + terminal.x) / 2.0;
     vec![
         arm_end,
-        Coord { x: jog_x_mm, y: arm_end.y },
-        Coord { x: jog_x_mm, y: terminal.y },
+        Coord {
+            x: jog_x_mm,
+            y: arm_end.y,
+        },
+        Coord {
+            x: jog_x_mm,
+            y: terminal.y,
+        },
         terminal,
     ]
 }

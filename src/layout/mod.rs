@@ -104,7 +104,12 @@ mod tests {
 
     #[test]
     fn shipped_designs_lay_out_with_area_and_counts() {
-        for (file, sides) in [("joint-a.toml", 1), ("joint-b.toml", 1), ("joint-c.toml", 2), ("joint-d.toml", 1)] {
+        for (file, sides) in [
+            ("joint-a.toml", 1),
+            ("joint-b.toml", 1),
+            ("joint-c.toml", 2),
+            ("joint-d.toml", 1),
+        ] {
             let d = design(file);
             let l = Layout::from_design(&d).unwrap();
             let s = d.joint.section();
@@ -135,7 +140,11 @@ mod tests {
         let d = design("joint-a.toml");
         let st = Stations::from_design(&d).unwrap();
         // d = 1, notched 9.5, overrun 0.5, lead 1, pad 2·4·0.1 = 0.8, proximal 0.5.
-        assert_relative_eq!(st.parting_x_mm, 1.0 + 9.5 + 0.5 + 1.0 + 0.8 + 0.5, epsilon = 1e-12);
+        assert_relative_eq!(
+            st.parting_x_mm,
+            1.0 + 9.5 + 0.5 + 1.0 + 0.8 + 0.5,
+            epsilon = 1e-12
+        );
         let l = Layout::from_design(&d).unwrap();
         assert_relative_eq!(l.length_mm, 13.3, epsilon = 1e-12);
         for n in &l.notches {
@@ -191,7 +200,10 @@ mod tests {
         assert!(err.contains("pad_pitch_mm = -0.1"), "{err}");
         d.file.fabrication.pad_pitch_mm = 0.1;
         d.file.fabrication.pad_turns = 0;
-        assert_eq!(Layout::from_design(&d).unwrap_err(), LayoutError::NoPadTurns);
+        assert_eq!(
+            Layout::from_design(&d).unwrap_err(),
+            LayoutError::NoPadTurns
+        );
         d.file.fabrication.pad_turns = 4;
         d.file.fabrication.trace_width_mm = f64::NAN;
         assert!(Layout::from_design(&d).is_err());

@@ -32,12 +32,20 @@ pub(crate) fn pad_offset_mm(
 
 /// The terminal of a pad, where its lead arrives: the pad's distal corner nearest the sensor's
 /// centre line.
-pub(crate) fn pad_terminal(pad_x_mm: f64, centre_s_mm: f64, offset_mm: f64, side: PadSide) -> Coord {
+pub(crate) fn pad_terminal(
+    pad_x_mm: f64,
+    centre_s_mm: f64,
+    offset_mm: f64,
+    side: PadSide,
+) -> Coord {
     let s_mm = match side {
         PadSide::Below => centre_s_mm - offset_mm,
         PadSide::Above => centre_s_mm + offset_mm,
     };
-    Coord { x: pad_x_mm, y: s_mm }
+    Coord {
+        x: pad_x_mm,
+        y: s_mm,
+    }
 }
 
 /// A square spiral of `turns` turns at `pitch_mm`, one continuous centre line from `terminal`
@@ -47,7 +55,12 @@ pub(crate) fn pad_terminal(pad_x_mm: f64, centre_s_mm: f64, offset_mm: f64, side
 /// −x, −s, …), which ends at the square's corner `(−n·p, −n·p)`; then reversed so the pad starts
 /// where its lead ends, and mirrored in `s` for a pad below its sensor so the terminal is the
 /// corner nearest the sensor.
-pub(crate) fn square_spiral(terminal: Coord, pitch_mm: f64, turns: u32, side: PadSide) -> Vec<Coord> {
+pub(crate) fn square_spiral(
+    terminal: Coord,
+    pitch_mm: f64,
+    turns: u32,
+    side: PadSide,
+) -> Vec<Coord> {
     let n = f64::from(turns);
     let mirror = match side {
         PadSide::Above => 1.0,

@@ -60,7 +60,9 @@ fn widest_gap_middle(arcs: &[Arc], circumference_mm: f64, tie_mm: f64) -> Option
         }
         let seam = normalise((a + b) / 2.0, c);
         best = match best {
-            Some((w, s)) if w > width + tie_mm || (w >= width - tie_mm && s <= seam) => Some((w, s)),
+            Some((w, s)) if w > width + tie_mm || (w >= width - tie_mm && s <= seam) => {
+                Some((w, s))
+            }
             _ => Some((width, seam)),
         };
     }
@@ -79,7 +81,11 @@ fn normalise(s: f64, c: f64) -> f64 {
 
 /// Splits an unwrapped polyline where it crosses the window's edges `seam + k·C` and moves each
 /// piece into the window `[seam, seam + C]`. Pieces keep the polyline's order and direction.
-pub(crate) fn wrap_polyline(points: &[Coord], seam_mm: f64, circumference_mm: f64) -> Vec<LineString<f64>> {
+pub(crate) fn wrap_polyline(
+    points: &[Coord],
+    seam_mm: f64,
+    circumference_mm: f64,
+) -> Vec<LineString<f64>> {
     let c = circumference_mm;
     let turn = |s: f64| ((s - seam_mm) / c).floor();
     let mut pieces: Vec<(f64, Vec<Coord>)> = Vec::new();
@@ -105,7 +111,10 @@ pub(crate) fn wrap_polyline(points: &[Coord], seam_mm: f64, circumference_mm: f6
             };
             let (a, b) = (at(w[0]), at(w[1]));
             let k = turn((a.y + b.y) / 2.0);
-            let shift = |c0: Coord| Coord { x: c0.x, y: c0.y - k * c };
+            let shift = |c0: Coord| Coord {
+                x: c0.x,
+                y: c0.y - k * c,
+            };
             match pieces.last_mut() {
                 Some((last_k, pts)) if *last_k == k => pts.push(shift(b)),
                 _ => pieces.push((k, vec![shift(a), shift(b)])),
@@ -114,9 +123,18 @@ pub(crate) fn wrap_polyline(points: &[Coord], seam_mm: f64, circumference_mm: f6
     }
     if points.len() == 1 {
         let k = turn(points[0].y);
-        pieces.push((k, vec![Coord { x: points[0].x, y: points[0].y - k * c }]));
+        pieces.push((
+            k,
+            vec![Coord {
+                x: points[0].x,
+                y: points[0].y - k * c,
+            }],
+        ));
     }
-    pieces.into_iter().map(|(_, pts)| LineString::new(pts)).collect()
+    pieces
+        .into_iter()
+        .map(|(_, pts)| LineString::new(pts))
+        .collect()
 }
 
 /// Moves an axis-aligned rectangle `[x0, x1] × [s0, s1]` (unwrapped, `s1 − s0 < C`) into the
@@ -166,24 +184,44 @@ mod tests {
 
     #[test]
     fn seam_goes_mid_widest_gap_with_stable_ties() {
-        assert_relative_eq!(choose_seam_mm(&[vec![(-1.0, 1.0), (4.0, 6.0)]], C, 1e-9), -2.5);
-        assert_relative_eq!(choose_seam_mm(&[vec![(-1.0, 1.0), (3.0, 4.0)]], C, 1e-9), -3.5);
+        assert_relative_eq!(
+            choose_seam_mm(&[vec![(-1.0, 1.0), (4.0, 6.0)]], C, 1e-9),
+            -2.5
+        );
+        assert_relative_eq!(
+            choose_seam_mm(&[vec![(-1.0, 1.0), (3.0, 4.0)]], C, 1e-9),
+            -3.5
+        );
         // First tier covers everything: fall back to the second.
         let tiers = [vec![(0.0, 10.0)], vec![(-1.0, 1.0)]];
         assert_relative_eq!(choose_seam_mm(&tiers, C, 1e-9), -5.0);
         // Arcs given past a full turn still count where they are.
-        assert_relative_eq!(choose_seam_mm(&[vec![(9.0, 11.0), (14.0, 16.0)]], C, 1e-9), -2.5);
+        assert_relative_eq!(
+            choose_seam_mm(&[vec![(9.0, 11.0), (14.0, 16.0)]], C, 1e-9),
+            -2.5
+        );
     }
 
     #[test]
     fn polyline_splits_at_every_edge() {
-        let pts = [Coord { x: 0.0, y: -1.0 }, Coord { x: 1.0, y: 1.0 }, Coord { x: 2.0, y: 1.0 }];
+        let pts = [
+            Coord { x: 0.0, y: -1.0 },
+            Coord { x: 1.0, y: 1.0 },
+            Coord { x: 2.0, y: 1.0 },
+        ];
         let pieces = wrap_polyline(&pts, 0.0, C);
         assert_eq!(pieces.len(), 2);
-        assert_eq!(pieces[0].0, vec![Coord { x: 0.0, y: 9.0 }, Coord { x: 0.5, y: 10.0 }]);
+        assert_eq!(
+            pieces[0].0,
+            vec![Coord { x: 0.0, y: 9.0 }, Coord { x: 0.5, y: 10.0 }]
+        );
         assert_eq!(
             pieces[1].0,
-            vec![Coord { x: 0.5, y: 0.0 }, Coord { x: 1.0, y: 1.0 }, Coord { x: 2.0, y: 1.0 }]
+            vec![
+                Coord { x: 0.5, y: 0.0 },
+                Coord { x: 1.0, y: 1.0 },
+                Coord { x: 2.0, y: 1.0 }
+            ]
         );
         // A polyline inside the window is untouched.
         let inside = [Coord { x: 0.0, y: 2.0 }, Coord { x: 1.0, y: 3.0 }];

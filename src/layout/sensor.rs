@@ -15,10 +15,22 @@ pub(crate) fn sensor_centre_s_mm(sensor: usize, outer_radius_mm: f64) -> f64 {
 pub(crate) fn u_trace(centre_s_mm: f64, sensor_arc_mm: f64, stations: &Stations) -> Vec<Coord> {
     let (a_mm, b_mm) = arm_s_mm(centre_s_mm, sensor_arc_mm);
     vec![
-        Coord { x: stations.arm_end_x_mm, y: a_mm },
-        Coord { x: stations.bridge_x_mm, y: a_mm },
-        Coord { x: stations.bridge_x_mm, y: b_mm },
-        Coord { x: stations.arm_end_x_mm, y: b_mm },
+        Coord {
+            x: stations.arm_end_x_mm,
+            y: a_mm,
+        },
+        Coord {
+            x: stations.bridge_x_mm,
+            y: a_mm,
+        },
+        Coord {
+            x: stations.bridge_x_mm,
+            y: b_mm,
+        },
+        Coord {
+            x: stations.arm_end_x_mm,
+            y: b_mm,
+        },
     ]
 }
 
