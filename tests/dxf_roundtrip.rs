@@ -21,7 +21,11 @@ fn round_trip(layout: &Layout) {
     let diff = layout
         .max_difference_mm(&back.layout)
         .unwrap_or_else(|e| panic!("{}: {e}", layout.name));
-    assert!(diff <= TOLERANCE_MM, "{}: differs by {diff:e} mm", layout.name);
+    assert!(
+        diff <= TOLERANCE_MM,
+        "{}: differs by {diff:e} mm",
+        layout.name
+    );
 }
 
 #[test]
@@ -49,7 +53,11 @@ fn traces_split_at_the_seam_round_trip() {
         .replace("notch_arc_mm = 2.4", "notch_arc_mm = 1.2")
         .replace("pad_turns = 3", "pad_turns = 6");
     let layout = Layout::from_design(&Design::from_toml(&text).unwrap()).unwrap();
-    assert!(layout.sensors[0].pieces.len() > 1, "{:?}", layout.sensors[0]);
+    assert!(
+        layout.sensors[0].pieces.len() > 1,
+        "{:?}",
+        layout.sensors[0]
+    );
     round_trip(&layout);
 }
 
@@ -61,10 +69,17 @@ fn joint_a_dxf() -> String {
 #[test]
 fn wrong_units_are_refused() {
     let text = joint_a_dxf();
-    let inches = text.replacen("$INSUNITS\r\n 70\r\n     4", "$INSUNITS\r\n 70\r\n     1", 1);
+    let inches = text.replacen(
+        "$INSUNITS\r\n 70\r\n     4",
+        "$INSUNITS\r\n 70\r\n     1",
+        1,
+    );
     assert_ne!(inches, text);
     let err = layout_from_dxf(inches.as_bytes()).unwrap_err();
-    assert!(matches!(err, DxfImportError::Units { insunits: 1, .. }), "{err}");
+    assert!(
+        matches!(err, DxfImportError::Units { insunits: 1, .. }),
+        "{err}"
+    );
     assert!(err.to_string().contains("$INSUNITS = 1 (inches)"), "{err}");
 }
 
@@ -72,7 +87,10 @@ fn wrong_units_are_refused() {
 fn unknown_layers_are_refused() {
     let text = joint_a_dxf().replacen("  8\r\nSENSOR\r\n", "  8\r\nTRACES\r\n", 1);
     let err = layout_from_dxf(text.as_bytes()).unwrap_err().to_string();
-    assert!(err.contains("on layer \"TRACES\", which is not a dlw layer"), "{err}");
+    assert!(
+        err.contains("on layer \"TRACES\", which is not a dlw layer"),
+        "{err}"
+    );
     assert!(err.starts_with("LWPOLYLINE #"), "{err}");
 }
 
@@ -84,7 +102,8 @@ fn open_notch_contours_are_refused() {
     let open = format!("{} 70\r\n     0\r\n{}", &text[..flag], &text[flag + 14..]);
     let err = layout_from_dxf(open.as_bytes()).unwrap_err().to_string();
     assert!(
-        err.starts_with("notch contour #") && err.contains("from x = 1.0000 mm, s = 1.0906 mm is open"),
+        err.starts_with("notch contour #")
+            && err.contains("from x = 1.0000 mm, s = 1.0906 mm is open"),
         "{err}"
     );
 }
@@ -93,7 +112,10 @@ fn open_notch_contours_are_refused() {
 fn missing_layout_numbers_are_refused() {
     let text = joint_a_dxf().replacen("1000\r\nlayout\r\n", "1000\r\nsomething\r\n", 1);
     let err = layout_from_dxf(text.as_bytes()).unwrap_err().to_string();
-    assert!(err.starts_with("no dlw layout numbers: none found"), "{err}");
+    assert!(
+        err.starts_with("no dlw layout numbers: none found"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -4,7 +4,8 @@
 //! How each entity is read:
 //! - `NOTCHES`: closed LWPOLYLINEs (the closed flag, or a last vertex on the first), straight
 //!   segments only. Pieces with the same `DLW` notch index form one notch; an untagged polyline
-//!   is a notch of its own. Level and side always come from the geometry, so an edited drawing
+//!   is a notch of its own, except that two untagged pieces with the same `x` range, one ending
+//!   on the window's top edge and one starting on the seam, are the halves of one split notch. Level and side always come from the geometry, so an edited drawing
 //!   describes itself: levels rank the notches' distal edges `x` (edges within 1 µm share a
 //!   level), and the side is the notch centre nearer `s = π·r_o` (side 0) or `s = 0` (side 1).
 //! - `SENSOR`: open LWPOLYLINEs or LINEs, U-trace pieces.
@@ -242,7 +243,7 @@ pub fn layout_from_dxf(bytes: &[u8]) -> Result<ImportedDxf, DxfImportError> {
     let untagged = notch_pieces.iter().filter(|(t, _)| t.is_none()).count()
         + traces.iter().filter(|t| t.tag.is_none()).count()
         + parting.iter().filter(|(t, _)| t.is_none()).count();
-    let notches = notches(notch_pieces, numbers.outer_radius_mm);
+    let notches = notches(notch_pieces, &numbers);
     let bsn = notches.iter().any(|n| n.side == 1);
     parting.sort_by_key(|(piece, _)| piece.unwrap_or(i16::MAX));
     let parting: Vec<LineString<f64>> = parting.into_iter().map(|(_, l)| l).collect();
@@ -425,7 +426,8 @@ fn is_spiral(points: &[Coord]) -> bool {
 }
 
 /// Notch pieces grouped into notches, with level and side from their geometry.
-fn notches(pieces: Vec<(Option<(i16, i16)>, Polygon<f64>)>, outer_radius_mm: f64) -> Vec<Notch> {
+fn notches(pieces: Vec<(Option<(i16, i16)>, Polygon<f64>)>, numbers: &Numbers) -> Vec<Notch> {
+    let outer_radius_mm = numbers.outer_radius_mm;
     // Group tagged pieces by notch index (pieces in tag order); untagged pieces stand alone.
     let mut groups: Vec<(Option<i16>, Vec<(i16, Polygon<f64>)>)> = Vec::new();
     for (tag, poly) in pieces {
@@ -438,6 +440,7 @@ fn notches(pieces: Vec<(Option<(i16, i16)>, Polygon<f64>)>, outer_radius_mm: f64
         }
     }
     groups.sort_by_key(|(i, _)| i.unwrap_or(i16::MAX));
+    merge_seam_halves(&mut groups, numbers.seam_s_mm, numbers.circumference_mm);
     let mut notches: Vec<(f64, Notch)> = groups
         .into_iter()
         .map(|(_, mut list)| {
@@ -482,6 +485,48 @@ fn notches(pieces: Vec<(Option<(i16, i16)>, Polygon<f64>)>, outer_radius_mm: f64
     let mut notches: Vec<Notch> = notches.into_iter().map(|(_, n)| n).collect();
     notches.sort_by_key(|n| (n.level, n.side));
     notches
+}
+
+/// Joins untagged notch pieces that are the two halves of one notch split at the seam: the
+/// same `x` range, one ending on the window's top edge and one starting on the seam. The top
+/// piece comes first, as the layout writes them.
+fn merge_seam_halves(
+    groups: &mut Vec<(Option<i16>, Vec<(i16, Polygon<f64>)>)>,
+    seam_mm: f64,
+    c_mm: f64,
+) {
+    const TOL_MM: f64 = 1e-6;
+    let bounds = |p: &Polygon<f64>| p.bounding_rect();
+    let mut i = 0;
+    while i < groups.len() {
+        let top = match &groups[i] {
+            (None, list) if list.len() == 1 => bounds(&list[0].1),
+            _ => None,
+        };
+        let partner = top
+            .filter(|t| (t.max().y - (seam_mm + c_mm)).abs() <= TOL_MM)
+            .and_then(|t| {
+                groups.iter().position(|(tag, list)| {
+                    tag.is_none()
+                        && list.len() == 1
+                        && bounds(&list[0].1).is_some_and(|b| {
+                            (b.min().y - seam_mm).abs() <= TOL_MM
+                                && (b.min().x - t.min().x).abs() <= TOL_MM
+                                && (b.max().x - t.max().x).abs() <= TOL_MM
+                        })
+                })
+            });
+        if let Some(j) = partner.filter(|&j| j != i) {
+            let (_, mut bottom) = groups.remove(j);
+            let at = if j < i { i - 1 } else { i };
+            if let Some((_, piece)) = bottom.pop() {
+                groups[at].1.push((1, piece));
+            }
+            i = at + 1;
+        } else {
+            i += 1;
+        }
+    }
 }
 
 /// The traces of one kind: tagged ones by list index (pieces by piece number), then untagged

@@ -43,7 +43,8 @@ impl Layout {
         ] {
             count(what, a.len(), b.len())?;
             for (i, (ta, tb)) in a.iter().zip(b).enumerate() {
-                worst = worst.max(trace_difference(ta, tb).map_err(|e| format!("{what}[{i}]: {e}"))?);
+                worst =
+                    worst.max(trace_difference(ta, tb).map_err(|e| format!("{what}[{i}]: {e}"))?);
             }
         }
         count("parting pieces", self.parting.len(), other.parting.len())?;
@@ -56,7 +57,11 @@ impl Layout {
 
 fn notch_difference(a: &Notch, b: &Notch) -> Result<f64, String> {
     if (a.level, a.side) != (b.level, b.side) {
-        return Err(format!("level/side {:?} vs {:?}", (a.level, a.side), (b.level, b.side)));
+        return Err(format!(
+            "level/side {:?} vs {:?}",
+            (a.level, a.side),
+            (b.level, b.side)
+        ));
     }
     if a.outline.len() != b.outline.len() {
         return Err(format!("pieces {} vs {}", a.outline.len(), b.outline.len()));
