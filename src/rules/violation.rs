@@ -93,7 +93,7 @@ pub enum Violation {
         width_mm: f64,
     },
     /// A written trace comes closer than the clearance to a cut or to another trace.
-    #[error("{}", clearance_message(what, *x_mm, *s_mm, *gap_mm, other, *required_mm))]
+    #[error("{}", clearance_message(what, *x_mm, *s_mm, *gap_mm, *crossing, other, *required_mm))]
     Clearance {
         /// The trace, e.g. `sensor 1 arm`.
         what: String,
@@ -101,8 +101,10 @@ pub enum Violation {
         x_mm: f64,
         /// Arc-length position of its closest point, in the drawing's window (mm).
         s_mm: f64,
-        /// Edge-to-edge gap (mm); negative when they overlap.
+        /// Edge-to-edge gap (mm); negative when the written lines overlap.
         gap_mm: f64,
+        /// The centre line touches or crosses the other feature, so the gap says nothing more.
+        crossing: bool,
         /// The other feature, e.g. `notch 4`.
         other: String,
         /// The clearance in force (mm).
@@ -119,8 +121,18 @@ pub enum Violation {
     Other(String),
 }
 
-fn clearance_message(what: &str, x: f64, s: f64, gap: f64, other: &str, required: f64) -> String {
-    if gap < 0.0 {
+fn clearance_message(
+    what: &str,
+    x: f64,
+    s: f64,
+    gap: f64,
+    crossing: bool,
+    other: &str,
+    required: f64,
+) -> String {
+    if crossing {
+        format!("{what} at x = {x:.2} mm, s = {s:.2} mm touches or crosses {other} (clearance {required:.3} mm required)")
+    } else if gap < 0.0 {
         format!(
             "{what} at x = {x:.2} mm, s = {s:.2} mm overlaps {other} by {:.3} mm (clearance {required:.3} mm required)",
             -gap
