@@ -140,7 +140,10 @@ fn joint_a_layout_has_every_feature_in_fig1_colours() {
         "Joint A — unrolled layout (UAN), scale 10:1",
         "ȳ = 0.936, ys = 1.224, Δy = 0.288 mm",
         &format!("to parting cut {}", fixed(l.length_mm, 2)),
-        &format!("seam (top and bottom edge) at s = {}", fixed(l.seam_s_mm, 2)),
+        &format!(
+            "The top and bottom edges are the seam, s = {} mm",
+            fixed(l.seam_s_mm, 2)
+        ),
     ] {
         assert!(has_text(&doc, needle), "missing {needle:?} in {:?}", texts(&doc));
     }
@@ -239,7 +242,19 @@ fn features_split_at_the_seam_are_drawn_piece_by_piece() {
     assert_clean(&svg);
     let doc = parse(&svg);
     assert_eq!(with_class(&doc, "notch").len(), 20);
-    assert!(has_text(&doc, "sn = 5.61"), "{:?}", texts(&doc));
+    // h and c still measured (a split notch keeps its x extent); s_n in two shares.
+    for needle in [
+        "h = 0.50",
+        "c = 0.50",
+    ] {
+        assert!(has_text(&doc, needle), "missing {needle:?} in {:?}", texts(&doc));
+    }
+    let shares: Vec<f64> = texts(&doc)
+        .iter()
+        .filter_map(|t| t.strip_prefix("sn: ")?.strip_suffix(" of 5.61")?.parse().ok())
+        .collect();
+    assert_eq!(shares.len(), 2, "{:?}", texts(&doc));
+    assert!((shares.iter().sum::<f64>() - 5.61).abs() < 0.011, "{shares:?}");
 }
 
 #[test]
