@@ -60,7 +60,7 @@ const SECTIONS: &[(NotchStyle, f64, f64, f64, f64)] = &[
     (NotchStyle::Uan, 0.6, 0.45, 2.4, 0.3),
     (NotchStyle::Uan, 2.0, 1.9, 1.0, 0.5), // thin wall, small notch
     (NotchStyle::Uan, 1.0, 0.2, 6.0, 0.1), // thick wall, notch nearly all round
-    (NotchStyle::Uan, 1.0, 0.5, 3.141_592_653_589_793, 0.4), // half the tube cut
+    (NotchStyle::Uan, 1.0, 0.5, PI, 0.4),  // half the tube cut
 ];
 
 #[test]
