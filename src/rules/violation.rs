@@ -60,6 +60,32 @@ pub enum Violation {
         /// Key as written in the design file.
         name: &'static str,
     },
+    /// A count is above its limit.
+    #[error("{name} = {value} must be at most {max}")]
+    TooMany {
+        /// Key as written in the design file.
+        name: &'static str,
+        /// The value given.
+        value: u32,
+        /// The limit.
+        max: u32,
+    },
+    /// The pads are too big to fit round the tube.
+    #[error("pads of pad_turns = {turns} at pad_pitch_mm = {pitch_mm} are {size_mm:.4} mm wide (2·turns·pitch); {count} of them with pad_gap_mm between must fit round the circumference 2π·r_o = {circumference_mm:.4} mm, so each may be at most {max_mm:.4} mm")]
+    PadSize {
+        /// Spiral turns.
+        turns: u32,
+        /// Spiral pitch (mm).
+        pitch_mm: f64,
+        /// Pad size (mm).
+        size_mm: f64,
+        /// Pads round the tube.
+        count: u32,
+        /// Circumference (mm).
+        circumference_mm: f64,
+        /// Largest pad that fits (mm).
+        max_mm: f64,
+    },
     /// A notch or the rib between two notches is no wider than the laser's kerf.
     #[error("{name} = {value_mm} must be larger than the kerf kerf_mm = {kerf_mm}")]
     NarrowerThanKerf {
