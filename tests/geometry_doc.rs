@@ -80,7 +80,10 @@ fn joint_a_figures_match_the_page() {
     let alpha = PI - s.notch_angle_rad() / 2.0;
     let mut wanted = figures("joint-a", 26.0, 15.3, 215e3);
     wanted.push(format!("{alpha:.5} rad ({:.2}°)", alpha.to_degrees()));
-    wanted.push(format!("ȳ = 2·0.77042·1.23670/(3·0.87950·0.77198) = {:.5} mm", s.neutral_axis_mm()));
+    wanted.push(format!(
+        "ȳ = 2·0.77042·1.23670/(3·0.87950·0.77198) = {:.5} mm",
+        s.neutral_axis_mm()
+    ));
     for w in wanted {
         assert!(page.contains(&w), "docs/geometry.md lacks {w:?}");
     }

@@ -22,6 +22,9 @@ const LAYERS: [&str; 6] = [
     "labels",
 ];
 
+/// An angular range `(φ0, φ1)` of the section (rad from `+y`).
+type Sector = (f64, f64);
+
 /// Arc flattening step (rad): half a degree keeps the chord within 1e-5·r of the circle.
 const ARC_STEP_RAD: f64 = PI / 360.0;
 
@@ -63,7 +66,7 @@ fn draw(design: &Design, scale: f64) -> Drawn {
     let phi_s = sec.sensor_angle_rad();
 
     // Material and the notch cut, as annular sectors [φ0, φ1].
-    let (kept, cut): (Vec<(f64, f64)>, Vec<(f64, f64)>) = match style {
+    let (kept, cut): (Vec<Sector>, Vec<Sector>) = match style {
         NotchStyle::Uan => {
             let alpha = PI - phi_n / 2.0;
             (vec![(-alpha, alpha)], vec![(alpha, 2.0 * PI - alpha)])
@@ -73,7 +76,10 @@ fn draw(design: &Design, scale: f64) -> Drawn {
                 (phi_n / 2.0, PI - phi_n / 2.0),
                 (PI + phi_n / 2.0, 2.0 * PI - phi_n / 2.0),
             ],
-            vec![(-phi_n / 2.0, phi_n / 2.0), (PI - phi_n / 2.0, PI + phi_n / 2.0)],
+            vec![
+                (-phi_n / 2.0, phi_n / 2.0),
+                (PI - phi_n / 2.0, PI + phi_n / 2.0),
+            ],
         ),
     };
     let outline = sheet.pen(palette::OUTLINE, 0.35, None);
@@ -291,16 +297,23 @@ fn draw(design: &Design, scale: f64) -> Drawn {
     let radius_pen = sheet.pen(palette::DIMENSION, THIN_MM, None);
     let mut radius_label_end: f64 = 0.0;
     for (r, phi, label, right) in [
-        (ro, PI * 5.0 / 6.0, format!("r_{{o}} = {}", fixed(ro, 3)), true),
-        (ri, -PI * 5.0 / 6.0, format!("r_{{i}} = {}", fixed(ri, 3)), false),
+        (
+            ro,
+            PI * 5.0 / 6.0,
+            format!("r_{{o}} = {}", fixed(ro, 3)),
+            true,
+        ),
+        (
+            ri,
+            -PI * 5.0 / 6.0,
+            format!("r_{{i}} = {}", fixed(ri, 3)),
+            false,
+        ),
     ] {
         let tip = polar(r, phi);
         let elbow = polar(ro + sheet.paper(10.0), phi);
         let shoulder = sheet.paper(4.0);
-        let end = (
-            elbow.0 + if right { shoulder } else { -shoulder },
-            elbow.1,
-        );
+        let end = (elbow.0 + if right { shoulder } else { -shoulder }, elbow.1);
         sheet.path(
             "dimensions",
             &[(0.0, 0.0), elbow, end],
@@ -311,7 +324,12 @@ fn draw(design: &Design, scale: f64) -> Drawn {
         );
         sheet.arrowhead("dimensions", tip, tip);
         let anchor = if right { Anchor::Start } else { Anchor::End };
-        let tx = end.0 + if right { sheet.paper(1.0) } else { -sheet.paper(1.0) };
+        let tx = end.0
+            + if right {
+                sheet.paper(1.0)
+            } else {
+                -sheet.paper(1.0)
+            };
         let style = TextStyle::new(TEXT_MM, palette::DIMENSION).anchor(anchor);
         if right {
             radius_label_end = tx + sheet.text_width(&label, style);
@@ -321,7 +339,10 @@ fn draw(design: &Design, scale: f64) -> Drawn {
 
     // The numbers right of the section, below the planes.
     let table = numbers(design, &sheet);
-    let lowest_plane = planes.iter().map(|(y, ..)| -y).fold(f64::NEG_INFINITY, f64::max);
+    let lowest_plane = planes
+        .iter()
+        .map(|(y, ..)| -y)
+        .fold(f64::NEG_INFINITY, f64::max);
     let table_x = (ro + sheet.paper(12.0)).max(radius_label_end + sheet.paper(4.0));
     // Bottom-aligned with the section unless the planes reach lower.
     let (_, table_h) = table.size(&sheet);
@@ -381,7 +402,10 @@ fn numbers(design: &Design, sheet: &Sheet) -> Table {
         ),
         (
             "sensor plane (Eq. 1)".to_string(),
-            format!("y_{{s}} = r_{{o}}·cos(φ_{{s}}/2) = {} mm", fixed(s.sensor_plane_mm(), 3)),
+            format!(
+                "y_{{s}} = r_{{o}}·cos(φ_{{s}}/2) = {} mm",
+                fixed(s.sensor_plane_mm(), 3)
+            ),
         ),
         (
             "offset (Eq. 3)".to_string(),
@@ -409,7 +433,11 @@ fn numbers(design: &Design, sheet: &Sheet) -> Table {
         ),
     ]);
     Table {
-        heading: format!("{} — {} cross-section", design.file.name, style_name(s.style())),
+        heading: format!(
+            "{} — {} cross-section",
+            design.file.name,
+            style_name(s.style())
+        ),
         rows,
     }
 }
@@ -450,7 +478,8 @@ fn spread(ys: &[f64], gap: f64) -> Vec<f64> {
         while end < placed.len() && placed[end] - placed[end - 1] <= gap + 1e-12 {
             end += 1;
         }
-        let shift = (wanted[start..end].iter().sum::<f64>() - placed[start..end].iter().sum::<f64>())
+        let shift = (wanted[start..end].iter().sum::<f64>()
+            - placed[start..end].iter().sum::<f64>())
             / (end - start) as f64;
         for p in &mut placed[start..end] {
             *p += shift;

@@ -265,7 +265,13 @@ impl Sheet {
     }
 
     /// A literal text, no markup.
-    pub fn text_plain(&mut self, layer: &'static str, at: (f64, f64), text: &str, style: TextStyle) {
+    pub fn text_plain(
+        &mut self,
+        layer: &'static str,
+        at: (f64, f64),
+        text: &str,
+        style: TextStyle,
+    ) {
         self.emit_text(layer, at, &[(text.to_string(), Shift::None)], style);
     }
 
@@ -491,7 +497,7 @@ mod tests {
             (-0.00001, "0"),
             (1.5, "1.5"),
             (2.0, "2"),
-            (-3.14159265, "-3.1416"),
+            (-1.234567, "-1.2346"),
             (1e-3, "0.001"),
         ];
         for (v, s) in table {
