@@ -705,7 +705,7 @@ fn title_block(sheet: &Sheet, layout: &Layout, design: &Design) -> Table {
         rows.insert(
             4,
             (
-                "two sensors (Eq. 6)".to_string(),
+                "two sensors (Eq. 7)".to_string(),
                 format!("Δy^{{(1,2)}} = {} mm", fixed(dy12, 3)),
             ),
         );

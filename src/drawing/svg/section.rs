@@ -22,6 +22,9 @@ const LAYERS: [&str; 6] = [
     "labels",
 ];
 
+/// An angular range `(φ0, φ1)` of the section (rad from `+y`).
+type Sector = (f64, f64);
+
 /// Arc flattening step (rad): half a degree keeps the chord within 1e-5·r of the circle.
 const ARC_STEP_RAD: f64 = PI / 360.0;
 
@@ -41,7 +44,8 @@ pub fn section_svg(design: &Design) -> Result<String, SvgError> {
 /// notch removes (an angular sector of `φ_n = s_n/r_o`, centred at `φ = π` for UAN, at `φ = 0`
 /// and `π` for BSN) in pale orange, the neutral plane `ȳ` (Eq. 2), the sensor arms at
 /// `φ = ±φ_s/2` (and `π ± φ_s/2` for BSN's sensor 2) with the sensor plane `y_s` (Eq. 1), and
-/// the offset `Δy = y_s − ȳ` (Eq. 3) as a dimension; for BSN also `Δy^(1,2) = 2·y_s` (Eq. 6).
+/// the offset `Δy = y_s − ȳ` (Eq. 3) as a dimension; for BSN also `Δy^(1,2) = 2·y_s`, the
+/// distance between the sensor planes in the two-sensor angle (the paper's Eq. 7).
 /// Every number comes from `dlw_geometry`.
 ///
 /// # Errors
@@ -62,7 +66,7 @@ fn draw(design: &Design, scale: f64) -> Drawn {
     let phi_s = sec.sensor_angle_rad();
 
     // Material and the notch cut, as annular sectors [φ0, φ1].
-    let (kept, cut): (Vec<(f64, f64)>, Vec<(f64, f64)>) = match style {
+    let (kept, cut): (Vec<Sector>, Vec<Sector>) = match style {
         NotchStyle::Uan => {
             let alpha = PI - phi_n / 2.0;
             (vec![(-alpha, alpha)], vec![(alpha, 2.0 * PI - alpha)])
@@ -410,7 +414,7 @@ fn numbers(design: &Design, sheet: &Sheet) -> Table {
     ];
     if let Some(dy12) = s.two_sensor_offset_mm() {
         rows.push((
-            "two sensors (Eq. 6)".to_string(),
+            "two sensors (Eq. 7)".to_string(),
             format!("Δy^{{(1,2)}} = {} mm", fixed(dy12, 3)),
         ));
     }

@@ -12,25 +12,10 @@ use super::*;
 use crate::design::Design;
 use crate::layout::Layout;
 
-/// The seam the fixtures use for a design: in the backbone, past the pads, clear of the notch.
-fn seam_for(d: &Design) -> f64 {
-    let f = &d.file;
-    match f.style {
-        // Halfway between the pads' far edge and the notch's edge, on the −s side.
-        dlw_geometry::NotchStyle::Uan => {
-            let fab = &f.fabrication;
-            let pads = 2.0 * f64::from(fab.pad_turns) * fab.pad_pitch_mm + fab.pad_gap_mm / 2.0;
-            let notch = PI * f.outer_radius_mm - f.notch_arc_mm / 2.0;
-            -(pads + notch) / 2.0
-        }
-        // Halfway between the two sensors (φ = 90°).
-        dlw_geometry::NotchStyle::Bsn => PI * f.outer_radius_mm / 2.0,
-    }
-}
-
+/// A shipped design and its layout from the layout generator.
 fn sample(stem: &str) -> (Design, Layout) {
     let d = design(stem);
-    let l = layout_for(&d, seam_for(&d));
+    let l = Layout::from_design(&d).unwrap();
     (d, l)
 }
 
@@ -222,7 +207,7 @@ fn joint_c_layout_has_both_sides_and_both_sensors() {
 #[test]
 fn a_design_outside_the_paper_shows_l_and_the_notched_length_apart() {
     let d = outside_design();
-    let l = layout_for(&d, seam_for(&d));
+    let l = Layout::from_design(&d).unwrap();
     let svg = layout_svg(&l, &d).unwrap();
     assert_clean(&svg);
     let doc = parse(&svg);
@@ -470,7 +455,7 @@ fn write_samples_when_asked() {
         .collect();
     designs.push(("outside".into(), outside_design()));
     for (stem, d) in designs {
-        let l = layout_for(&d, seam_for(&d));
+        let l = Layout::from_design(&d).unwrap();
         let layout = layout_svg(&l, &d).unwrap();
         let section = section_svg(&d).unwrap();
         parse(&layout);
