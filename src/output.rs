@@ -24,6 +24,28 @@ pub enum OutputError {
 /// # Errors
 /// [`OutputError::Io`] naming the path; the destination is then untouched.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+    persist(path, stage(path, bytes)?)
+}
+
+/// Writes several files so that either all of them appear or (up to a failing rename at the very
+/// end) none: every temporary file is written completely first, then all are renamed.
+///
+/// # Errors
+/// [`OutputError::Io`] naming the first path that could not be written; no destination has been
+/// touched when a temporary file cannot be created or written.
+pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError> {
+    let staged = files
+        .iter()
+        .map(|(path, bytes)| Ok((path, stage(path, bytes)?)))
+        .collect::<Result<Vec<_>, OutputError>>()?;
+    for (path, tmp) in staged {
+        persist(path, tmp)?;
+    }
+    Ok(())
+}
+
+/// Writes `bytes` completely to a temporary file beside `path`.
+fn stage(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, OutputError> {
     let io = |source| OutputError::Io {
         path: path.to_path_buf(),
         source,
@@ -35,39 +57,22 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
     let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
     tmp.write_all(bytes).map_err(io)?;
     tmp.flush().map_err(io)?;
-    tmp.persist(path).map_err(|e| io(e.error))?;
-    Ok(())
+    // Temporary files are created private (0600); an output file is an ordinary document.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644))
+            .map_err(io)?;
+    }
+    Ok(tmp)
 }
 
-/// Writes several files so that either all of them appear or (up to a failing rename at the very
-/// end) none: every temporary file is written completely first, then all are renamed.
-///
-/// # Errors
-/// [`OutputError::Io`] naming the first path that could not be written; no destination has been
-/// touched when a temporary file cannot be created or written.
-pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError> {
-    let mut staged = Vec::with_capacity(files.len());
-    for (path, bytes) in files {
-        let io = |source| OutputError::Io {
-            path: path.clone(),
-            source,
-        };
-        let dir = match path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
-        tmp.write_all(bytes).map_err(io)?;
-        tmp.flush().map_err(io)?;
-        staged.push((path, tmp));
-    }
-    for (path, tmp) in staged {
-        tmp.persist(path).map_err(|e| OutputError::Io {
-            path: path.clone(),
-            source: e.error,
-        })?;
-    }
-    Ok(())
+fn persist(path: &Path, tmp: tempfile::NamedTempFile) -> Result<(), OutputError> {
+    tmp.persist(path).map(drop).map_err(|e| OutputError::Io {
+        path: path.to_path_buf(),
+        source: e.error,
+    })
 }
 
 #[cfg(test)]
@@ -80,6 +85,12 @@ mod tests {
         let path = dir.path().join("a.txt");
         write_atomic(&path, b"hello").unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), b"hello");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = std::fs::metadata(&path).unwrap().permissions().mode();
+            assert_eq!(mode & 0o777, 0o644, "{mode:o}");
+        }
         let missing = dir.path().join("no/such/folder/b.txt");
         let err = write_atomic(&missing, b"x").unwrap_err();
         assert!(format!("{err:#}").contains("b.txt"), "{err}");
