@@ -13,4 +13,6 @@
 
 pub mod design;
 pub mod layout;
+pub mod machine;
 pub mod output;
+pub mod process;
