@@ -16,3 +16,4 @@ pub mod layout;
 pub mod machine;
 pub mod output;
 pub mod process;
+pub mod toolpath;
