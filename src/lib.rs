@@ -6,6 +6,7 @@
 //! - [`design`]: design files (the paper's Table I plus fabrication tables), read and validated;
 //! - [`layout`]: the unrolled joint (notches, sensor traces, leads, pads, parting line) in the
 //!   drawing frame;
+//! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file.
 //!
 //! The cross-section and strain math lives in the `dlw-geometry` crate, shared with the
@@ -15,5 +16,7 @@ pub mod design;
 pub mod layout;
 pub mod machine;
 pub mod output;
+pub mod post;
 pub mod process;
+pub mod rules;
 pub mod toolpath;

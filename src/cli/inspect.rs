@@ -3,7 +3,8 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use dlw::design::Design;
+use dlw::design::DesignFile;
+use dlw::rules;
 use serde::Serialize;
 
 /// Arguments of `dlw inspect`.
@@ -33,7 +34,8 @@ struct Report {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let design = Design::load(&args.design)?;
+    let checked = rules::check_file(DesignFile::read(&args.design)?)?;
+    let design = &checked.design;
     let joint = &design.joint;
     let section = joint.section();
     let report = Report {
@@ -46,7 +48,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         two_sensor_offset_mm: section.two_sensor_offset_mm(),
         closing_angle_deg: joint.closing_angle_rad().to_degrees(),
         strain_at_closing: joint.strain_at_closing(),
-        warnings: Vec::new(),
+        warnings: checked.warnings.iter().map(ToString::to_string).collect(),
     };
     if args.json {
         println!(

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 /// | `kerf_mm` | 0.03 | width of material the cutting beam removes |
 /// | `clearance_mm` | kerf + trace width | least gap between any trace and any notch, and between traces |
 /// | `distal_margin_mm` | 1.0 | uncut tube between the distal end (x = 0) and the first notch; the sensor's bridge runs here |
-/// | `lead_length_mm` | 1.0 | straight lead from the end of the notched section to the pads |
+/// | `lead_length_mm` | 1.0 | lead from the end of a sensor arm (half a distal margin past the last notch) to its pad |
 /// | `pad_pitch_mm` | 0.1 | pitch of the square-spiral contact pads (≥ trace width) |
 /// | `pad_turns` | 4 | turns of each square spiral |
 /// | `pad_gap_mm` | 0.3 | gap between neighbouring pads along the circumference |
@@ -27,7 +27,7 @@ pub struct Fabrication {
     pub clearance_mm: Option<f64>,
     /// Uncut tube between the distal end and the first notch (mm).
     pub distal_margin_mm: f64,
-    /// Straight lead from the end of the notched section to the pads (mm).
+    /// Lead from the end of a sensor arm to its pad, along the tube (mm).
     pub lead_length_mm: f64,
     /// Pitch of the square-spiral contact pads (mm).
     pub pad_pitch_mm: f64,

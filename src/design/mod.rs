@@ -66,6 +66,38 @@ pub struct DesignFile {
     pub process: ProcessChoice,
 }
 
+impl DesignFile {
+    /// Reads a design file without validating its values (the design rules do that, listing
+    /// every problem at once).
+    ///
+    /// # Errors
+    /// [`DesignError::Read`] or [`DesignError::Parse`] naming the file.
+    pub fn read(path: &Path) -> Result<Self, DesignError> {
+        let text = std::fs::read_to_string(path).map_err(|source| DesignError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_toml(&text).map_err(|e| match e {
+            DesignError::Parse { message, .. } => DesignError::Parse {
+                path: path.to_path_buf(),
+                message,
+            },
+            other => other,
+        })
+    }
+
+    /// Parses a design from TOML text without validating its values.
+    ///
+    /// # Errors
+    /// [`DesignError::Parse`] for malformed TOML or unknown keys.
+    pub fn from_toml(text: &str) -> Result<Self, DesignError> {
+        toml::from_str(text).map_err(|e| DesignError::Parse {
+            path: PathBuf::from("<text>"),
+            message: e.to_string().trim_end().to_string(),
+        })
+    }
+}
+
 /// Why a design file was refused.
 #[derive(Debug, thiserror::Error)]
 pub enum DesignError {
@@ -113,17 +145,7 @@ impl Design {
     /// # Errors
     /// [`DesignError`] naming the file, key or value.
     pub fn load(path: &Path) -> Result<Self, DesignError> {
-        let text = std::fs::read_to_string(path).map_err(|source| DesignError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        Self::from_toml(&text).map_err(|e| match e {
-            DesignError::Parse { message, .. } => DesignError::Parse {
-                path: path.to_path_buf(),
-                message,
-            },
-            other => other,
-        })
+        Self::from_file(DesignFile::read(path)?)
     }
 
     /// Parses and validates a design from TOML text.
@@ -132,11 +154,7 @@ impl Design {
     /// [`DesignError::Parse`] for malformed TOML or unknown keys, [`DesignError::Geometry`] for
     /// unphysical Table I values.
     pub fn from_toml(text: &str) -> Result<Self, DesignError> {
-        let file: DesignFile = toml::from_str(text).map_err(|e| DesignError::Parse {
-            path: PathBuf::from("<text>"),
-            message: e.to_string().trim_end().to_string(),
-        })?;
-        Self::from_file(file)
+        Self::from_file(DesignFile::from_toml(text)?)
     }
 
     /// Validates a design already in memory.

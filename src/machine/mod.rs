@@ -23,7 +23,7 @@ pub use profile::{
     Axes, Dialect, Fixture, Focus, LaserCommands, Limits, MachineProfile, RepeatMode, RotaryUnits,
 };
 /// Laser command templates with `{placeholder}` values.
-pub use template::{LaserValues, Template};
+pub use template::{format_number, LaserValues, Template};
 
 /// Why a machine profile could not be used.
 #[derive(Debug, thiserror::Error)]

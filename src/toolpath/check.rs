@@ -6,7 +6,7 @@
 //! - Every beam-on move keeps its set's surface speed within the stage's X and A limits: a move
 //!   that cannot is refused, never slowed down.
 //! - No cutting path, widened by half the kerf, touches a written line widened by half its
-//!   width.
+//!   width (the design rules' clearance check, run on the cutting paths).
 //!
 //! The beam being off on every rapid is structural: a plan has no beam-on rapids, and every
 //! post-processor closes the gate before each rapid (checked on the programs in the tests).
@@ -15,11 +15,13 @@ use std::f64::consts::PI;
 
 use geo::Coord;
 
-use super::offset::segment_distance;
-use super::plan::{MoveKind, OperationKind, Path, Plan, Point};
+use geo::{LineString, Polygon};
+
+use super::plan::{Feature, MoveKind, OperationKind, Plan, Point};
 use super::ToolpathError;
-use crate::layout::Layout;
+use crate::layout::{Layout, Notch};
 use crate::machine::MachineProfile;
+use crate::rules::{self, Violation};
 
 /// Checks every invariant of `plan` against `profile`.
 ///
@@ -109,131 +111,73 @@ pub fn check_plan(
     check_clearance(plan, layout)
 }
 
-/// No cut (kerf-offset outline with its lead-in, or the parting cut) may come within
-/// `kerf/2 + trace width/2` of a written line's centre line.
+/// No cut may touch a written line: the design rules' clearance check
+/// ([`crate::rules::check_layout`]) run on a layout whose notches are the kerf-offset cut
+/// outlines (their lead-ins lie inside) and whose parting line is the parting cut's centre line
+/// and lead-in, with the written lines as the design drew them, at a clearance of `kerf/2`:
+/// the rule then demands `d − w/2 ≥ kerf/2`, i.e. the kerf's edge stays off the line's edge.
 fn check_clearance(plan: &Plan, layout: &Layout) -> Result<(), ToolpathError> {
     let r_o = plan.outer_radius_mm;
-    let c = layout.circumference_mm;
-    let needed_mm = plan.kerf_mm / 2.0 + plan.trace_width_mm / 2.0;
-    let written: Vec<&Path> = plan
-        .operations
-        .iter()
-        .filter(|o| o.kind == OperationKind::Sensor)
-        .flat_map(|o| o.paths.iter())
-        .collect();
-    let cuts = plan
+    let to_xs = |pts: &[Point]| -> Vec<Coord<f64>> {
+        pts.iter()
+            .map(|p| Coord {
+                x: p.x_mm,
+                y: p.a_rad * r_o,
+            })
+            .collect()
+    };
+    let mut notches = Vec::new();
+    let mut parting = Vec::new();
+    for op in plan
         .operations
         .iter()
         .filter(|o| o.kind != OperationKind::Sensor)
-        .flat_map(|o| o.paths.iter());
-    for cut in cuts {
-        let cut_xs: Vec<Vec<Coord<f64>>> = [Some(&cut.forward), cut.reverse.as_ref()]
-            .into_iter()
-            .flatten()
-            .map(|pts| to_xs(pts, r_o))
-            .collect();
-        for line in &written {
-            let line_xs = to_xs(&line.forward, r_o);
-            for cut_line in &cut_xs {
-                let d = periodic_distance(cut_line, &line_xs, c);
-                if d < needed_mm {
-                    return Err(ToolpathError::Clearance {
-                        cut: cut.feature.to_string(),
-                        line: line.feature.to_string(),
-                        distance_mm: d,
-                        needed_mm,
-                    });
+    {
+        for path in &op.paths {
+            for pts in [Some(&path.forward), path.reverse.as_ref()]
+                .into_iter()
+                .flatten()
+            {
+                match path.feature {
+                    Feature::Notch { level, side } => {
+                        let skip = usize::from(path.lead_in);
+                        notches.push(Notch {
+                            level,
+                            side,
+                            outline: vec![Polygon::new(
+                                LineString::new(to_xs(&pts[skip..])),
+                                vec![],
+                            )],
+                        });
+                        parting.push(LineString::new(to_xs(&pts[..=skip.min(pts.len() - 1)])));
+                    }
+                    _ => parting.push(LineString::new(to_xs(pts))),
                 }
             }
         }
     }
-    Ok(())
-}
-
-fn to_xs(points: &[Point], r_o: f64) -> Vec<Coord<f64>> {
-    points
-        .iter()
-        .map(|p| Coord {
-            x: p.x_mm,
-            y: p.a_rad * r_o,
-        })
-        .collect()
-}
-
-/// Least distance between two polylines on the unrolled surface, trying the shifts by whole
-/// circumferences that could bring them together.
-fn periodic_distance(a: &[Coord<f64>], b: &[Coord<f64>], c: f64) -> f64 {
-    let mean = |l: &[Coord<f64>]| l.iter().map(|p| p.y).sum::<f64>() / l.len().max(1) as f64;
-    let base = ((mean(b) - mean(a)) / c).round();
-    [-1.0, 0.0, 1.0]
+    let cuts = Layout {
+        notches,
+        parting,
+        ..layout.clone()
+    };
+    let needed_mm = plan.kerf_mm / 2.0;
+    let found: Vec<String> = rules::check_layout(&cuts, needed_mm)
         .into_iter()
-        .map(|k| {
-            let shift = (base + k) * c;
-            let moved: Vec<Coord<f64>> = a
-                .iter()
-                .map(|p| Coord {
-                    x: p.x,
-                    y: p.y + shift,
-                })
-                .collect();
-            polyline_distance(&moved, b)
+        .filter(|v| matches!(v, Violation::Clearance { .. }))
+        .filter(|v| !v.to_string().contains("the distal end"))
+        .map(|v| v.to_string())
+        .collect();
+    if found.is_empty() {
+        Ok(())
+    } else {
+        Err(ToolpathError::Clearance {
+            kerf_mm: plan.kerf_mm,
+            found,
         })
-        .fold(f64::INFINITY, f64::min)
-}
-
-fn polyline_distance(a: &[Coord<f64>], b: &[Coord<f64>]) -> f64 {
-    let segs = |l: &[Coord<f64>]| -> Vec<(Coord<f64>, Coord<f64>)> {
-        if l.len() == 1 {
-            vec![(l[0], l[0])]
-        } else {
-            l.windows(2).map(|w| (w[0], w[1])).collect()
-        }
-    };
-    let mut best = f64::INFINITY;
-    for (p, q) in segs(a) {
-        for (r, s) in segs(b) {
-            best = best.min(segment_segment(p, q, r, s));
-        }
     }
-    best
-}
-
-fn segment_segment(p: Coord<f64>, q: Coord<f64>, r: Coord<f64>, s: Coord<f64>) -> f64 {
-    let cross = |o: Coord<f64>, a: Coord<f64>, b: Coord<f64>| {
-        (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
-    };
-    let (d1, d2, d3, d4) = (
-        cross(p, q, r),
-        cross(p, q, s),
-        cross(r, s, p),
-        cross(r, s, q),
-    );
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
-        return 0.0;
-    }
-    segment_distance(p, q, r)
-        .min(segment_distance(p, q, s))
-        .min(segment_distance(r, s, p))
-        .min(segment_distance(r, s, q))
 }
 
 fn describe(p: Point) -> String {
     format!("(x {:.4} mm, a {:.4}°)", p.x_mm, p.a_rad * 180.0 / PI)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn periodic_distance_sees_across_the_seam() {
-        let c = 10.0;
-        let a = [Coord { x: 0.0, y: 9.9 }, Coord { x: 1.0, y: 9.9 }];
-        let b = [Coord { x: 0.0, y: 0.1 }, Coord { x: 1.0, y: 0.1 }];
-        assert!((periodic_distance(&a, &b, c) - 0.2).abs() < 1e-12);
-        let crossing = [Coord { x: 0.5, y: -1.0 }, Coord { x: 0.5, y: 1.0 }];
-        assert_eq!(periodic_distance(&crossing, &b, c), 0.0);
-    }
 }

@@ -140,15 +140,11 @@ pub enum ToolpathError {
         surface_mm_s: f64,
     },
     /// A cut comes too close to a written line.
-    #[error("{cut} comes {distance_mm:.4} mm from {line}: the kerf would touch the line (centre lines must be at least {needed_mm:.4} mm apart)")]
+    #[error("a cutting path would touch a written line (kerf {kerf_mm} mm):{}", .found.iter().map(|f| format!("\n  - {f}")).collect::<String>())]
     Clearance {
-        /// The cutting path.
-        cut: String,
-        /// The written line.
-        line: String,
-        /// Their least centre-line distance.
-        distance_mm: f64,
-        /// Half the kerf plus half the line width.
-        needed_mm: f64,
+        /// The kerf (mm).
+        kerf_mm: f64,
+        /// Each clearance the design rules found broken between a cut and a line.
+        found: Vec<String>,
     },
 }

@@ -63,7 +63,8 @@ pub enum TraceKind {
     Pad,
 }
 
-/// What a path makes.
+/// What a path makes. Displayed the way people count: notches from 1 at the distal end,
+/// sensors 1 and 2.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Feature {
     /// One continuous written line of sensor `sensor`: the layout's pieces that meet end to end,
@@ -97,9 +98,9 @@ impl fmt::Display for Feature {
                         TraceKind::Pad => "pad",
                     })
                     .collect();
-                write!(f, "sensor {sensor} line ({})", names.join("+"))
+                write!(f, "sensor {} line ({})", sensor + 1, names.join("+"))
             }
-            Self::Notch { level, side } => write!(f, "notch {level} (side {side})"),
+            Self::Notch { level, side } => write!(f, "notch {} (side {side})", level + 1),
             Self::Parting => write!(f, "parting cut"),
         }
     }
