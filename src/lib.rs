@@ -6,6 +6,7 @@
 //! - [`design`]: design files (the paper's Table I plus fabrication tables), read and validated;
 //! - [`layout`]: the unrolled joint (notches, sensor traces, leads, pads, parting line) in the
 //!   drawing frame;
+//! - [`drawing`]: DXF drawings for designers, written and read back;
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file.
 //!
@@ -13,6 +14,7 @@
 //! runtime estimator.
 
 pub mod design;
+pub mod drawing;
 pub mod layout;
 pub mod machine;
 pub mod output;

@@ -18,6 +18,7 @@
 //! the stations along `x` and the seam.
 
 mod build;
+mod compare;
 mod error;
 mod leads;
 mod measure;

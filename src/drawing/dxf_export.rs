@@ -1,0 +1,267 @@
+//! Writing a layout as an AutoCAD DXF for designers.
+//!
+//! Frame: DXF `X = x` (along the tube from the distal end) and `Y = s` (arc length on the outer
+//! surface, in the window `[seam, seam + 2π·r_o]`), both in mm, `$INSUNITS = 4`. Layers, colours
+//! and the XDATA on every entity follow `dxf_convention`.
+
+use dxf::entities::{Entity, EntityType, LwPolyline, Text};
+use dxf::enums::{AcadVersion, DrawingUnits, Units};
+use dxf::tables::{AppId, Layer as DxfLayer};
+use dxf::{Color, LwPolylineVertex, Point, XData, XDataItem};
+use geo::Coord;
+
+use crate::layout::Layout;
+
+use super::dxf_convention::{
+    Layer, APP_ID, TAG_LAYOUT, TAG_LEAD, TAG_NOTCH, TAG_PAD, TAG_PARTING, TAG_SENSOR,
+};
+
+/// Why a DXF could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum DxfExportError {
+    /// The `dxf` crate refused the drawing.
+    #[error("cannot encode the DXF drawing: {0}")]
+    Encode(String),
+    /// A list is too long for DXF's 16-bit integers.
+    #[error("{what} count {count} is more than a DXF drawing can number (limit 32767)")]
+    TooMany {
+        /// What was counted.
+        what: &'static str,
+        /// How many.
+        count: usize,
+    },
+}
+
+/// Text height of the annotation (mm).
+const TEXT_MM: f64 = 0.25;
+
+/// The layout as the bytes of an R2000 DXF, with `clearance_mm` recorded in the metadata so
+/// that `dlw import-dxf` checks the same clearance.
+///
+/// # Errors
+/// [`DxfExportError`] if the drawing cannot be encoded.
+pub fn layout_to_dxf(layout: &Layout, clearance_mm: f64) -> Result<Vec<u8>, DxfExportError> {
+    let mut drawing = dxf::Drawing::new();
+    drawing.header.version = AcadVersion::R2000;
+    drawing.header.default_drawing_units = Units::Millimeters;
+    drawing.header.drawing_units = DrawingUnits::Metric;
+    drawing.add_app_id(AppId {
+        name: APP_ID.to_string(),
+        ..Default::default()
+    });
+    for layer in Layer::ALL {
+        drawing.add_layer(DxfLayer {
+            name: layer.name().to_string(),
+            color: Color::from_index(layer.aci()),
+            ..Default::default()
+        });
+    }
+    for entity in entities(layout, clearance_mm)? {
+        drawing.add_entity(entity);
+    }
+    if let Some(ext) = layout.extents() {
+        drawing.header.minimum_drawing_extents = Point::new(
+            0.0_f64.min(ext.min().x),
+            scale_bar_s_mm(layout) - TEXT_MM,
+            0.0,
+        );
+        drawing.header.maximum_drawing_extents = Point::new(ext.max().x, ext.max().y, 0.0);
+    }
+    let mut bytes = Vec::new();
+    drawing
+        .save(&mut bytes)
+        .map_err(|e| DxfExportError::Encode(e.to_string()))?;
+    let text = String::from_utf8(bytes).map_err(|e| DxfExportError::Encode(e.to_string()))?;
+    Ok(add_table_handles(&text).into_bytes())
+}
+
+/// Gives every `TABLE` head a handle (group code 5) and moves `$HANDSEED` past them.
+///
+/// The `dxf` crate (0.6) writes table heads without handles; AutoCAD's R2000 format has them,
+/// and `ezdxf`'s audit "fixes" their absence. Handles are numbered from `$HANDSEED`, which is
+/// above every handle the crate gave out.
+fn add_table_handles(text: &str) -> String {
+    let lines: Vec<&str> = text.split("\r\n").collect();
+    let code = |i: usize| lines.get(i).map(|c| c.trim());
+    let mut seed = None;
+    let mut i = 0;
+    while i + 3 < lines.len() {
+        if code(i) == Some("9") && lines[i + 1] == "$HANDSEED" && code(i + 2) == Some("5") {
+            seed = u64::from_str_radix(lines[i + 3].trim(), 16)
+                .ok()
+                .map(|s| (i + 3, s));
+            break;
+        }
+        i += 2;
+    }
+    let Some((seed_line, mut next)) = seed else {
+        return text.to_string();
+    };
+    let mut out: Vec<String> = Vec::with_capacity(lines.len() + 32);
+    let mut i = 0;
+    while i < lines.len() {
+        out.push(lines[i].to_string());
+        let is_table_head =
+            i % 2 == 0 && code(i) == Some("0") && lines.get(i + 1) == Some(&"TABLE");
+        if is_table_head && code(i + 2) == Some("2") {
+            out.push(lines[i + 1].to_string());
+            out.push(lines[i + 2].to_string());
+            out.push(lines[i + 3].to_string());
+            out.push("  5".to_string());
+            out.push(format!("{next:X}"));
+            next += 1;
+            i += 4;
+            continue;
+        }
+        i += 1;
+    }
+    // $HANDSEED comes before the tables, so its line number is unchanged.
+    out[seed_line] = format!("{next:X}");
+    out.join("\r\n")
+}
+
+/// Where the 1 mm scale bar sits (`s`, mm): under the three lines of text below the window.
+fn scale_bar_s_mm(layout: &Layout) -> f64 {
+    layout.seam_s_mm - 3.0 * TEXT_MM - 3.0 * 1.6 * TEXT_MM - TEXT_MM
+}
+
+/// Every entity of the drawing, features first, then annotation.
+fn entities(layout: &Layout, clearance_mm: f64) -> Result<Vec<Entity>, DxfExportError> {
+    let mut out = Vec::new();
+    for (index, notch) in layout.notches.iter().enumerate() {
+        for (piece, outline) in notch.outline.iter().enumerate() {
+            // A closed LWPOLYLINE lists each corner once; the ring repeats its first.
+            let ring = &outline.exterior().0;
+            let corners = &ring[..ring.len().saturating_sub(1)];
+            let tag = vec![
+                XDataItem::Str(TAG_NOTCH.into()),
+                int(index, "notch")?,
+                int(piece, "notch piece")?,
+            ];
+            out.push(polyline(Layer::Notches, corners, true, tag));
+        }
+    }
+    for (tag, layer, traces) in [
+        (TAG_SENSOR, Layer::Sensor, &layout.sensors),
+        (TAG_LEAD, Layer::LeadsPads, &layout.leads),
+        (TAG_PAD, Layer::LeadsPads, &layout.pads),
+    ] {
+        for (index, trace) in traces.iter().enumerate() {
+            for (piece, line) in trace.pieces.iter().enumerate() {
+                let items = vec![
+                    XDataItem::Str(tag.into()),
+                    int(index, tag)?,
+                    int(trace.sensor, "sensor")?,
+                    int(piece, "trace piece")?,
+                ];
+                out.push(polyline(layer, &line.0, false, items));
+            }
+        }
+    }
+    for (piece, line) in layout.parting.iter().enumerate() {
+        let items = vec![
+            XDataItem::Str(TAG_PARTING.into()),
+            int(piece, "parting piece")?,
+        ];
+        out.push(polyline(Layer::Parting, &line.0, false, items));
+    }
+    out.extend(annotation(layout, clearance_mm));
+    Ok(out)
+}
+
+fn int(value: usize, what: &'static str) -> Result<XDataItem, DxfExportError> {
+    i16::try_from(value)
+        .map(XDataItem::Integer)
+        .map_err(|_| DxfExportError::TooMany { what, count: value })
+}
+
+/// An LWPOLYLINE on `layer` through `points`, tagged with `DLW` XDATA `items`.
+fn polyline(layer: Layer, points: &[Coord], closed: bool, items: Vec<XDataItem>) -> Entity {
+    let mut poly = LwPolyline::default();
+    poly.set_is_closed(closed);
+    poly.vertices = points
+        .iter()
+        .map(|c| LwPolylineVertex {
+            x: c.x,
+            y: c.y,
+            ..Default::default()
+        })
+        .collect();
+    let mut entity = Entity::new(EntityType::LwPolyline(poly));
+    entity.common.layer = layer.name().to_string();
+    entity.common.x_data.push(XData {
+        application_name: APP_ID.to_string(),
+        items,
+    });
+    entity
+}
+
+/// Title, frame note and scale note below the drawing, a 1 mm scale bar, and the layout's
+/// numbers as XDATA on the title.
+fn annotation(layout: &Layout, clearance_mm: f64) -> Vec<Entity> {
+    let base = layout.seam_s_mm - 3.0 * TEXT_MM;
+    let text = |line: usize, value: String| {
+        let mut t = Text {
+            location: Point::new(0.0, base - line as f64 * 1.6 * TEXT_MM, 0.0),
+            text_height: TEXT_MM,
+            value,
+            ..Default::default()
+        };
+        t.second_alignment_point = t.location.clone();
+        let mut e = Entity::new(EntityType::Text(t));
+        e.common.layer = Layer::Annotation.name().to_string();
+        e
+    };
+    let mut title = text(0, format!("{}: unrolled joint (dlw)", layout.name));
+    title.common.x_data.push(XData {
+        application_name: APP_ID.to_string(),
+        items: vec![
+            XDataItem::Str(TAG_LAYOUT.into()),
+            XDataItem::Str(layout.name.clone()),
+            XDataItem::Real(layout.outer_radius_mm),
+            XDataItem::Real(layout.circumference_mm),
+            XDataItem::Real(layout.seam_s_mm),
+            XDataItem::Real(layout.trace_width_mm),
+            XDataItem::Real(layout.kerf_mm),
+            XDataItem::Real(layout.length_mm),
+            XDataItem::Real(clearance_mm),
+        ],
+    });
+    let frame = text(
+        1,
+        format!(
+            "X = x along the tube from the distal end; Y = s = r_o*phi, arc length on the outer surface, phi from +y; seam at s = {:.4} mm",
+            layout.seam_s_mm
+        ),
+    );
+    let scale = text(
+        2,
+        format!(
+            "units mm ($INSUNITS = 4), scale 1:1; r_o = {} mm, circumference {:.4} mm, trace width {} mm, kerf {} mm",
+            layout.outer_radius_mm, layout.circumference_mm, layout.trace_width_mm, layout.kerf_mm
+        ),
+    );
+    // A 1 mm scale bar with end ticks, under the text.
+    let y = scale_bar_s_mm(layout);
+    let tick = TEXT_MM / 2.0;
+    let bar_points = [
+        Coord {
+            x: 0.0,
+            y: y + tick,
+        },
+        Coord { x: 0.0, y },
+        Coord { x: 1.0, y },
+        Coord {
+            x: 1.0,
+            y: y + tick,
+        },
+    ];
+    let mut bar = polyline(Layer::Annotation, &bar_points, false, Vec::new());
+    bar.common.x_data.clear();
+    let mut label = text(0, "1 mm".into());
+    if let EntityType::Text(t) = &mut label.specific {
+        t.location = Point::new(1.2, y, 0.0);
+        t.second_alignment_point = t.location.clone();
+    }
+    vec![title, frame, scale, bar, label]
+}
