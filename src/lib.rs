@@ -6,7 +6,7 @@
 //! - [`design`]: design files (the paper's Table I plus fabrication tables), read and validated;
 //! - [`layout`]: the unrolled joint (notches, sensor traces, leads, pads, parting line) in the
 //!   drawing frame;
-//! - [`drawing`]: DXF drawings for designers, written and read back;
+//! - [`drawing`]: DXF drawings for designers, written and read back, and SVG drawings for people;
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file.
 //!

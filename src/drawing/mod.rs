@@ -13,3 +13,6 @@ pub use dxf_convention::{Layer, APP_ID};
 pub use dxf_export::{layout_to_dxf, DxfExportError};
 /// Reading a DXF in that convention back into a layout.
 pub use dxf_import::{layout_from_dxf, DxfImportError, ImportedDxf};
+
+/// SVG drawings for people: the unrolled layout and the cross-section through a notch.
+pub mod svg;

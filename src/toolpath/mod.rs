@@ -37,6 +37,7 @@ mod order;
 mod plan;
 mod planner;
 mod seam;
+mod sheet;
 
 /// Safety invariants of a plan.
 pub use check::check_plan;
@@ -52,6 +53,8 @@ pub use plan::{
 };
 /// Building a plan from a layout.
 pub use planner::{plan, PlanOptions};
+/// The operator's setup sheet.
+pub use sheet::{mandrel_mm, setup_sheet, SheetContext, MANDREL_CLEARANCE_MM, MANDREL_SIZES_MM};
 /// Joining pieces across the drawing's seam.
 pub use seam::{chain_lines, join_outline, short_way_mm, SeamError};
 
