@@ -53,10 +53,10 @@ pub use plan::{
 };
 /// Building a plan from a layout.
 pub use planner::{plan, PlanOptions};
-/// The operator's setup sheet.
-pub use sheet::{mandrel_mm, setup_sheet, SheetContext, MANDREL_CLEARANCE_MM, MANDREL_SIZES_MM};
 /// Joining pieces across the drawing's seam.
 pub use seam::{chain_lines, join_outline, short_way_mm, SeamError};
+/// The operator's setup sheet.
+pub use sheet::{mandrel_mm, setup_sheet, SheetContext, MANDREL_CLEARANCE_MM, MANDREL_SIZES_MM};
 
 /// Why the planner refused a job.
 #[derive(Debug, thiserror::Error)]

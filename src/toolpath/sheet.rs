@@ -7,7 +7,9 @@ use crate::machine::{format_number, MachineProfile};
 
 /// Steel rod diameters the sheet picks a mandrel from (mm): common ground-rod and gauge-wire
 /// sizes, including the paper's 1.2 mm and 1.5 mm.
-pub const MANDREL_SIZES_MM: [f64; 14] = [0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0];
+pub const MANDREL_SIZES_MM: [f64; 14] = [
+    0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0,
+];
 
 /// Least diametral clearance a mandrel must leave in the tube's bore (mm), so the tube slides
 /// over it.
@@ -45,8 +47,14 @@ pub fn setup_sheet(plan: &Plan, ctx: &SheetContext<'_>) -> String {
     let wall = plan.outer_radius_mm - plan.inner_radius_mm;
     let cut_x = plan.joint_length_mm + plan.kerf_mm / 2.0;
     let moves = plan.moves();
-    let x_max = moves.iter().flat_map(|m| [m.from.x_mm, m.to.x_mm]).fold(f64::NEG_INFINITY, f64::max);
-    let x_min = moves.iter().flat_map(|m| [m.from.x_mm, m.to.x_mm]).fold(f64::INFINITY, f64::min);
+    let x_max = moves
+        .iter()
+        .flat_map(|m| [m.from.x_mm, m.to.x_mm])
+        .fold(f64::NEG_INFINITY, f64::max);
+    let x_min = moves
+        .iter()
+        .flat_map(|m| [m.from.x_mm, m.to.x_mm])
+        .fold(f64::INFINITY, f64::min);
     let grip = profile.fixture.collet_grip_mm;
     let spare = 5.0;
     let stock_len = (x_max + spare + grip).ceil();
@@ -56,10 +64,17 @@ pub fn setup_sheet(plan: &Plan, ctx: &SheetContext<'_>) -> String {
         .filter(|o| o.kind == OperationKind::Sensor)
         .flat_map(|o| o.paths.iter())
         .map(|p| match &p.feature {
-            Feature::Written { parts, .. } => parts.iter().filter(|k| **k == TraceKind::Pad).count(),
+            Feature::Written { parts, .. } => {
+                parts.iter().filter(|k| **k == TraceKind::Pad).count()
+            }
             _ => 0,
         })
         .sum::<usize>();
+    let bsn = plan
+        .operations
+        .iter()
+        .flat_map(|o| o.paths.iter())
+        .any(|p| matches!(p.feature, Feature::Notch { side: 1, .. }));
     let times = estimate(plan, profile);
     let total: f64 = times.iter().map(|t| t.total_s()).sum();
 
@@ -138,7 +153,12 @@ pub fn setup_sheet(plan: &Plan, ctx: &SheetContext<'_>) -> String {
         format_number(profile.limits.x_max_mm)
     ));
     w(format!(
-        "- **{al}0 at s = 0**: on a fresh tube any orientation will do; the line under the beam at {al}0 becomes s = 0, the centre line of sensor 1 (the backbone of a UAN joint). Notches centred at s = π·r_o are cut around {al}180."
+        "- **{al}0 at s = 0**: on a fresh tube any orientation will do; the line under the beam at {al}0 becomes s = 0, the centre line of sensor 1 (the backbone of a UAN joint). {}",
+        if bsn {
+            format!("The notch pairs are centred at {al}0 and {al}180 (s = 0 and s = π·r_o).")
+        } else {
+            format!("The notches are centred at {al}180 (s = π·r_o).")
+        }
     ));
     w(format!(
         "- **Sense of {al}:** once per machine, jog {al} from 0 to +10 {units}: the beam must now sit on the +s side of the {al}0 line (s grows upwards in the drawing). If it sits on the −s side the stage turns the other way and the sensor and pads would come out mirrored; reverse the axis in the controller first."

@@ -128,14 +128,31 @@ pub(crate) fn scale_bar(sheet: &mut Sheet, layer: &'static str, origin: (f64, f6
         } else {
             "#ffffff"
         };
-        sheet.rect(layer, (x0, y), (x0 + seg, y + h), Some(fill), Some(&pen), "scale-bar");
+        sheet.rect(
+            layer,
+            (x0, y),
+            (x0 + seg, y + h),
+            Some(fill),
+            Some(&pen),
+            "scale-bar",
+        );
     }
     let small = TextStyle::new(SMALL_MM, palette::DIMENSION).anchor(Anchor::Middle);
     let ty = y + h + sheet.paper(SMALL_MM + 0.8);
     let decimals = if length >= 1.0 { 0 } else { 2 };
     sheet.text(layer, (x, ty), "0", small);
-    sheet.text(layer, (x + length / 2.0, ty), &fixed(length / 2.0, decimals + 1), small);
-    sheet.text(layer, (x + length, ty), &format!("{} mm", fixed(length, decimals)), small);
+    sheet.text(
+        layer,
+        (x + length / 2.0, ty),
+        &fixed(length / 2.0, decimals + 1),
+        small,
+    );
+    sheet.text(
+        layer,
+        (x + length, ty),
+        &format!("{} mm", fixed(length, decimals)),
+        small,
+    );
     let caption = format!("scale {}", scale_ratio(scale));
     let text = TextStyle::new(TEXT_MM, palette::DIMENSION);
     let cx = x + length + sheet.paper(6.0);
@@ -193,7 +210,14 @@ impl Table {
         let (x, y) = origin;
         let frame = sheet.pen(palette::OUTLINE, 0.35, None);
         let rule = sheet.pen(palette::GUIDE, THIN_MM, None);
-        sheet.rect(layer, (x, y), (x + w, y + h), None, Some(&frame), "title-block");
+        sheet.rect(
+            layer,
+            (x, y),
+            (x + w, y + h),
+            None,
+            Some(&frame),
+            "title-block",
+        );
         let style = TextStyle::new(SMALL_MM, palette::DIMENSION);
         let drop = sheet.paper(SMALL_MM * 0.45);
         let base = |row: usize| y + row_h * (row as f64 + 1.0) - drop;

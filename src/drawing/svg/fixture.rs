@@ -157,7 +157,12 @@ impl Window {
             let kb = turn(sb);
             while k != kb {
                 let up = kb > k;
-                let edge = self.seam + if up { (k + 1.0) * self.circ } else { k * self.circ };
+                let edge = self.seam
+                    + if up {
+                        (k + 1.0) * self.circ
+                    } else {
+                        k * self.circ
+                    };
                 let t = (edge - sa) / (sb - sa);
                 let xe = xa + t * (xb - xa);
                 cur.push(Coord {

@@ -238,7 +238,14 @@ fn draw_tube(sheet: &mut Sheet, layout: &Layout, f: &Frame) {
         f.pt(0.0, layout.seam_s_mm),
         f.pt(layout.length_mm, f.top_s_mm),
     );
-    sheet.rect("tube", a, b, Some(palette::TUBE_FILL), Some(&outline), "tube");
+    sheet.rect(
+        "tube",
+        a,
+        b,
+        Some(palette::TUBE_FILL),
+        Some(&outline),
+        "tube",
+    );
     // Centre lines of the cross-section's +y (φ = 0) and −y (φ = 180°) directions.
     let centre = sheet.pen(palette::GUIDE, THIN_MM, Some(&[6.0, 1.5, 1.0, 1.5]));
     let label = TextStyle::new(SMALL_MM, palette::GUIDE);
@@ -248,10 +255,7 @@ fn draw_tube(sheet: &mut Sheet, layout: &Layout, f: &Frame) {
         sheet.line("guides", (0.0, y), (layout.length_mm, y), &centre);
         sheet.text(
             "labels",
-            (
-                layout.length_mm + sheet.paper(1.5),
-                y + sheet.paper(0.7),
-            ),
+            (layout.length_mm + sheet.paper(1.5), y + sheet.paper(0.7)),
             &format!("φ = {phi_deg:.0}°"),
             label,
         );

@@ -76,7 +76,10 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
                 (phi_n / 2.0, PI - phi_n / 2.0),
                 (PI + phi_n / 2.0, 2.0 * PI - phi_n / 2.0),
             ],
-            vec![(-phi_n / 2.0, phi_n / 2.0), (PI - phi_n / 2.0, PI + phi_n / 2.0)],
+            vec![
+                (-phi_n / 2.0, phi_n / 2.0),
+                (PI - phi_n / 2.0, PI + phi_n / 2.0),
+            ],
         ),
     };
     let outline = sheet.pen(palette::OUTLINE, 0.35, None);
@@ -277,16 +280,23 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
     // Radii on leaders below the centre line, away from the plane labels.
     let radius_pen = sheet.pen(palette::DIMENSION, THIN_MM, None);
     for (r, phi, label, right) in [
-        (ro, PI * 5.0 / 6.0, format!("r_{{o}} = {}", fixed(ro, 3)), true),
-        (ri, -PI * 5.0 / 6.0, format!("r_{{i}} = {}", fixed(ri, 3)), false),
+        (
+            ro,
+            PI * 5.0 / 6.0,
+            format!("r_{{o}} = {}", fixed(ro, 3)),
+            true,
+        ),
+        (
+            ri,
+            -PI * 5.0 / 6.0,
+            format!("r_{{i}} = {}", fixed(ri, 3)),
+            false,
+        ),
     ] {
         let tip = polar(r, phi);
         let elbow = polar(ro + sheet.paper(10.0), phi);
         let shoulder = sheet.paper(4.0);
-        let end = (
-            elbow.0 + if right { shoulder } else { -shoulder },
-            elbow.1,
-        );
+        let end = (elbow.0 + if right { shoulder } else { -shoulder }, elbow.1);
         sheet.path(
             "dimensions",
             &[(0.0, 0.0), elbow, end],
@@ -297,7 +307,12 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
         );
         sheet.arrowhead("dimensions", tip, tip);
         let anchor = if right { Anchor::Start } else { Anchor::End };
-        let tx = end.0 + if right { sheet.paper(1.0) } else { -sheet.paper(1.0) };
+        let tx = end.0
+            + if right {
+                sheet.paper(1.0)
+            } else {
+                -sheet.paper(1.0)
+            };
         sheet.text(
             "labels",
             (tx, end.1 + sheet.paper(0.9)),
@@ -362,7 +377,10 @@ fn numbers(design: &Design, sheet: &Sheet) -> Table {
         ),
         (
             "sensor plane (Eq. 1)".to_string(),
-            format!("y_{{s}} = r_{{o}}·cos(φ_{{s}}/2) = {} mm", fixed(s.sensor_plane_mm(), 3)),
+            format!(
+                "y_{{s}} = r_{{o}}·cos(φ_{{s}}/2) = {} mm",
+                fixed(s.sensor_plane_mm(), 3)
+            ),
         ),
         (
             "offset (Eq. 3)".to_string(),
@@ -390,7 +408,11 @@ fn numbers(design: &Design, sheet: &Sheet) -> Table {
         ),
     ]);
     Table {
-        heading: format!("{} — {} cross-section", design.file.name, style_name(s.style())),
+        heading: format!(
+            "{} — {} cross-section",
+            design.file.name,
+            style_name(s.style())
+        ),
         rows,
     }
 }
@@ -431,7 +453,8 @@ fn spread(ys: &[f64], gap: f64) -> Vec<f64> {
         while end < placed.len() && placed[end] - placed[end - 1] <= gap + 1e-12 {
             end += 1;
         }
-        let shift = (wanted[start..end].iter().sum::<f64>() - placed[start..end].iter().sum::<f64>())
+        let shift = (wanted[start..end].iter().sum::<f64>()
+            - placed[start..end].iter().sum::<f64>())
             / (end - start) as f64;
         for p in &mut placed[start..end] {
             *p += shift;

@@ -263,7 +263,13 @@ impl Sheet {
     }
 
     /// A literal text, no markup.
-    pub fn text_plain(&mut self, layer: &'static str, at: (f64, f64), text: &str, style: TextStyle) {
+    pub fn text_plain(
+        &mut self,
+        layer: &'static str,
+        at: (f64, f64),
+        text: &str,
+        style: TextStyle,
+    ) {
         self.emit_text(layer, at, &[(text.to_string(), Shift::None)], style);
     }
 

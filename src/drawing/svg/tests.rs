@@ -140,9 +140,16 @@ fn joint_a_layout_has_every_feature_in_fig1_colours() {
         "Joint A — unrolled layout (UAN), scale 10:1",
         "ȳ = 0.936, ys = 1.224, Δy = 0.288 mm",
         &format!("to parting cut {}", fixed(l.length_mm, 2)),
-        &format!("seam (top and bottom edge) at s = {}", fixed(l.seam_s_mm, 2)),
+        &format!(
+            "seam (top and bottom edge) at s = {}",
+            fixed(l.seam_s_mm, 2)
+        ),
     ] {
-        assert!(has_text(&doc, needle), "missing {needle:?} in {:?}", texts(&doc));
+        assert!(
+            has_text(&doc, needle),
+            "missing {needle:?} in {:?}",
+            texts(&doc)
+        );
     }
 }
 
@@ -165,7 +172,10 @@ fn layout_prints_to_scale_and_covers_the_tube() {
         for n in with_class(&doc, "notch") {
             for (px, py) in path_points(&n) {
                 assert!(px > 0.0 && px < l.length_mm, "{stem}: x {px}");
-                assert!(py >= -1e-9 && py <= l.circumference_mm + 1e-9, "{stem}: y {py}");
+                assert!(
+                    py >= -1e-9 && py <= l.circumference_mm + 1e-9,
+                    "{stem}: y {py}"
+                );
             }
         }
     }
@@ -201,7 +211,11 @@ fn joint_c_layout_has_both_sides_and_both_sensors() {
     assert_eq!(with_class(&doc, "sensor").len(), 2);
     assert_eq!(with_class(&doc, "pad").len(), 4);
     for needle in ["sn = 1.65", "ss = 2.13", "Δy(1,2) = 0.380 mm", "BSN"] {
-        assert!(has_text(&doc, needle), "missing {needle:?} in {:?}", texts(&doc));
+        assert!(
+            has_text(&doc, needle),
+            "missing {needle:?} in {:?}",
+            texts(&doc)
+        );
     }
 }
 
@@ -219,7 +233,11 @@ fn a_design_outside_the_paper_shows_l_and_the_notched_length_apart() {
         "h = 0.30",
         "c = 0.70",
     ] {
-        assert!(has_text(&doc, needle), "missing {needle:?} in {:?}", texts(&doc));
+        assert!(
+            has_text(&doc, needle),
+            "missing {needle:?} in {:?}",
+            texts(&doc)
+        );
     }
     let w: f64 = with_class(&doc, "sensor")[0]
         .attribute("stroke-width")
@@ -323,7 +341,10 @@ fn check_section(stem: &str) {
     assert_eq!(planes.len(), sides);
     for (p, sign) in planes.iter().zip([1.0, -1.0]) {
         for (_, y) in path_points(p) {
-            assert!((y + sign * s.sensor_plane_mm()).abs() < 1e-4, "y_s line at {y}");
+            assert!(
+                (y + sign * s.sensor_plane_mm()).abs() < 1e-4,
+                "y_s line at {y}"
+            );
         }
     }
     // Δy: an arrow tip on each plane.
@@ -333,7 +354,8 @@ fn check_section(stem: &str) {
         .collect();
     for y in [-s.neutral_axis_mm(), -s.sensor_plane_mm()] {
         assert!(
-            tips.iter().any(|t| (t.1 - y).abs() < 1e-4 && t.0 > s.outer_radius_mm()),
+            tips.iter()
+                .any(|t| (t.1 - y).abs() < 1e-4 && t.0 > s.outer_radius_mm()),
             "no Δy arrow at {y}: {tips:?}"
         );
     }
@@ -347,10 +369,16 @@ fn check_section(stem: &str) {
     ];
     if let Some(dy12) = s.two_sensor_offset_mm() {
         needles.push(format!("Δy(1,2) = 2ys = {} mm", fixed(dy12, 3)));
-        assert!(tips.iter().any(|t| (t.1 - s.sensor_plane_mm()).abs() < 1e-4));
+        assert!(tips
+            .iter()
+            .any(|t| (t.1 - s.sensor_plane_mm()).abs() < 1e-4));
     }
     for needle in needles {
-        assert!(has_text(&doc, &needle), "missing {needle:?} in {:?}", texts(&doc));
+        assert!(
+            has_text(&doc, &needle),
+            "missing {needle:?} in {:?}",
+            texts(&doc)
+        );
     }
 }
 
@@ -385,7 +413,8 @@ fn sections_of_other_designs_draw() {
 /// regenerate it after a deliberate change.
 #[test]
 fn docs_section_figure_is_current() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img/joint-a-section.svg");
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img/joint-a-section.svg");
     let svg = section_svg(&design("joint-a")).unwrap();
     if std::env::var_os("DLW_UPDATE_DOCS").is_some() {
         crate::output::write_atomic(&path, svg.as_bytes()).unwrap();
@@ -430,5 +459,9 @@ fn write_samples_when_asked() {
     }
     let d = design("joint-a");
     let split = layout_for(&d, -PI * d.file.outer_radius_mm);
-    std::fs::write(dir.join("joint-a-split-layout.svg"), layout_svg(&split, &d).unwrap()).unwrap();
+    std::fs::write(
+        dir.join("joint-a-split-layout.svg"),
+        layout_svg(&split, &d).unwrap(),
+    )
+    .unwrap();
 }

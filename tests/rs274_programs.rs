@@ -1,0 +1,607 @@
+//! Every generated LinuxCNC program, run through LinuxCNC's own interpreter (`rs274 -g`), and
+//! the physics checked from its canonical output: beam on only while feeding, power, pulse
+//! settings and surface speed per operation, repetitions, operation order, where each notch is
+//! cut, the parting cut, the written lines, travel.
+//!
+//! Programs are made through the `dlw` binary (`dlw program`), for the four shipped designs and
+//! for designs outside the paper. rs274 must be installed (Debian `linuxcnc-uspace`,
+//! `scripts/test.sh` installs it); without it these tests fail, they never skip.
+//!
+//! Tolerances: speeds within 0.5 % (the issue's figure). Positions within 1 µm plus what the
+//! canonical output's 4-decimal print of `A` in degrees can hide, `r_o·0.5e-4°` (1.1 nm per mm
+//! of radius); `X` is written with 4 decimals, so rs274 prints it exactly.
+
+mod canon;
+mod common_designs;
+
+use std::collections::BTreeMap;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use canon::{parse, run_rs274, Canon};
+use dlw::design::DesignFile;
+use dlw::layout::Layout;
+use dlw::machine::{MachineLibrary, MachineProfile};
+use dlw::process::{ProcessLibrary, ProcessSets};
+use dlw::rules;
+
+/// A design outside the paper: a 2.5 mm OD tube with a long UAN notch pattern and its own
+/// fabrication table.
+const UAN_LONG: &str = r#"
+name = "UAN 2.5 mm, N = 14"
+style = "uan"
+outer_radius_mm = 1.25
+inner_radius_mm = 1.0
+notch_arc_mm = 5.0
+notch_width_mm = 0.35
+notch_spacing_mm = 0.45
+notch_count = 14
+joint_length_mm = 10.75
+sensor_arc_mm = 0.6
+
+[fabrication]
+kerf_mm = 0.025
+distal_margin_mm = 1.4
+lead_length_mm = 1.5
+"#;
+
+fn dlw(args: &[&std::ffi::OsStr]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_dlw"))
+        .args(args)
+        .output()
+        .expect("the dlw binary runs")
+}
+
+/// Writes a program for `design` through the binary; returns its path.
+fn program(design: &Path, dir: &Path, extra: &[&str]) -> PathBuf {
+    let out = dir.join("job.ngc");
+    let mut args: Vec<&std::ffi::OsStr> = vec![
+        "program".as_ref(),
+        design.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ];
+    args.extend(extra.iter().map(|s| std::ffi::OsStr::new(*s)));
+    let o = dlw(&args);
+    assert!(
+        o.status.success(),
+        "dlw program {} failed:\n{}",
+        design.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    out
+}
+
+struct Expected {
+    layout: Layout,
+    sets: ProcessSets,
+    profile: MachineProfile,
+    r_o: f64,
+}
+
+fn expected(design: &Path, machine: Option<&str>) -> Expected {
+    let checked = rules::check_file(DesignFile::read(design).unwrap()).unwrap();
+    let sets = ProcessLibrary::beside(design)
+        .resolve(&checked.design.file.process)
+        .unwrap();
+    let profile = MachineLibrary::beside(design).find(machine).unwrap();
+    Expected {
+        r_o: checked.design.file.outer_radius_mm,
+        layout: checked.layout,
+        sets,
+        profile,
+    }
+}
+
+/// `s` interval of the notch's pieces, unwrapped across the seam, and its `x` interval.
+fn notch_box(layout: &Layout, level: usize, side: usize) -> ([f64; 2], [f64; 2]) {
+    let notch = layout
+        .notches
+        .iter()
+        .find(|n| n.level == level && n.side == side)
+        .unwrap_or_else(|| panic!("the layout has no notch {level} side {side}"));
+    let c = layout.circumference_mm;
+    let mut xs = [f64::INFINITY, f64::NEG_INFINITY];
+    let mut ss: Option<[f64; 2]> = None;
+    for piece in &notch.outline {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for p in piece.exterior().coords() {
+            xs = [xs[0].min(p.x), xs[1].max(p.x)];
+            lo = lo.min(p.y);
+            hi = hi.max(p.y);
+        }
+        ss = Some(match ss {
+            None => [lo, hi],
+            Some([a, b]) => {
+                // Shift the piece by whole turns to sit next to what we have.
+                let k = [-1.0, 0.0, 1.0]
+                    .into_iter()
+                    .min_by(|p, q| {
+                        let gap = |k: f64| (lo + k * c - b).max(a - (hi + k * c)).max(0.0);
+                        gap(*p).total_cmp(&gap(*q))
+                    })
+                    .unwrap();
+                [a.min(lo + k * c), b.max(hi + k * c)]
+            }
+        });
+    }
+    (xs, ss.unwrap())
+}
+
+/// Least distance from `(x, s)` to any written line of the layout, round the cylinder.
+fn distance_to_lines(layout: &Layout, x: f64, s: f64) -> f64 {
+    let c = layout.circumference_mm;
+    let mut best = f64::INFINITY;
+    for t in layout
+        .sensors
+        .iter()
+        .chain(&layout.leads)
+        .chain(&layout.pads)
+    {
+        for piece in &t.pieces {
+            for w in piece.0.windows(2) {
+                for k in [-1.0, 0.0, 1.0] {
+                    let (ax, ay, bx, by) = (w[0].x, w[0].y + k * c, w[1].x, w[1].y + k * c);
+                    let (dx, dy) = (bx - ax, by - ay);
+                    let sw = s - c * ((s - (ay + by) / 2.0) / c).round();
+                    let len2 = dx * dx + dy * dy;
+                    let t = if len2 > 0.0 {
+                        (((x - ax) * dx + (sw - ay) * dy) / len2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    best = best.min((ax + t * dx - x).hypot(ay + t * dy - sw));
+                }
+            }
+        }
+    }
+    best
+}
+
+/// Every check of the issue, on one program's canonical output.
+fn check(canon: &Canon, e: &Expected, what: &str) {
+    let r_o = e.r_o;
+    let kerf = e.layout.kerf_mm;
+    let c = e.layout.circumference_mm;
+    let s_of = |a_deg: f64| a_deg.to_radians() * r_o;
+    let tol_x = 1e-3 + 0.5e-4;
+    let tol_s = 1e-3 + r_o * (0.5e-4f64).to_radians();
+
+    // Order: sensor → notches → parting, and every move belongs to one of them in that order.
+    assert_eq!(
+        canon.operations,
+        ["sensor", "notches", "parting"],
+        "{what}: operation order"
+    );
+    let rank = |op: &str| {
+        ["sensor", "notches", "parting"]
+            .iter()
+            .position(|o| *o == op)
+    };
+    let mut last = 0;
+    for m in canon.moves.iter().filter(|m| m.feed) {
+        let r = rank(&m.operation)
+            .unwrap_or_else(|| panic!("{what}: feed outside any operation: {m:?}"));
+        assert!(
+            r >= last,
+            "{what}: {} move after a later operation",
+            m.operation
+        );
+        last = r;
+    }
+
+    // Beam: off on every rapid, on for every feed; inverse time on every feed.
+    for m in &canon.moves {
+        if m.feed {
+            assert!(m.spindle_on, "{what}: feed with the beam off: {m:?}");
+            assert!(m.inverse_time, "{what}: feed not in inverse time: {m:?}");
+        } else {
+            assert!(!m.spindle_on, "{what}: rapid with the beam on: {m:?}");
+        }
+    }
+
+    // Travel.
+    let lim = &e.profile.limits;
+    for m in &canon.moves {
+        for x in [m.from[0], m.to[0]] {
+            assert!(
+                x >= lim.x_min_mm && x <= lim.x_max_mm,
+                "{what}: X{x} outside travel"
+            );
+        }
+    }
+
+    // Power, pulse settings and surface speed per operation.
+    let set_of = |op: &str| match op {
+        "sensor" => &e.sets.sensor,
+        "notches" => &e.sets.notches,
+        _ => &e.sets.parting,
+    };
+    let mut worst: f64 = 0.0;
+    for m in canon.moves.iter().filter(|m| m.feed) {
+        let set = set_of(&m.operation);
+        assert_eq!(
+            m.spindle_speed, set.power_mw,
+            "{what}: power in {}",
+            m.operation
+        );
+        assert_eq!(
+            m.aux,
+            [set.pulse_frequency_khz, set.pulse_width_fs],
+            "{what}: pulse settings in {}",
+            m.operation
+        );
+        assert!(set.power_mw <= lim.max_power_mw);
+        let v = m.surface_speed_mm_s(r_o);
+        let err = (v / set.scan_speed_mm_s - 1.0).abs();
+        worst = worst.max(err);
+        assert!(
+            err <= 0.005,
+            "{what}: {} move {:?} -> {:?} at {v} mm/s, set {} mm/s",
+            m.operation,
+            m.from,
+            m.to,
+            set.scan_speed_mm_s
+        );
+    }
+    assert!(worst < 1e-3, "{what}: worst speed error {worst}");
+
+    // Segments (one pass each) per path.
+    let mut segments: BTreeMap<(String, String), BTreeMap<usize, Vec<&canon::CanonMove>>> =
+        BTreeMap::new();
+    for m in canon.moves.iter().filter(|m| m.feed) {
+        segments
+            .entry((m.operation.clone(), m.path.clone()))
+            .or_default()
+            .entry(m.segment.unwrap())
+            .or_default()
+            .push(m);
+    }
+
+    // Sensor: one pass per written line, every point on the design's lines.
+    for ((op, path), segs) in segments.iter().filter(|((op, _), _)| op == "sensor") {
+        assert_eq!(
+            segs.len() as u32,
+            e.sets.sensor.repetitions,
+            "{what}: {op} {path} passes"
+        );
+        for m in segs.values().flatten() {
+            for p in [m.from, m.to] {
+                let d = distance_to_lines(&e.layout, p[0], s_of(p[3]));
+                assert!(
+                    d <= tol_s.max(tol_x),
+                    "{what}: written point {p:?} is {d} mm off the drawn lines"
+                );
+            }
+        }
+    }
+
+    // Notches: 32 passes each; the cut outline widened by half the kerf is the drawn notch.
+    let notch_paths: Vec<_> = segments
+        .iter()
+        .filter(|((op, _), _)| op == "notches")
+        .collect();
+    assert_eq!(
+        notch_paths.len(),
+        e.layout.notches.len(),
+        "{what}: one path per notch"
+    );
+    for ((_, path), segs) in notch_paths {
+        assert_eq!(
+            segs.len() as u32,
+            e.sets.notches.repetitions,
+            "{what}: {path} passes"
+        );
+        // "notch 3 [side 0]"
+        let nums: Vec<usize> = path
+            .split(|ch: char| !ch.is_ascii_digit())
+            .filter(|s| !s.is_empty())
+            .map(|s| s.parse().unwrap())
+            .collect();
+        let (level, side) = (nums[0] - 1, nums[1]);
+        let (xs, ss) = notch_box(&e.layout, level, side);
+        for seg in segs.values() {
+            let lead = seg[0];
+            let cut = &seg[1..];
+            let mut bx = [f64::INFINITY, f64::NEG_INFINITY];
+            let mut bs = [f64::INFINITY, f64::NEG_INFINITY];
+            for m in cut {
+                for p in [m.from, m.to] {
+                    bx = [bx[0].min(p[0]), bx[1].max(p[0])];
+                    bs = [bs[0].min(s_of(p[3])), bs[1].max(s_of(p[3]))];
+                }
+            }
+            let shift = c * ((ss[0] - (bs[0] - kerf / 2.0)) / c).round();
+            let got = [
+                bx[0] - kerf / 2.0,
+                bx[1] + kerf / 2.0,
+                bs[0] - kerf / 2.0 + shift,
+                bs[1] + kerf / 2.0 + shift,
+            ];
+            let want = [xs[0], xs[1], ss[0], ss[1]];
+            for (i, (g, w)) in got.iter().zip(want).enumerate() {
+                let tol = if i < 2 { tol_x } else { tol_s };
+                assert!(
+                    (g - w).abs() <= tol,
+                    "{what}: {path} cut {got:?} vs drawn {want:?} (index {i})"
+                );
+            }
+            // The lead-in starts inside the cut outline: in the scrap.
+            let (lx, ls) = (lead.from[0], s_of(lead.from[3]));
+            assert!(
+                lx > bx[0] && lx < bx[1] && ls > bs[0] && ls < bs[1],
+                "{what}: {path} lead-in starts outside the notch"
+            );
+            // The pass closes on itself.
+            let (first, last) = (cut[0].from, cut[cut.len() - 1].to);
+            assert!(
+                (first[0] - last[0]).abs() < 1e-9 && (first[3] - last[3]).abs() < 1e-9,
+                "{what}: {path} does not close"
+            );
+        }
+    }
+
+    // Parting: 32 passes, all the way round, half a kerf into the stock.
+    let parting: Vec<_> = segments
+        .iter()
+        .filter(|((op, _), _)| op == "parting")
+        .collect();
+    assert_eq!(parting.len(), 1, "{what}: one parting path");
+    let x_cut = e.layout.length_mm + kerf / 2.0;
+    for segs in parting.iter().map(|(_, s)| s) {
+        assert_eq!(
+            segs.len() as u32,
+            e.sets.parting.repetitions,
+            "{what}: parting passes"
+        );
+        for seg in segs.values() {
+            assert!(
+                seg[0].from[0] > x_cut,
+                "{what}: parting lead-in not on the stock side"
+            );
+            let turned: f64 = seg[1..].iter().map(|m| (m.to[3] - m.from[3]).abs()).sum();
+            assert!(
+                (turned - 360.0).abs() < 2e-4,
+                "{what}: parting turns {turned}°"
+            );
+            for m in &seg[1..] {
+                assert!(
+                    (m.to[0] - x_cut).abs() <= 0.5e-4 + 1e-12,
+                    "{what}: parting at X{}",
+                    m.to[0]
+                );
+                assert!(
+                    (m.to[3] - m.from[3]).abs() <= 90.0 + 1e-9,
+                    "{what}: a rotation over 90°"
+                );
+            }
+        }
+    }
+}
+
+fn run_case(design: &Path, what: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let file = program(design, dir.path(), &[]);
+    let canon = parse(&run_rs274(&file));
+    check(&canon, &expected(design, None), what);
+}
+
+#[test]
+fn shipped_designs_pass_the_interpreter_checks() {
+    for design in common_designs::shipped() {
+        let what = design.file_name().unwrap().to_string_lossy().into_owned();
+        run_case(&design, &what);
+    }
+}
+
+#[test]
+fn designs_outside_the_paper_pass_the_interpreter_checks() {
+    let dir = tempfile::tempdir().unwrap();
+    for (i, text) in [
+        common_designs::BSN_WIDE,
+        common_designs::UAN_THREE,
+        UAN_LONG,
+    ]
+    .iter()
+    .enumerate()
+    {
+        let path = dir.path().join(format!("outside-{i}.toml"));
+        std::fs::write(&path, text).unwrap();
+        run_case(&path, &format!("outside-{i}"));
+    }
+}
+
+/// A Z step per pass, written both as a loop with a focus variable and unrolled: the focus
+/// goes down by the step each pass, and nothing else changes.
+#[test]
+fn z_step_per_pass_in_loops_and_unrolled() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("process")).unwrap();
+    std::fs::create_dir_all(dir.path().join("machines")).unwrap();
+    let deep = include_str!("../designs/process/notches.toml")
+        .replace("repetitions = 32", "repetitions = 5")
+        .replace("# z_step_mm = 0.0", "z_step_mm = 0.004");
+    std::fs::write(dir.path().join("process/deep.toml"), deep).unwrap();
+    let unrolled = include_str!("../designs/machines/linuxcnc-reference.toml")
+        .replace("repetitions = \"loop\"", "repetitions = \"unroll\"");
+    std::fs::write(dir.path().join("machines/unrolled.toml"), unrolled).unwrap();
+    let design = dir.path().join("deep.toml");
+    let text = std::fs::read_to_string(&common_designs::shipped()[1]).unwrap();
+    std::fs::write(&design, format!("{text}\n[process]\nnotches = \"deep\"\n")).unwrap();
+    let mut texts = Vec::new();
+    for machine in [None, Some("unrolled")] {
+        let extra: Vec<&str> = machine.map(|m| vec!["--machine", m]).unwrap_or_default();
+        let file = program(&design, dir.path(), &extra);
+        let program_text = std::fs::read_to_string(&file).unwrap();
+        assert_eq!(
+            program_text.contains("repeat"),
+            machine.is_none(),
+            "loops only in loop mode"
+        );
+        let canon = parse(&run_rs274(&file));
+        let e = expected(&design, machine);
+        check(&canon, &e, &format!("deep {machine:?}"));
+        // Per notch pass k the focus is at r_o − 0.004·k.
+        let mut per_path: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+        for m in canon
+            .moves
+            .iter()
+            .filter(|m| m.feed && m.operation == "notches")
+        {
+            let zs = per_path.entry(m.path.clone()).or_default();
+            if zs.last() != Some(&m.to[2]) {
+                zs.push(m.to[2]);
+            }
+        }
+        for (path, zs) in &per_path {
+            let want: Vec<f64> = (0..5)
+                .map(|k| ((e.r_o - 0.004 * k as f64) * 1e4).round() / 1e4)
+                .collect();
+            assert_eq!(zs, &want, "{path}: focus per pass");
+        }
+        // The rapids differ (a loop moves the focus on its own line); the cuts must not.
+        let feeds = canon
+            .moves
+            .iter()
+            .filter(|m| m.feed)
+            .map(|m| (m.from, m.to, m.feed_rate));
+        texts.push(feeds.collect::<Vec<_>>());
+    }
+    assert!(
+        texts[0] == texts[1],
+        "loops and unrolled passes cut the same"
+    );
+}
+
+/// A program made from the DXF that `dlw draw` wrote cuts the same notches as the drawing.
+#[test]
+fn program_from_a_dxf_cuts_the_drawn_notches() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = &common_designs::shipped()[2];
+    let dxf = dir.path().join("c.dxf");
+    let o = dlw(&[
+        "draw".as_ref(),
+        design.as_os_str(),
+        "--dxf".as_ref(),
+        dxf.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = dir.path().join("from-dxf.ngc");
+    let o = dlw(&[
+        "program".as_ref(),
+        "--from-dxf".as_ref(),
+        dxf.as_os_str(),
+        "--design".as_ref(),
+        design.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let imported = dlw::drawing::layout_from_dxf(&std::fs::read(&dxf).unwrap()).unwrap();
+    let mut e = expected(design, None);
+    e.layout = imported.layout;
+    check(&parse(&run_rs274(&out)), &e, "joint-c from its DXF");
+}
+
+#[test]
+fn pure_rotations_and_mixed_moves_keep_the_surface_speed() {
+    // Joint A's sensor has pure X moves, pure rotations (pads) and its notches long rotations;
+    // check that all three kinds occur and pass (the speed check itself is in `check`).
+    let dir = tempfile::tempdir().unwrap();
+    let design = &common_designs::shipped()[0];
+    let canon = parse(&run_rs274(&program(design, dir.path(), &[])));
+    let feeds: Vec<_> = canon.moves.iter().filter(|m| m.feed).collect();
+    let pure_x = feeds.iter().filter(|m| m.from[3] == m.to[3]).count();
+    let pure_a = feeds.iter().filter(|m| m.from[0] == m.to[0]).count();
+    assert!(
+        pure_x > 0 && pure_a > 0,
+        "{pure_x} pure X, {pure_a} pure A moves"
+    );
+    let r_o = 1.24;
+    for m in &feeds {
+        let v = m.surface_speed_mm_s(r_o);
+        let set = if m.operation == "sensor" { 1.0 } else { 25.0 };
+        assert!((v / set - 1.0).abs() <= 0.005, "{m:?}: {v}");
+    }
+    // A 90° rotation at 25 mm/s on r_o = 1.24 mm takes t = 1.24·π/2/25 s; rs274 hands motion
+    // the inverse-time word as 90°/t per minute.
+    let quarter = feeds
+        .iter()
+        .find(|m| m.operation == "parting" && (m.to[3] - m.from[3]).abs() > 89.9)
+        .expect("a quarter turn in the parting cut");
+    let t = 1.24 * PI / 2.0 / 25.0;
+    assert!(
+        (quarter.feed_rate / (90.0 * 60.0 / t) - 1.0).abs() < 1e-6,
+        "F{}",
+        quarter.feed_rate
+    );
+}
+
+/// The checks above are not vacuous: each kind of broken program (or a notch drawn 2 µm from
+/// where it is cut) makes them fail.
+#[test]
+fn the_checks_catch_broken_programs() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = &common_designs::shipped()[0];
+    let good = std::fs::read_to_string(program(design, dir.path(), &[])).unwrap();
+    let fails = |text: &str, shift_notch_mm: f64| -> bool {
+        let file = dir.path().join("mutant.ngc");
+        std::fs::write(&file, text).unwrap();
+        let canon = parse(&run_rs274(&file));
+        let mut e = expected(design, None);
+        for p in &mut e.layout.notches[3].outline {
+            use geo::MapCoordsInPlace;
+            p.map_coords_in_place(|c| geo::Coord {
+                x: c.x + shift_notch_mm,
+                y: c.y,
+            });
+        }
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| check(&canon, &e, "mutant")))
+            .is_err()
+    };
+    assert!(!fails(&good, 0.0), "the good program passes");
+    assert!(fails(&good, 0.002), "a notch 2 µm off is caught");
+    let first_feed_f = good
+        .lines()
+        .find(|l| l.starts_with("G1") && l.contains(" F"))
+        .unwrap();
+    let (head, f) = first_feed_f.rsplit_once(" F").unwrap();
+    let slower = format!("{head} F{:.4}", f.parse::<f64>().unwrap() * 0.9);
+    let mutants = [
+        (
+            "beam left on over a rapid",
+            good.replacen("M5\no100 endrepeat", "o100 endrepeat", 1),
+        ),
+        ("a feed 10 % slow", good.replacen(first_feed_f, &slower, 1)),
+        (
+            "31 notch passes",
+            good.replacen("repeat [32]", "repeat [31]", 1),
+        ),
+        ("wrong notch power", good.replacen("S2000", "S2100", 1)),
+        (
+            "wrong pulse width",
+            good.replacen("M68 E1 Q215", "M68 E1 Q250", 1),
+        ),
+        ("parting before the notches", {
+            let at = good.find("\n(operation parting").unwrap();
+            let parting = &good[at..good.find("G94 (feed").unwrap()];
+            let notches_at = good.find("\n(operation notches").unwrap();
+            let mut t = good.replace(parting, "\n");
+            t.insert_str(notches_at, parting);
+            t
+        }),
+    ];
+    // An interpreter error is caught too.
+    let broken = good.replacen(first_feed_f, &format!("{first_feed_f}.5"), 1);
+    let file = dir.path().join("broken.ngc");
+    std::fs::write(&file, broken).unwrap();
+    assert!(
+        std::panic::catch_unwind(|| run_rs274(&file)).is_err(),
+        "an interpreter error is caught"
+    );
+    for (what, text) in mutants {
+        assert_ne!(text, good, "{what}: the mutation applied");
+        assert!(fails(&text, 0.0), "{what} is caught");
+    }
+}
