@@ -12,6 +12,8 @@
 //! interpreter's own reading of the inverse-time word. Coordinates are printed with 4 decimals.
 #![allow(dead_code)]
 
+pub mod checks;
+
 use std::path::Path;
 use std::process::Command;
 
