@@ -68,13 +68,19 @@ fn parse_aerobasic(text: &str) -> Canon {
                 globals[k["$GLOBAL[".len()..].parse::<usize>().unwrap()] = v.parse().unwrap();
             }
             _ if code.starts_with("G0 ") || code.starts_with("G1 ") => {
-                assert!(metric && per_second && absolute, "line {}: motion before G71 G76 G90", n + 1);
+                assert!(
+                    metric && per_second && absolute,
+                    "line {}: motion before G71 G76 G90",
+                    n + 1
+                );
                 let feed = code.starts_with("G1");
                 let mut to = pos;
                 let mut f = None;
                 for word in code[3..].split_whitespace() {
                     let (letter, value) = word.split_at(1);
-                    let v: f64 = value.parse().unwrap_or_else(|_| panic!("line {}: bad number in {word}", n + 1));
+                    let v: f64 = value
+                        .parse()
+                        .unwrap_or_else(|_| panic!("line {}: bad number in {word}", n + 1));
                     match letter {
                         "X" => to[0] = v,
                         "Z" => to[2] = v,
@@ -83,7 +89,12 @@ fn parse_aerobasic(text: &str) -> Canon {
                         _ => panic!("line {}: unknown word {word}", n + 1),
                     }
                 }
-                assert_eq!(feed, f.is_some(), "line {}: G1 needs F, G0 has none: {raw}", n + 1);
+                assert_eq!(
+                    feed,
+                    f.is_some(),
+                    "line {}: G1 needs F, G0 has none: {raw}",
+                    n + 1
+                );
                 c.moves.push(CanonMove {
                     feed,
                     from: pos,
@@ -100,7 +111,10 @@ fn parse_aerobasic(text: &str) -> Canon {
                 });
                 pos = to;
             }
-            _ => panic!("line {}: not an AeroBasic line this post writes: {raw}", n + 1),
+            _ => panic!(
+                "line {}: not an AeroBasic line this post writes: {raw}",
+                n + 1
+            ),
         }
     }
     assert!(ended, "the program does not end with END PROGRAM");
@@ -111,10 +125,21 @@ fn run(design: &Path, what: &str) {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("job.pgm");
     let o = Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args(["program", design.to_str().unwrap(), "--machine", "aerotech-aerobasic", "-o", out.to_str().unwrap()])
+        .args([
+            "program",
+            design.to_str().unwrap(),
+            "--machine",
+            "aerotech-aerobasic",
+            "-o",
+            out.to_str().unwrap(),
+        ])
         .output()
         .unwrap();
-    assert!(o.status.success(), "{what}: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "{what}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let moves = parse_aerobasic(&std::fs::read_to_string(&out).unwrap());
     let mut e = expected(design, Some("aerotech-aerobasic"));
     e.a_print_deg = 0.5e-6;
@@ -132,7 +157,10 @@ fn shipped_designs_pass_the_checks() {
 #[test]
 fn designs_outside_the_paper_pass_the_checks() {
     let dir = tempfile::tempdir().unwrap();
-    for (i, text) in [common_designs::BSN_WIDE, common_designs::UAN_THREE].iter().enumerate() {
+    for (i, text) in [common_designs::BSN_WIDE, common_designs::UAN_THREE]
+        .iter()
+        .enumerate()
+    {
         let path = dir.path().join(format!("outside-{i}.toml"));
         std::fs::write(&path, text).unwrap();
         run(&path, &format!("outside-{i}"));
@@ -145,7 +173,14 @@ fn the_parser_and_checks_catch_broken_programs() {
     let design = &common_designs::shipped()[2];
     let out = dir.path().join("job.pgm");
     let o = Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args(["program", design.to_str().unwrap(), "--machine", "aerotech-aerobasic", "-o", out.to_str().unwrap()])
+        .args([
+            "program",
+            design.to_str().unwrap(),
+            "--machine",
+            "aerotech-aerobasic",
+            "-o",
+            out.to_str().unwrap(),
+        ])
         .output()
         .unwrap();
     assert!(o.status.success());
@@ -154,7 +189,10 @@ fn the_parser_and_checks_catch_broken_programs() {
     e.a_print_deg = 0.5e-6;
     e.inverse_time = false;
     let fails = |text: &str| {
-        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| check(&parse_aerobasic(text), &e, "mutant"))).is_err()
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            check(&parse_aerobasic(text), &e, "mutant")
+        }))
+        .is_err()
     };
     assert!(!fails(&good));
     let g1 = good.lines().find(|l| l.starts_with("G1 X")).unwrap();
@@ -169,7 +207,10 @@ fn the_parser_and_checks_catch_broken_programs() {
         }),
         ("unknown line", good.replacen("G90", "G91", 1)),
         ("a G1 without F", good.replacen(g1, head, 1)),
-        ("31 passes", good.replacen("$DO[0].X = 1", "$DO[0].X = 0", 1)),
+        (
+            "31 passes",
+            good.replacen("$DO[0].X = 1", "$DO[0].X = 0", 1),
+        ),
     ] {
         assert_ne!(text, good, "{what}: the mutation applied");
         assert!(fails(&text), "{what} is caught");

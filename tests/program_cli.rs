@@ -7,7 +7,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn dlw(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dlw")).args(args).output().expect("the dlw binary runs")
+    Command::new(env!("CARGO_BIN_EXE_dlw"))
+        .args(args)
+        .output()
+        .expect("the dlw binary runs")
 }
 
 fn s(p: &Path) -> &str {
@@ -41,7 +44,10 @@ fn refused(dir: &Path, args: &[&str]) -> String {
     let err = String::from_utf8_lossy(&o.stderr).into_owned();
     assert!(!o.status.success(), "dlw {all:?} succeeded");
     assert!(err.contains("dlw: error:"), "{err}");
-    assert!(!out.exists() && !sheet.exists(), "a file was written despite: {err}");
+    assert!(
+        !out.exists() && !sheet.exists(),
+        "a file was written despite: {err}"
+    );
     let leftovers: Vec<_> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -83,7 +89,10 @@ fn writes_program_and_sheet() {
         "hot-melt",
         "0.28 mm",
     ] {
-        assert!(sheet.contains(needle), "setup sheet lacks {needle:?}:\n{sheet}");
+        assert!(
+            sheet.contains(needle),
+            "setup sheet lacks {needle:?}:\n{sheet}"
+        );
     }
 }
 
@@ -91,26 +100,42 @@ fn writes_program_and_sheet() {
 fn aerobasic_profile_writes_an_aerobasic_program() {
     let (dir, design) = workspace("");
     let out = dir.path().join("b.pgm");
-    let o = dlw(&["program", s(&design), "--machine", "aerotech-aerobasic", "-o", s(&out)]);
+    let o = dlw(&[
+        "program",
+        s(&design),
+        "--machine",
+        "aerotech-aerobasic",
+        "-o",
+        s(&out),
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let program = std::fs::read_to_string(&out).unwrap();
-    assert!(program.contains("G76 // feeds in units per second") && program.ends_with("END PROGRAM\n"));
+    assert!(
+        program.contains("G76 // feeds in units per second") && program.ends_with("END PROGRAM\n")
+    );
     assert!(!program.contains("G93") && !program.contains("repeat"));
 }
 
 #[test]
 fn refuses_a_design_that_breaks_a_rule() {
     let (dir, design) = workspace("");
-    let text = std::fs::read_to_string(&design).unwrap().replace("notch_width_mm = 0.5", "notch_width_mm = 0.02");
+    let text = std::fs::read_to_string(&design)
+        .unwrap()
+        .replace("notch_width_mm = 0.5", "notch_width_mm = 0.02");
     std::fs::write(&design, text).unwrap();
     let err = refused(dir.path(), &[s(&design)]);
-    assert!(err.contains("breaks") && err.contains("notch_width_mm = 0.02") && err.contains("kerf"), "{err}");
+    assert!(
+        err.contains("breaks") && err.contains("notch_width_mm = 0.02") && err.contains("kerf"),
+        "{err}"
+    );
 }
 
 #[test]
 fn refuses_a_speed_beyond_the_stage() {
     let (dir, design) = workspace("");
-    machine(dir.path(), "slow", |t| t.replace("a_speed_max_deg_s = 3600.0", "a_speed_max_deg_s = 360.0"));
+    machine(dir.path(), "slow", |t| {
+        t.replace("a_speed_max_deg_s = 3600.0", "a_speed_max_deg_s = 360.0")
+    });
     let err = refused(dir.path(), &[s(&design), "--machine", "slow"]);
     // 25 mm/s on r_o = 0.8 mm is 1790.5 deg/s.
     assert!(
@@ -120,52 +145,86 @@ fn refuses_a_speed_beyond_the_stage() {
             && err.contains("limit of 360 deg/s"),
         "{err}"
     );
-    machine(dir.path(), "slowx", |t| t.replace("x_speed_max_mm_s = 100.0", "x_speed_max_mm_s = 10.0"));
+    machine(dir.path(), "slowx", |t| {
+        t.replace("x_speed_max_mm_s = 100.0", "x_speed_max_mm_s = 10.0")
+    });
     let err = refused(dir.path(), &[s(&design), "--machine", "slowx"]);
-    assert!(err.contains("needs X at 25.0 mm/s") && err.contains("limit of 10 mm/s"), "{err}");
+    assert!(
+        err.contains("needs X at 25.0 mm/s") && err.contains("limit of 10 mm/s"),
+        "{err}"
+    );
 }
 
 #[test]
 fn refuses_unknown_profile_keys_and_missing_profiles() {
     let (dir, design) = workspace("");
-    machine(dir.path(), "typo", |t| t.replace("max_power_mw = 2500.0", "max_power_w = 2.5"));
+    machine(dir.path(), "typo", |t| {
+        t.replace("max_power_mw = 2500.0", "max_power_w = 2.5")
+    });
     let err = refused(dir.path(), &[s(&design), "--machine", "typo"]);
-    assert!(err.contains("max_power_w") && err.contains("typo.toml"), "{err}");
+    assert!(
+        err.contains("max_power_w") && err.contains("typo.toml"),
+        "{err}"
+    );
     let err = refused(dir.path(), &[s(&design), "--machine", "nonesuch"]);
-    assert!(err.contains("\"nonesuch\" not found") && err.contains("linuxcnc-reference"), "{err}");
+    assert!(
+        err.contains("\"nonesuch\" not found") && err.contains("linuxcnc-reference"),
+        "{err}"
+    );
 }
 
 #[test]
 fn refuses_a_missing_process_set() {
     let (dir, design) = workspace("[process]\nsensor = \"engrave\"");
     let err = refused(dir.path(), &[s(&design)]);
-    assert!(err.contains("process set \"engrave\" not found") && err.contains("engrave.toml"), "{err}");
+    assert!(
+        err.contains("process set \"engrave\" not found") && err.contains("engrave.toml"),
+        "{err}"
+    );
 }
 
 #[test]
 fn refuses_power_travel_and_focus_beyond_the_machine() {
     let (dir, design) = workspace("");
-    machine(dir.path(), "weak", |t| t.replace("max_power_mw = 2500.0", "max_power_mw = 1000.0"));
+    machine(dir.path(), "weak", |t| {
+        t.replace("max_power_mw = 2500.0", "max_power_mw = 1000.0")
+    });
     let err = refused(dir.path(), &[s(&design), "--machine", "weak"]);
-    assert!(err.contains("2000 mW, above the machine's maximum of 1000 mW"), "{err}");
-    machine(dir.path(), "short", |t| t.replace("x_max_mm = 150.0", "x_max_mm = 10.0"));
+    assert!(
+        err.contains("2000 mW, above the machine's maximum of 1000 mW"),
+        "{err}"
+    );
+    machine(dir.path(), "short", |t| {
+        t.replace("x_max_mm = 150.0", "x_max_mm = 10.0")
+    });
     let err = refused(dir.path(), &[s(&design), "--machine", "short"]);
-    assert!(err.contains("outside the machine's X travel -5 mm to 10 mm"), "{err}");
-    let deep = include_str!("../designs/process/notches.toml").replace("# z_step_mm = 0.0", "z_step_mm = 0.01");
+    assert!(
+        err.contains("outside the machine's X travel -5 mm to 10 mm"),
+        "{err}"
+    );
+    let deep = include_str!("../designs/process/notches.toml")
+        .replace("# z_step_mm = 0.0", "z_step_mm = 0.01");
     std::fs::write(dir.path().join("process/deep.toml"), deep).unwrap();
     let text = std::fs::read_to_string(&design).unwrap();
     std::fs::write(&design, format!("{text}\n[process]\nnotches = \"deep\"\n")).unwrap();
     let err = refused(dir.path(), &[s(&design)]);
-    assert!(err.contains("lowers the focus 0.31 mm") && err.contains("0.19"), "{err}");
+    assert!(
+        err.contains("lowers the focus 0.31 mm") && err.contains("0.19"),
+        "{err}"
+    );
 }
 
 #[test]
 fn refuses_loops_the_post_cannot_write() {
     let (dir, design) = workspace("");
-    let aero = include_str!("../designs/machines/aerotech-aerobasic.toml").replace("\"unroll\"", "\"loop\"");
+    let aero = include_str!("../designs/machines/aerotech-aerobasic.toml")
+        .replace("\"unroll\"", "\"loop\"");
     std::fs::write(dir.path().join("machines/aeroloop.toml"), aero).unwrap();
     let err = refused(dir.path(), &[s(&design), "--machine", "aeroloop"]);
-    assert!(err.contains("not supported by the aerobasic post") && err.contains("unroll"), "{err}");
+    assert!(
+        err.contains("not supported by the aerobasic post") && err.contains("unroll"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -179,7 +238,16 @@ fn build_writes_everything_or_nothing() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["design-layout.svg", "design-section.svg", "design-setup.md", "design.dxf", "design.ngc"]);
+    assert_eq!(
+        names,
+        [
+            "design-layout.svg",
+            "design-section.svg",
+            "design-setup.md",
+            "design.dxf",
+            "design.ngc"
+        ]
+    );
     // Again over the same folder: replaced, nothing left behind.
     let o = dlw(&["build", s(&design), "-o", s(&out)]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -190,9 +258,14 @@ fn build_writes_everything_or_nothing() {
     let o = dlw(&["build", s(&design), "-o", s(&out)]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("notes.txt"));
-    assert_eq!(std::fs::read_to_string(out.join("notes.txt")).unwrap(), "mine");
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
     // A bad design: no folder at all.
-    machine(dir.path(), "slow", |t| t.replace("a_speed_max_deg_s = 3600.0", "a_speed_max_deg_s = 360.0"));
+    machine(dir.path(), "slow", |t| {
+        t.replace("a_speed_max_deg_s = 3600.0", "a_speed_max_deg_s = 360.0")
+    });
     let fresh = dir.path().join("fresh");
     let o = dlw(&["build", s(&design), "-o", s(&fresh), "--machine", "slow"]);
     assert!(!o.status.success());

@@ -14,13 +14,27 @@ use std::process::Command;
 fn runs(stem: &str, out: &Path) -> Vec<Vec<String>> {
     let o = |f: String| out.join(f).to_string_lossy().into_owned();
     vec![
-        vec!["-o".into(), o(format!("{stem}.ngc")), "--sheet".into(), o(format!("{stem}-setup.md"))],
-        vec!["--machine".into(), "aerotech-aerobasic".into(), "-o".into(), o(format!("{stem}.pgm"))],
+        vec![
+            "-o".into(),
+            o(format!("{stem}.ngc")),
+            "--sheet".into(),
+            o(format!("{stem}-setup.md")),
+        ],
+        vec![
+            "--machine".into(),
+            "aerotech-aerobasic".into(),
+            "-o".into(),
+            o(format!("{stem}.pgm")),
+        ],
     ]
 }
 
 fn files(stem: &str) -> [String; 3] {
-    [format!("{stem}.ngc"), format!("{stem}-setup.md"), format!("{stem}.pgm")]
+    [
+        format!("{stem}.ngc"),
+        format!("{stem}-setup.md"),
+        format!("{stem}.pgm"),
+    ]
 }
 
 #[test]
@@ -41,7 +55,11 @@ fn toolpaths_folder_is_up_to_date() {
                 .args(&args)
                 .output()
                 .unwrap();
-            assert!(o.status.success(), "{stem}: {}", String::from_utf8_lossy(&o.stderr));
+            assert!(
+                o.status.success(),
+                "{stem}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
         }
         let folder = root.join("toolpaths").join(&stem);
         for file in files(&stem) {

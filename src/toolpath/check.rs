@@ -18,7 +18,7 @@ use geo::Coord;
 use geo::{LineString, Polygon};
 
 use super::plan::{Feature, MoveKind, OperationKind, Plan, Point};
-use super::ToolpathError;
+use super::{SpeedViolation, ToolpathError};
 use crate::layout::{Layout, Notch};
 use crate::machine::MachineProfile;
 use crate::rules::{self, Violation};
@@ -92,7 +92,7 @@ pub fn check_plan(
             ),
         ] {
             if needed > limit * (1.0 + 1e-12) {
-                return Err(ToolpathError::Speed {
+                return Err(ToolpathError::Speed(Box::new(SpeedViolation {
                     operation: op.kind.name(),
                     feature: path.feature.to_string(),
                     pass: mv.pass,
@@ -104,7 +104,7 @@ pub fn check_plan(
                     limit,
                     unit,
                     surface_mm_s: op.process.scan_speed_mm_s,
-                });
+                })));
             }
         }
     }

@@ -117,31 +117,8 @@ pub enum ToolpathError {
         max_mm: f64,
     },
     /// A beam-on move needs an axis faster than the stage allows.
-    #[error("{operation}: {feature}, pass {pass}, move {index} from {from} to {to} needs {axis} at {needed:.1} {unit} to keep {surface_mm_s} mm/s on the surface, above the stage's limit of {limit} {unit}")]
-    Speed {
-        /// The operation.
-        operation: &'static str,
-        /// The path.
-        feature: String,
-        /// Pass number, from 0.
-        pass: u32,
-        /// Index of the move in the whole job.
-        index: usize,
-        /// Start of the move.
-        from: String,
-        /// End of the move.
-        to: String,
-        /// The axis letter.
-        axis: char,
-        /// The speed the move needs.
-        needed: f64,
-        /// The stage's limit.
-        limit: f64,
-        /// Unit of both.
-        unit: &'static str,
-        /// The set's surface speed.
-        surface_mm_s: f64,
-    },
+    #[error("{0}")]
+    Speed(Box<SpeedViolation>),
     /// A cut comes too close to a written line.
     #[error("a cutting path would touch a written line (kerf {kerf_mm} mm):{}", .found.iter().map(|f| format!("\n  - {f}")).collect::<String>())]
     Clearance {
@@ -150,4 +127,33 @@ pub enum ToolpathError {
         /// Each clearance the design rules found broken between a cut and a line.
         found: Vec<String>,
     },
+}
+
+/// A beam-on move that needs an axis faster than the stage allows (boxed in
+/// [`ToolpathError::Speed`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{operation}: {feature}, pass {pass}, move {index} from {from} to {to} needs {axis} at {needed:.1} {unit} to keep {surface_mm_s} mm/s on the surface, above the stage's limit of {limit} {unit}")]
+pub struct SpeedViolation {
+    /// The operation.
+    pub operation: &'static str,
+    /// The path.
+    pub feature: String,
+    /// Pass number, from 0.
+    pub pass: u32,
+    /// Index of the move in the whole job.
+    pub index: usize,
+    /// Start of the move.
+    pub from: String,
+    /// End of the move.
+    pub to: String,
+    /// The axis letter.
+    pub axis: char,
+    /// The speed the move needs.
+    pub needed: f64,
+    /// The stage's limit.
+    pub limit: f64,
+    /// Unit of both.
+    pub unit: &'static str,
+    /// The set's surface speed.
+    pub surface_mm_s: f64,
 }

@@ -347,7 +347,81 @@ fn densify(points: &[Point], max_rad: f64) -> Vec<Point> {
 
 #[cfg(test)]
 mod tests {
+    use geo::{polygon, LineString};
+
     use super::*;
+    use crate::layout::{Notch, Trace};
+    use crate::machine::MachineLibrary;
+    use crate::process::ProcessLibrary;
+    use crate::toolpath::{MoveKind, ToolpathError};
+
+    const R_O: f64 = 0.8;
+
+    fn design() -> Design {
+        Design::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/designs/joint-b.toml"
+        )))
+        .unwrap()
+    }
+
+    /// A hand-built layout on r_o = 0.8 mm with the seam at s = 0: one notch split at the
+    /// seam (centred at s = 0), one whole notch, a sensor line that crosses the seam in two
+    /// pieces, and the parting line in two pieces.
+    fn layout() -> Layout {
+        let c = TAU * R_O;
+        let line = |pts: &[(f64, f64)]| LineString::from(pts.to_vec());
+        Layout {
+            name: "hand-built".into(),
+            outer_radius_mm: R_O,
+            circumference_mm: c,
+            seam_s_mm: 0.0,
+            trace_width_mm: 0.05,
+            kerf_mm: 0.03,
+            length_mm: 6.0,
+            notches: vec![
+                Notch {
+                    level: 0,
+                    side: 1,
+                    outline: vec![
+                        polygon![(x: 1.0, y: 0.0), (x: 1.5, y: 0.0), (x: 1.5, y: 0.6), (x: 1.0, y: 0.6)],
+                        polygon![(x: 1.0, y: c - 0.6), (x: 1.5, y: c - 0.6), (x: 1.5, y: c), (x: 1.0, y: c)],
+                    ],
+                },
+                Notch {
+                    level: 1,
+                    side: 0,
+                    outline: vec![
+                        polygon![(x: 2.0, y: 2.0), (x: 2.5, y: 2.0), (x: 2.5, y: 3.0), (x: 2.0, y: 3.0)],
+                    ],
+                },
+            ],
+            sensors: vec![Trace {
+                sensor: 0,
+                pieces: vec![
+                    line(&[(4.0, c - 0.3), (4.0, c)]),
+                    line(&[(4.0, 0.0), (4.0, 0.3), (5.0, 0.3)]),
+                ],
+            }],
+            leads: vec![],
+            pads: vec![],
+            parting: vec![
+                line(&[(6.0, 0.0), (6.0, 1.0)]),
+                line(&[(6.0, 1.0), (6.0, c)]),
+            ],
+        }
+    }
+
+    fn inputs() -> (Design, ProcessSets, MachineProfile) {
+        let sets = ProcessLibrary::default()
+            .resolve(&crate::design::ProcessChoice::default())
+            .unwrap();
+        (
+            design(),
+            sets,
+            MachineLibrary::default().find(None).unwrap(),
+        )
+    }
 
     #[test]
     fn long_rotations_are_split() {
@@ -366,5 +440,136 @@ mod tests {
         assert!((r[0].a_rad - (0.3 + TAU)).abs() < 1e-12 && r[0].x_mm == 9.615);
         assert!((r.last().unwrap().a_rad - 0.3).abs() < 1e-12);
         assert_eq!(p.forward.len(), 6);
+    }
+
+    #[test]
+    fn seam_split_features_are_cut_in_one_go_with_a_continuous() {
+        let (d, sets, m) = inputs();
+        let plan = plan(&d, &layout(), &sets, &m, &PlanOptions::default()).unwrap();
+        let sensor = &plan.operations[0];
+        assert_eq!(sensor.paths.len(), 1, "the two pieces are one line");
+        let notches = &plan.operations[1];
+        assert_eq!(notches.paths.len(), 2);
+        for path in sensor.paths.iter().chain(&notches.paths) {
+            for w in path.forward.windows(2) {
+                let ds = (w[1].a_rad - w[0].a_rad).abs() * R_O;
+                // Edges here are at most 1.17 mm long; a seam jump would be most of a turn.
+                assert!(ds < 1.5, "{}: a jump of {ds} mm in s", path.feature);
+            }
+        }
+        // The split notch, offset by half the kerf, exactly: x 1.015..1.485, s −0.585..0.585
+        // (modulo the circumference).
+        let split = notches
+            .paths
+            .iter()
+            .find(|p| p.feature == Feature::Notch { level: 0, side: 1 })
+            .unwrap();
+        let cut = &split.forward[1..];
+        let (mut x0, mut x1, mut s0, mut s1) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for p in cut {
+            x0 = x0.min(p.x_mm);
+            x1 = x1.max(p.x_mm);
+            s0 = s0.min(p.a_rad * R_O);
+            s1 = s1.max(p.a_rad * R_O);
+        }
+        let c = TAU * R_O;
+        let shift = c * ((-0.585 - s0) / c).round();
+        for (got, want) in [
+            (x0, 1.015),
+            (x1, 1.485),
+            (s0 + shift, -0.585),
+            (s1 + shift, 0.585),
+        ] {
+            assert!((got - want).abs() < 1e-9, "{got} vs {want}");
+        }
+        // Rapids never turn more than half a turn.
+        for mv in plan.moves().iter().filter(|m| m.kind == MoveKind::Rapid) {
+            assert!((mv.to.a_rad - mv.from.a_rad).abs() <= PI_PLUS, "{mv:?}");
+        }
+        // Nearest neighbour does not travel more than the layout's order.
+        for t in &plan.travel {
+            assert!(t.planned_mm <= t.layout_order_mm + 1e-9, "{t:?}");
+        }
+    }
+
+    const PI_PLUS: f64 = std::f64::consts::PI + 1e-9;
+
+    #[test]
+    fn refuses_a_cut_that_touches_a_written_line() {
+        let (d, sets, m) = inputs();
+        let mut l = layout();
+        // A sensor line 0.02 mm from the whole notch's edge: the kerf (0.015) plus half the
+        // line (0.025) reaches over it.
+        l.leads.push(Trace {
+            sensor: 0,
+            pieces: vec![LineString::from(vec![(2.52, 2.2), (2.52, 2.8)])],
+        });
+        let err = plan(&d, &l, &sets, &m, &PlanOptions::default()).unwrap_err();
+        assert!(matches!(err, ToolpathError::Clearance { .. }), "{err}");
+        let text = err.to_string();
+        assert!(
+            text.contains("notch 2") && text.contains("sensor 1"),
+            "{text}"
+        );
+        // 0.05 mm away it is clear (0.015 + 0.025 = 0.04 needed).
+        l.leads[0].pieces[0] = LineString::from(vec![(2.55, 2.2), (2.55, 2.8)]);
+        assert!(plan(&d, &l, &sets, &m, &PlanOptions::default()).is_ok());
+    }
+
+    #[test]
+    fn refuses_broken_layouts_with_the_feature_named() {
+        let (d, sets, m) = inputs();
+        let mut l = layout();
+        l.parting.pop();
+        let err = plan(&d, &l, &sets, &m, &PlanOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("must go all the way round"), "{err}");
+        let mut l = layout();
+        l.notches[1].outline = vec![
+            polygon![(x: 2.0, y: 2.0), (x: 2.02, y: 2.0), (x: 2.02, y: 3.0), (x: 2.0, y: 3.0)],
+        ];
+        let err = plan(&d, &l, &sets, &m, &PlanOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("notch 2 (side 0): kerf 0.03 mm") && err.contains("narrower"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn every_rapid_is_beam_off_and_every_feed_within_limits() {
+        let (d, sets, m) = inputs();
+        let l = Layout::from_design(&d).unwrap();
+        let plan = plan(&d, &l, &sets, &m, &PlanOptions::default()).unwrap();
+        let moves = plan.moves();
+        assert!(moves.iter().any(|mv| mv.kind == MoveKind::Rapid));
+        for mv in &moves {
+            assert!(mv.from.x_mm >= m.limits.x_min_mm && mv.to.x_mm <= m.limits.x_max_mm);
+        }
+        // Every pass starts with a rapid (or starts where the last ended) and the plan holds no
+        // beam-on rapids by construction: a Move is Rapid or Feed, and the posts gate on that.
+        let feeds = moves.iter().filter(|mv| mv.kind == MoveKind::Feed).count();
+        let expected: usize = plan
+            .operations
+            .iter()
+            .map(|op| {
+                op.paths
+                    .iter()
+                    .map(|p| {
+                        (0..op.process.repetitions)
+                            .map(|k| p.pass(k).len() - 1)
+                            .sum::<usize>()
+                    })
+                    .sum::<usize>()
+            })
+            .sum();
+        assert_eq!(feeds, expected);
     }
 }

@@ -153,7 +153,10 @@ pub fn check(canon: &Canon, e: &Expected, what: &str) {
     for m in &canon.moves {
         if m.feed {
             assert!(m.spindle_on, "{what}: feed with the beam off: {m:?}");
-            assert!(!e.inverse_time || m.inverse_time, "{what}: feed not in inverse time: {m:?}");
+            assert!(
+                !e.inverse_time || m.inverse_time,
+                "{what}: feed not in inverse time: {m:?}"
+            );
         } else {
             assert!(!m.spindle_on, "{what}: rapid with the beam on: {m:?}");
         }
@@ -337,4 +340,3 @@ pub fn check(canon: &Canon, e: &Expected, what: &str) {
         }
     }
 }
-
