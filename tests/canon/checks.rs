@@ -206,7 +206,8 @@ pub fn check(canon: &Canon, e: &Expected, what: &str) {
             set.scan_speed_mm_s
         );
     }
-    assert!(worst < 1e-3, "{what}: worst speed error {worst}");
+    // Feeds are computed from the coordinates as written, so the error is only F's rounding.
+    assert!(worst < 1e-4, "{what}: worst speed error {worst}");
 
     // Segments (one pass each) per path.
     let mut segments: BTreeMap<(String, String), BTreeMap<usize, Vec<&CanonMove>>> =
