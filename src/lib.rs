@@ -6,7 +6,8 @@
 //! - [`design`]: design files (the paper's Table I plus fabrication tables), read and validated;
 //! - [`layout`]: the unrolled joint (notches, sensor traces, leads, pads, parting line) in the
 //!   drawing frame;
-//! - [`drawing`]: DXF drawings for designers, written and read back, and SVG drawings for people;
+//! - [`drawing`]: drawings of the joint: DXF for designers (written and read back), SVG for
+//!   people;
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
 //! - [`process`], [`machine`]: laser parameter sets (Table II) and machine profiles;
 //! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting) and the setup sheet;

@@ -9,7 +9,7 @@ use dlw::drawing::layout_from_dxf;
 use dlw::job::{make_job, Job};
 use dlw::layout::Layout;
 use dlw::machine::{MachineLibrary, MachineProfile};
-use dlw::output::write_atomic;
+use dlw::output::write_all_atomic;
 use dlw::process::{ProcessLibrary, ProcessSets};
 use dlw::rules::{self, RulesError, Warning};
 
@@ -132,12 +132,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         |n| n.to_string_lossy().into_owned(),
     );
     let job = job(&inputs, &program_file)?;
-    // Everything is made before anything is written, so a failure leaves no file behind.
-    write_atomic(&args.output, job.program.as_bytes())?;
-    println!("wrote {}", args.output.display());
+    // Everything is made before anything is written, and the files are staged together, so a
+    // failure leaves no file behind.
+    let mut files = vec![(args.output.clone(), job.program.into_bytes())];
     if let Some(sheet) = &args.sheet {
-        write_atomic(sheet, job.sheet.as_bytes())?;
-        println!("wrote {}", sheet.display());
+        files.push((sheet.clone(), job.sheet.into_bytes()));
+    }
+    write_all_atomic(&files)?;
+    for (path, _) in &files {
+        println!("wrote {}", path.display());
     }
     Ok(())
 }

@@ -34,6 +34,9 @@ pub(crate) struct Dimension {
     pub label: String,
     /// Where the label goes if it does not fit between the arrows.
     pub overflow: Overflow,
+    /// For a vertical dimension: write the label upright, right of the line at mid-height,
+    /// instead of along the line.
+    pub beside: bool,
 }
 
 /// Draws a dimension measured along the sheet's x axis.
@@ -85,6 +88,11 @@ fn linear(sheet: &mut Sheet, layer: &'static str, d: &Dimension, vertical: bool)
         sheet.arrowhead(layer, b, (-dir.0, -dir.1));
     }
     let style = TextStyle::new(TEXT_MM, palette::DIMENSION);
+    if vertical && d.beside {
+        let at = (d.at + sheet.paper(1.5), (lo + hi) / 2.0 + sheet.paper(0.9));
+        sheet.text(layer, at, &d.label, style);
+        return;
+    }
     let style = if vertical { style.vertical() } else { style };
     let width = sheet.text_width(&d.label, style);
     let lift = sheet.paper(1.0);

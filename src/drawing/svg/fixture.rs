@@ -1,7 +1,8 @@
 //! Hand-built layouts for the SVG tests, made directly from the frame described in
 //! [`crate::layout`]: notches centred at `s = π·r_o` (and `s = 0` for BSN), the sensor U-traces
 //! centred at `s = 0` (and `π·r_o`), leads to square-spiral pads, the parting cut at the end.
-//! They stand in for the layout generator, which lives on another branch.
+//! Unlike `Layout::from_design`, they take the seam as an argument, so the tests can force
+//! features to be split at the seam.
 
 use std::f64::consts::PI;
 

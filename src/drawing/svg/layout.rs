@@ -8,7 +8,7 @@ use geo::{BoundingRect, LineString, Polygon};
 
 use super::annotate::{self, Dimension, Overflow, Table, SMALL_MM, TEXT_MM, THIN_MM};
 use super::error::SvgError;
-use super::options::{SvgOptions, A4_LANDSCAPE_MM};
+use super::options::{Drawn, SvgOptions};
 use super::palette;
 use super::sheet::{fixed, Anchor, Sheet, TextStyle};
 use crate::design::Design;
@@ -26,12 +26,8 @@ const LAYERS: [&str; 8] = [
     "labels",
 ];
 
-/// Paper space the annotations take around the tube (mm): left, right, top, bottom. Used only
-/// to pick a scale; the viewBox follows what is actually drawn.
-const ANNOTATION_MM: (f64, f64, f64, f64) = (24.0, 48.0, 36.0, 70.0);
-
-/// The unrolled layout as an SVG document, at the largest standard scale that fits A4
-/// landscape. See [`layout_svg_with`].
+/// The unrolled layout as an SVG document, at the largest standard scale at which the sheet
+/// fits A4 landscape. See [`layout_svg_with`].
 ///
 /// # Errors
 /// See [`layout_svg_with`].
@@ -64,16 +60,14 @@ pub fn layout_svg_with(
     options: &SvgOptions,
 ) -> Result<String, SvgError> {
     check(layout)?;
+    options.draw(|scale| draw(layout, design, scale))
+}
+
+fn draw(layout: &Layout, design: &Design, scale: f64) -> Drawn {
     let (x_min, x_max) = x_range(layout);
-    let c = layout.circumference_mm;
-    let (left, right, top, bottom) = ANNOTATION_MM;
-    let (page_w, page_h) = A4_LANDSCAPE_MM;
-    let scale = options.scale(|k| {
-        (x_max - x_min) * k + left + right <= page_w && c * k + top + bottom <= page_h
-    })?;
     let mut sheet = Sheet::new(scale, &LAYERS);
     let frame = Frame {
-        top_s_mm: layout.seam_s_mm + c,
+        top_s_mm: layout.seam_s_mm + layout.circumference_mm,
     };
     draw_tube(&mut sheet, layout, &frame);
     draw_features(&mut sheet, layout, &frame);
@@ -93,7 +87,7 @@ pub fn layout_svg_with(
         &title,
         TextStyle::new(4.0, palette::OUTLINE).bold(),
     );
-    Ok(sheet.finish(&title, 6.0))
+    sheet.finish(&title, 6.0)
 }
 
 /// Maps the layout's `(x, s)` to sheet coordinates: `x` right, `s` up.
@@ -199,20 +193,20 @@ fn extent<'a>(lines: impl Iterator<Item = &'a LineString<f64>>) -> Option<Extent
         })
 }
 
-/// The extent of a notch drawn in one piece (`None` if the seam splits it).
-fn notch_extent(n: &Notch) -> Option<Extent> {
-    match n.outline.as_slice() {
-        [one] => extent(std::iter::once(one.exterior())),
-        _ => None,
-    }
+/// The extent of each piece of a notch (one unless the seam splits it).
+fn notch_pieces(n: &Notch) -> Vec<Extent> {
+    n.outline
+        .iter()
+        .filter_map(|p| extent(std::iter::once(p.exterior())))
+        .collect()
 }
 
-/// The extent of a trace drawn in one piece (`None` if the seam splits it).
-fn trace_extent(t: &Trace) -> Option<Extent> {
-    match t.pieces.as_slice() {
-        [one] => extent(std::iter::once(one)),
-        _ => None,
-    }
+/// The extent of each piece of a trace (one unless the seam splits it).
+fn trace_pieces(t: &Trace) -> Vec<Extent> {
+    t.pieces
+        .iter()
+        .filter_map(|p| extent(std::iter::once(p)))
+        .collect()
 }
 
 fn x_range(layout: &Layout) -> (f64, f64) {
@@ -327,45 +321,33 @@ fn draw_dimensions(sheet: &mut Sheet, layout: &Layout, design: &Design, f: &Fram
     let k = sheet.paper(1.0);
     let row = |i: f64| -k * (6.0 + 8.0 * i);
     let mut next_row = 0.0;
-    // h and c on the two lowest levels of one side, from notches drawn in one piece.
-    let pair = [0, 1]
-        .into_iter()
-        .filter_map(|side| {
-            let mut ns: Vec<(usize, Extent)> = layout
-                .notches
-                .iter()
-                .filter(|n| n.side == side)
-                .filter_map(|n| notch_extent(n).map(|e| (n.level, e)))
-                .collect();
-            ns.sort_by_key(|(level, _)| *level);
-            (!ns.is_empty()).then_some(ns)
-        })
-        .next();
-    if let Some(ns) = &pair {
-        let (_, a) = ns[0];
-        let top = |e: &Extent| f.pt(0.0, e.s1).1;
+    let h_and_c = h_and_c_notches(layout);
+    if let Some((a, b)) = h_and_c {
         let at = row(0.0);
+        let top_a = f.pt(0.0, a.s1).1;
         annotate::horizontal(
             sheet,
             "dimensions",
             &Dimension {
                 ends: (a.x0, a.x1),
                 at,
-                feature: (top(&a), top(&a)),
+                feature: (top_a, top_a),
                 label: format!("h = {}", fixed(a.x1 - a.x0, 2)),
                 overflow: Overflow::Before,
+                beside: false,
             },
         );
-        if let Some((_, b)) = ns.get(1) {
+        if let Some(b) = b {
             annotate::horizontal(
                 sheet,
                 "dimensions",
                 &Dimension {
                     ends: (a.x1, b.x0),
                     at,
-                    feature: (top(&a), top(b)),
+                    feature: (top_a, f.pt(0.0, b.s1).1),
                     label: format!("c = {}", fixed(b.x0 - a.x1, 2)),
                     overflow: Overflow::After,
+                    beside: false,
                 },
             );
         }
@@ -396,6 +378,7 @@ fn draw_dimensions(sheet: &mut Sheet, layout: &Layout, design: &Design, f: &Fram
                 feature: (0.0, 0.0),
                 label,
                 overflow: Overflow::After,
+                beside: false,
             },
         );
         next_row += 1.0;
@@ -409,6 +392,7 @@ fn draw_dimensions(sheet: &mut Sheet, layout: &Layout, design: &Design, f: &Fram
                     feature: (0.0, 0.0),
                     label: format!("L = {} (sensor gauge length)", fixed(joint_l, 2)),
                     overflow: Overflow::After,
+                    beside: false,
                 },
             );
             next_row += 1.0;
@@ -423,52 +407,25 @@ fn draw_dimensions(sheet: &mut Sheet, layout: &Layout, design: &Design, f: &Fram
             feature: (0.0, 0.0),
             label: format!("to parting cut {}", fixed(length, 2)),
             overflow: Overflow::After,
+            beside: false,
         },
     );
     // Vertical dimensions right of the tube: s_s, s_n, circumference.
     let phi_label = sheet.text_width("φ = 180°", TextStyle::new(SMALL_MM, palette::GUIDE));
     let mut col = length + phi_label + sheet.paper(9.0);
     let step = sheet.paper(TEXT_MM + 5.5);
-    let sensor = layout.sensors.iter().find_map(trace_extent);
-    if let Some(e) = sensor {
-        let (y0, y1) = (f.pt(0.0, e.s0).1, f.pt(0.0, e.s1).1);
-        annotate::vertical(
-            sheet,
-            "dimensions",
-            &Dimension {
-                ends: (y1, y0),
-                at: col,
-                feature: (e.x1, e.x1),
-                label: format!("s_{{s}} = {}", fixed(e.s1 - e.s0, 2)),
-                overflow: Overflow::After,
-            },
-        );
+    if let Some(sensor) = layout.sensors.first() {
+        arc_dimension(sheet, f, col, &trace_pieces(sensor), "s_{s}");
         col += step;
     }
+    // The last notch of side 0, whose extension lines cross the least.
     let notch = layout
         .notches
         .iter()
         .filter(|n| n.side == 0)
-        .max_by_key(|n| n.level)
-        .and_then(notch_extent);
-    if let Some(e) = notch {
-        let (y0, y1) = (f.pt(0.0, e.s0).1, f.pt(0.0, e.s1).1);
-        let arc = e.s1 - e.s0;
-        annotate::vertical(
-            sheet,
-            "dimensions",
-            &Dimension {
-                ends: (y1, y0),
-                at: col,
-                feature: (e.x1, e.x1),
-                label: format!(
-                    "s_{{n}} = {} (φ_{{n}} = {:.1}°)",
-                    fixed(arc, 2),
-                    (arc / layout.outer_radius_mm).to_degrees()
-                ),
-                overflow: Overflow::After,
-            },
-        );
+        .max_by_key(|n| n.level);
+    if let Some(n) = notch {
+        arc_dimension(sheet, f, col, &notch_pieces(n), "s_{n}");
         col += step;
     }
     annotate::vertical(
@@ -480,9 +437,68 @@ fn draw_dimensions(sheet: &mut Sheet, layout: &Layout, design: &Design, f: &Fram
             feature: (length, length),
             label: format!("2πr_{{o}} = {}", fixed(layout.circumference_mm, 2)),
             overflow: Overflow::After,
+            beside: false,
         },
     );
     col
+}
+
+/// The two lowest-level notches of the side whose notches reach highest on the sheet (so the
+/// extension lines up to the `h`/`c` row cross the least), as whole-notch extents.
+fn h_and_c_notches(layout: &Layout) -> Option<(Extent, Option<Extent>)> {
+    let whole = |n: &Notch| extent(n.outline.iter().map(Polygon::exterior));
+    // The side's highest piece top, measured in the window.
+    let side_top = |side: usize| {
+        layout
+            .notches
+            .iter()
+            .filter(|n| n.side == side)
+            .filter_map(|n| notch_pieces(n).first().map(|e| e.s1))
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let side = [0, 1]
+        .into_iter()
+        .filter(|s| layout.notches.iter().any(|n| n.side == *s))
+        .max_by(|a, b| side_top(*a).total_cmp(&side_top(*b)))?;
+    let mut ns: Vec<&Notch> = layout.notches.iter().filter(|n| n.side == side).collect();
+    ns.sort_by_key(|n| n.level);
+    // A split notch's pieces share its x extent; its top on the sheet is the window's top.
+    let a = whole(ns.first()?)?;
+    let b = ns.get(1).and_then(|n| whole(n));
+    Some((a, b))
+}
+
+/// A vertical dimension of an arc in `s` (notch arc, sensor arc) at sheet x `col`, with
+/// extension lines from the feature's proximal end. A feature the seam splits gets one
+/// dimension per piece, each labelled as its share of the whole.
+fn arc_dimension(sheet: &mut Sheet, f: &Frame, col: f64, pieces: &[Extent], symbol: &str) {
+    let total: f64 = pieces.iter().map(|e| e.s1 - e.s0).sum();
+    let lowest = pieces.iter().map(|e| e.s0).fold(f64::INFINITY, f64::min);
+    for e in pieces {
+        let (y0, y1) = (f.pt(0.0, e.s0).1, f.pt(0.0, e.s1).1);
+        let label = if pieces.len() == 1 {
+            format!("{symbol} = {}", fixed(total, 2))
+        } else {
+            format!("{symbol}: {} of {}", fixed(e.s1 - e.s0, 2), fixed(total, 2))
+        };
+        annotate::vertical(
+            sheet,
+            "dimensions",
+            &Dimension {
+                ends: (y1, y0),
+                at: col,
+                feature: (e.x1, e.x1),
+                label,
+                // A lower piece writes below itself, clear of the piece above.
+                overflow: if pieces.len() > 1 && e.s0 <= lowest {
+                    Overflow::Before
+                } else {
+                    Overflow::After
+                },
+                beside: false,
+            },
+        );
+    }
 }
 
 /// A tick step from `candidates` whose ticks are at least `min_mm` apart on paper.
@@ -550,24 +566,33 @@ fn draw_axes(sheet: &mut Sheet, layout: &Layout, x_min: f64, x_max: f64) -> f64 
         );
         i += 1;
     }
-    let seam_deg = (s0 / layout.outer_radius_mm).to_degrees();
     sheet.text(
         "labels",
         (-tick_len - widest - sheet.paper(3.0), c / 2.0),
-        &format!(
-            "s (mm) = r_{{o}}·φ; seam (top and bottom edge) at s = {} (φ = {:.1}°)",
-            fixed(s0, 2),
-            seam_deg
-        ),
+        "s (mm)",
         TextStyle::new(TEXT_MM, palette::DIMENSION)
             .anchor(Anchor::Middle)
             .vertical(),
     );
-    x_title_y + sheet.paper(4.0)
+    let seam_deg = (s0 / layout.outer_radius_mm).to_degrees();
+    sheet.text(
+        "labels",
+        ((x_min + x_max) / 2.0, x_title_y + sheet.paper(5.0)),
+        &format!(
+            "s = r_{{o}}·φ: arc length on the outer surface from +y (φ = 0). \
+             The top and bottom edges are the seam, s = {} mm (φ = {:.1}°).",
+            fixed(s0, 2),
+            seam_deg
+        ),
+        TextStyle::new(SMALL_MM, palette::DIMENSION).anchor(Anchor::Middle),
+    );
+    x_title_y + sheet.paper(9.0)
 }
 
 fn draw_footer(sheet: &mut Sheet, layout: &Layout, design: &Design, top: f64, right: f64) {
-    let origin = (0.0, top + sheet.paper(2.0));
+    // Below everything drawn so far, including labels that overflowed downward.
+    let ((_, _), (_, bottom)) = sheet.extent();
+    let origin = (0.0, top.max(bottom) + sheet.paper(2.0));
     let (_, below_bar) = annotate::scale_bar(sheet, "labels", origin);
     // Legend: one swatch per feature kind.
     let sw = sheet.paper(5.0);
@@ -633,7 +658,7 @@ fn title_block(sheet: &Sheet, layout: &Layout, design: &Design) -> Table {
         (
             "notches".to_string(),
             format!(
-                "N = {}{}, s_{{n}} = {}, h = {}, c = {} mm",
+                "N = {}{}, s_{{n}} = {} (φ_{{n}} = {:.1}°), h = {}, c = {} mm",
                 d.notch_count,
                 if d.style == NotchStyle::Bsn {
                     " per side"
@@ -641,6 +666,7 @@ fn title_block(sheet: &Sheet, layout: &Layout, design: &Design) -> Table {
                     ""
                 },
                 fixed(d.notch_arc_mm, 2),
+                s.notch_angle_rad().to_degrees(),
                 fixed(d.notch_width_mm, 2),
                 fixed(d.notch_spacing_mm, 2)
             ),
@@ -679,7 +705,7 @@ fn title_block(sheet: &Sheet, layout: &Layout, design: &Design) -> Table {
         rows.insert(
             4,
             (
-                "two sensors (Eq. 6)".to_string(),
+                "two sensors (Eq. 7)".to_string(),
                 format!("Δy^{{(1,2)}} = {} mm", fixed(dy12, 3)),
             ),
         );

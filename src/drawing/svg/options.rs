@@ -10,33 +10,51 @@ const STANDARD_SCALES: [f64; 12] = [
     100.0, 50.0, 20.0, 10.0, 5.0, 2.0, 1.0, 0.5, 0.2, 0.1, 0.05, 0.02,
 ];
 
+/// The printable area of A4 landscape inside 5 mm borders (paper mm): what the automatic
+/// scale fits a sheet into.
+pub const PAGE_MM: (f64, f64) = (287.0, 200.0);
+
 /// Options shared by the SVG drawings.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SvgOptions {
     /// Print scale in paper mm per part mm (`10.0` is 10:1). `None` picks the largest standard
-    /// scale (100:1, 50:1, 20:1, 10:1, 5:1, …) at which the whole sheet fits A4 landscape.
+    /// scale (100:1, 50:1, 20:1, 10:1, 5:1, 2:1, 1:1, 1:2, …) at which the whole sheet fits
+    /// [`PAGE_MM`], A4 landscape inside 5 mm borders.
     pub print_scale: Option<f64>,
 }
 
+/// A drawn sheet: the SVG text and its printed size (mm).
+pub(crate) struct Drawn {
+    /// The document.
+    pub svg: String,
+    /// Printed width and height (paper mm).
+    pub size_mm: (f64, f64),
+}
+
 impl SvgOptions {
-    /// The scale asked for, checked, or the largest standard scale for which `fits` holds.
-    pub(crate) fn scale(&self, fits: impl Fn(f64) -> bool) -> Result<f64, SvgError> {
+    /// Draws at the scale asked for, or at each standard scale from the largest down until
+    /// the sheet fits the page (the smallest standard scale if none does).
+    pub(crate) fn draw(&self, draw: impl Fn(f64) -> Drawn) -> Result<String, SvgError> {
         match self.print_scale {
             Some(value) if value.is_finite() && (MIN_SCALE..=MAX_SCALE).contains(&value) => {
-                Ok(value)
+                Ok(draw(value).svg)
             }
             Some(value) => Err(SvgError::BadScale {
                 value,
                 min: MIN_SCALE,
                 max: MAX_SCALE,
             }),
-            None => Ok(STANDARD_SCALES
-                .into_iter()
-                .find(|s| fits(*s))
-                .unwrap_or(STANDARD_SCALES[STANDARD_SCALES.len() - 1])),
+            None => {
+                let mut last = String::new();
+                for scale in STANDARD_SCALES {
+                    let drawn = draw(scale);
+                    if drawn.size_mm.0 <= PAGE_MM.0 && drawn.size_mm.1 <= PAGE_MM.1 {
+                        return Ok(drawn.svg);
+                    }
+                    last = drawn.svg;
+                }
+                Ok(last)
+            }
         }
     }
 }
-
-/// Usable area of an A4 landscape sheet inside 10 mm borders (paper mm).
-pub(crate) const A4_LANDSCAPE_MM: (f64, f64) = (277.0, 190.0);

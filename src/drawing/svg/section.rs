@@ -7,7 +7,7 @@ use dlw_geometry::NotchStyle;
 use super::annotate::{self, Dimension, Overflow, Table, SMALL_MM, TEXT_MM, THIN_MM};
 use super::error::SvgError;
 use super::layout::style_name;
-use super::options::{SvgOptions, A4_LANDSCAPE_MM};
+use super::options::{Drawn, SvgOptions};
 use super::palette;
 use super::sheet::{fixed, Anchor, Sheet, TextStyle};
 use crate::design::Design;
@@ -22,15 +22,14 @@ const LAYERS: [&str; 6] = [
     "labels",
 ];
 
-/// Paper space the annotations take beside and around the section (mm): horizontal and
-/// vertical totals. Used only to pick a scale.
-const ANNOTATION_MM: (f64, f64) = (140.0, 60.0);
+/// An angular range `(φ0, φ1)` of the section (rad from `+y`).
+type Sector = (f64, f64);
 
 /// Arc flattening step (rad): half a degree keeps the chord within 1e-5·r of the circle.
 const ARC_STEP_RAD: f64 = PI / 360.0;
 
 /// The cross-section through a notch level as an SVG document, at the largest standard scale
-/// that fits A4 landscape. See [`section_svg_with`].
+/// at which the sheet fits A4 landscape. See [`section_svg_with`].
 ///
 /// # Errors
 /// See [`section_svg_with`].
@@ -45,20 +44,21 @@ pub fn section_svg(design: &Design) -> Result<String, SvgError> {
 /// notch removes (an angular sector of `φ_n = s_n/r_o`, centred at `φ = π` for UAN, at `φ = 0`
 /// and `π` for BSN) in pale orange, the neutral plane `ȳ` (Eq. 2), the sensor arms at
 /// `φ = ±φ_s/2` (and `π ± φ_s/2` for BSN's sensor 2) with the sensor plane `y_s` (Eq. 1), and
-/// the offset `Δy = y_s − ȳ` (Eq. 3) as a dimension; for BSN also `Δy^(1,2) = 2·y_s` (Eq. 6).
+/// the offset `Δy = y_s − ȳ` (Eq. 3) as a dimension; for BSN also `Δy^(1,2) = 2·y_s`, the
+/// distance between the sensor planes in the two-sensor angle (the paper's Eq. 7).
 /// Every number comes from `dlw_geometry`.
 ///
 /// # Errors
 /// [`SvgError::BadScale`] for an unusable print scale. A validated [`Design`] always draws.
 pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String, SvgError> {
+    options.draw(|scale| draw(design, scale))
+}
+
+fn draw(design: &Design, scale: f64) -> Drawn {
     let joint = &design.joint;
     let sec = joint.section();
     let (ro, ri) = (sec.outer_radius_mm(), sec.inner_radius_mm());
     let style = sec.style();
-    let (page_w, page_h) = A4_LANDSCAPE_MM;
-    let scale = options.scale(|k| {
-        2.0 * ro * k + ANNOTATION_MM.0 <= page_w && 2.0 * ro * k + ANNOTATION_MM.1 <= page_h
-    })?;
     let mut sheet = Sheet::new(scale, &LAYERS);
     let y_bar = sec.neutral_axis_mm();
     let y_s = sec.sensor_plane_mm();
@@ -66,7 +66,7 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
     let phi_s = sec.sensor_angle_rad();
 
     // Material and the notch cut, as annular sectors [φ0, φ1].
-    let (kept, cut): (Vec<(f64, f64)>, Vec<(f64, f64)>) = match style {
+    let (kept, cut): (Vec<Sector>, Vec<Sector>) = match style {
         NotchStyle::Uan => {
             let alpha = PI - phi_n / 2.0;
             (vec![(-alpha, alpha)], vec![(alpha, 2.0 * PI - alpha)])
@@ -108,18 +108,18 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
     }
 
     // Centre lines and the +y axis.
-    let r_ext = ro + sheet.paper(8.0);
+    let r_ext = ro + sheet.paper(5.0);
     let centre = sheet.pen(palette::GUIDE, THIN_MM, Some(&[6.0, 1.5, 1.0, 1.5]));
     sheet.line("guides", (-r_ext, 0.0), (r_ext, 0.0), &centre);
     sheet.line("guides", (0.0, r_ext), (0.0, -r_ext), &centre);
     let axis = sheet.pen(palette::DIMENSION, THIN_MM, None);
-    let y_tip = -(ro + sheet.paper(14.0));
+    let y_tip = -(ro + sheet.paper(10.0));
     sheet.line("guides", (0.0, -r_ext), (0.0, y_tip), &axis);
     sheet.arrowhead("guides", (0.0, y_tip), (0.0, -1.0));
     let label = TextStyle::new(TEXT_MM, palette::DIMENSION);
     sheet.text(
         "labels",
-        (sheet.paper(1.5), y_tip + sheet.paper(2.0)),
+        (sheet.paper(1.5), y_tip + sheet.paper(2.5)),
         "y (φ = 0)",
         label,
     );
@@ -139,8 +139,12 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
     );
 
     // Planes: ȳ, y_s and, for BSN, −y_s; lines run from the left labels to past the dimensions.
+    // Δy's label stands upright right of its line, so Δy^(1,2) goes right of that label.
+    let dy_label = format!("Δy = y_{{s}} − ȳ = {} mm", fixed(sec.offset_mm(), 3));
     let col1 = ro + sheet.paper(10.0);
-    let col2 = col1 + sheet.paper(TEXT_MM + 6.0);
+    let col2 = col1
+        + sheet.paper(5.0)
+        + sheet.text_width(&dy_label, TextStyle::new(TEXT_MM, palette::DIMENSION));
     let x_right = match style {
         NotchStyle::Uan => col1,
         NotchStyle::Bsn => col2,
@@ -177,7 +181,18 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
         let pen = sheet.pen(colour, 0.3, Some(&[3.0, 1.5]));
         sheet.path(
             "planes",
-            &[(x_left, -y), (x_right, -y)],
+            // ȳ only reaches Δy's column, so it stays clear of Δy^(1,2)'s label.
+            &[
+                (x_left, -y),
+                (
+                    if *class == "neutral-plane" {
+                        col1 + sheet.paper(3.0)
+                    } else {
+                        x_right
+                    },
+                    -y,
+                ),
+            ],
             false,
             None,
             Some(&pen),
@@ -236,9 +251,9 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
         let (ax, ay) = polar(ro, phi);
         let up = ay < 0.0;
         let ty = if up {
-            -(ro + sheet.paper(20.0))
+            -(ro + sheet.paper(9.0))
         } else {
-            ro + sheet.paper(20.0)
+            ro + sheet.paper(9.0)
         };
         let tx = ax.max(0.0) + sheet.paper(12.0);
         sheet.line("sensor", (ax, ay), (tx - sheet.paper(1.0), ty), &leader);
@@ -251,7 +266,6 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
     }
 
     // Δy (and Δy^(1,2)) as dimensions right of the section.
-    let dy_label = format!("Δy = y_{{s}} − ȳ = {} mm", fixed(sec.offset_mm(), 3));
     annotate::vertical(
         &mut sheet,
         "dimensions",
@@ -261,6 +275,7 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
             feature: (col1, col1),
             label: dy_label,
             overflow: Overflow::After,
+            beside: true,
         },
     );
     if let Some(dy12) = sec.two_sensor_offset_mm() {
@@ -273,12 +288,14 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
                 feature: (col2, col2),
                 label: format!("Δy^{{(1,2)}} = 2y_{{s}} = {} mm", fixed(dy12, 3)),
                 overflow: Overflow::After,
+                beside: true,
             },
         );
     }
 
     // Radii on leaders below the centre line, away from the plane labels.
     let radius_pen = sheet.pen(palette::DIMENSION, THIN_MM, None);
+    let mut radius_label_end: f64 = 0.0;
     for (r, phi, label, right) in [
         (
             ro,
@@ -313,13 +330,24 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
             } else {
                 -sheet.paper(1.0)
             };
-        sheet.text(
-            "labels",
-            (tx, end.1 + sheet.paper(0.9)),
-            &label,
-            TextStyle::new(TEXT_MM, palette::DIMENSION).anchor(anchor),
-        );
+        let style = TextStyle::new(TEXT_MM, palette::DIMENSION).anchor(anchor);
+        if right {
+            radius_label_end = tx + sheet.text_width(&label, style);
+        }
+        sheet.text("labels", (tx, end.1 + sheet.paper(0.9)), &label, style);
     }
+
+    // The numbers right of the section, below the planes.
+    let table = numbers(design, &sheet);
+    let lowest_plane = planes
+        .iter()
+        .map(|(y, ..)| -y)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let table_x = (ro + sheet.paper(12.0)).max(radius_label_end + sheet.paper(4.0));
+    // Bottom-aligned with the section unless the planes reach lower.
+    let (_, table_h) = table.size(&sheet);
+    let table_y = (lowest_plane + sheet.paper(6.0)).max(ro - table_h);
+    table.draw(&mut sheet, "labels", (table_x, table_y));
 
     // The notch, named below the section.
     let notch_label = match style {
@@ -343,13 +371,10 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
         TextStyle::new(TEXT_MM, palette::NOTCH_EDGE).anchor(Anchor::Middle),
     );
 
-    // Numbers and scale under everything.
-    let ((min_x, _), (max_x, _)) = sheet.extent();
-    let table = numbers(design, &sheet);
-    let top = notch_y + sheet.paper(6.0);
-    annotate::scale_bar(&mut sheet, "labels", (min_x, top));
-    let (w, _) = table.size(&sheet);
-    table.draw(&mut sheet, "labels", ((max_x - w).max(min_x), top));
+    // The scale bar under everything.
+    let ((min_x, _), _) = sheet.extent();
+    let bar_y = notch_y + sheet.paper(5.0);
+    annotate::scale_bar(&mut sheet, "labels", (min_x, bar_y));
 
     let title = format!(
         "{} — section through a notch ({}), scale {}",
@@ -364,7 +389,7 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
         &title,
         TextStyle::new(4.0, palette::OUTLINE).bold(),
     );
-    Ok(sheet.finish(&title, 6.0))
+    sheet.finish(&title, 6.0)
 }
 
 fn numbers(design: &Design, sheet: &Sheet) -> Table {
@@ -389,7 +414,7 @@ fn numbers(design: &Design, sheet: &Sheet) -> Table {
     ];
     if let Some(dy12) = s.two_sensor_offset_mm() {
         rows.push((
-            "two sensors (Eq. 6)".to_string(),
+            "two sensors (Eq. 7)".to_string(),
             format!("Δy^{{(1,2)}} = {} mm", fixed(dy12, 3)),
         ));
     }

@@ -12,6 +12,8 @@ use svg::node::element::{Circle, Group, Path, Rectangle, Title};
 use svg::node::Blob;
 use svg::{Document, Node};
 
+use super::options::Drawn;
+
 /// Where a text sits relative to its anchor point (SVG `text-anchor`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Anchor {
@@ -346,7 +348,7 @@ impl Sheet {
 
     /// The finished SVG document: a white background, the layers in order, a `<title>`, and
     /// a viewBox `margin_mm` (paper) larger than everything drawn.
-    pub fn finish(self, title: &str, margin_mm: f64) -> String {
+    pub fn finish(self, title: &str, margin_mm: f64) -> Drawn {
         let m = self.paper(margin_mm);
         let (min, max) = if self.min.0.is_finite() {
             (self.min, self.max)
@@ -376,7 +378,10 @@ impl Sheet {
         for (_, g) in self.layers {
             doc = doc.add(g);
         }
-        format!("{doc}\n")
+        Drawn {
+            svg: format!("{doc}\n"),
+            size_mm: (w * self.scale, h * self.scale),
+        }
     }
 }
 
@@ -469,13 +474,14 @@ pub(crate) fn num(v: f64) -> String {
     s
 }
 
-/// A value for a label with a fixed number of decimals, never `-0.00`.
+/// A value for a label with a fixed number of decimals, with a typographic minus (U+2212)
+/// and never `−0.00`.
 pub(crate) fn fixed(v: f64, decimals: usize) -> String {
     let s = format!("{v:.decimals$}");
-    if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
-        s[1..].to_string()
-    } else {
-        s
+    match s.strip_prefix('-') {
+        Some(abs) if abs.chars().all(|c| c == '0' || c == '.') => abs.to_string(),
+        Some(abs) => format!("−{abs}"),
+        None => s,
     }
 }
 
@@ -491,14 +497,14 @@ mod tests {
             (-0.00001, "0"),
             (1.5, "1.5"),
             (2.0, "2"),
-            (-3.14159265, "-3.1416"),
+            (-1.234567, "-1.2346"),
             (1e-3, "0.001"),
         ];
         for (v, s) in table {
             assert_eq!(num(v), s, "{v}");
         }
         assert_eq!(fixed(-0.001, 2), "0.00");
-        assert_eq!(fixed(-0.5, 2), "-0.50");
+        assert_eq!(fixed(-0.5, 2), "−0.50");
         assert_eq!(fixed(9.5, 2), "9.50");
     }
 
@@ -527,7 +533,7 @@ mod tests {
     fn text_is_escaped_and_extends_the_sheet() {
         let mut sheet = Sheet::new(10.0, &["a"]);
         sheet.text_plain("a", (0.0, 0.0), "a<b & \"c\"", TextStyle::new(2.5, "#000"));
-        let svg = sheet.finish("t", 1.0);
+        let svg = sheet.finish("t", 1.0).svg;
         assert!(svg.contains("a&lt;b &amp; &quot;c&quot;"), "{svg}");
         roxmltree::Document::parse(&svg).unwrap();
     }

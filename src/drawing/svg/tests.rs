@@ -12,25 +12,10 @@ use super::*;
 use crate::design::Design;
 use crate::layout::Layout;
 
-/// The seam the fixtures use for a design: in the backbone, past the pads, clear of the notch.
-fn seam_for(d: &Design) -> f64 {
-    let f = &d.file;
-    match f.style {
-        // Halfway between the pads' far edge and the notch's edge, on the −s side.
-        dlw_geometry::NotchStyle::Uan => {
-            let fab = &f.fabrication;
-            let pads = 2.0 * f64::from(fab.pad_turns) * fab.pad_pitch_mm + fab.pad_gap_mm / 2.0;
-            let notch = PI * f.outer_radius_mm - f.notch_arc_mm / 2.0;
-            -(pads + notch) / 2.0
-        }
-        // Halfway between the two sensors (φ = 90°).
-        dlw_geometry::NotchStyle::Bsn => PI * f.outer_radius_mm / 2.0,
-    }
-}
-
+/// A shipped design and its layout from the layout generator.
 fn sample(stem: &str) -> (Design, Layout) {
     let d = design(stem);
-    let l = layout_for(&d, seam_for(&d));
+    let l = Layout::from_design(&d).unwrap();
     (d, l)
 }
 
@@ -141,7 +126,7 @@ fn joint_a_layout_has_every_feature_in_fig1_colours() {
         "ȳ = 0.936, ys = 1.224, Δy = 0.288 mm",
         &format!("to parting cut {}", fixed(l.length_mm, 2)),
         &format!(
-            "seam (top and bottom edge) at s = {}",
+            "The top and bottom edges are the seam, s = {} mm",
             fixed(l.seam_s_mm, 2)
         ),
     ] {
@@ -222,7 +207,7 @@ fn joint_c_layout_has_both_sides_and_both_sensors() {
 #[test]
 fn a_design_outside_the_paper_shows_l_and_the_notched_length_apart() {
     let d = outside_design();
-    let l = layout_for(&d, seam_for(&d));
+    let l = Layout::from_design(&d).unwrap();
     let svg = layout_svg(&l, &d).unwrap();
     assert_clean(&svg);
     let doc = parse(&svg);
@@ -257,7 +242,28 @@ fn features_split_at_the_seam_are_drawn_piece_by_piece() {
     assert_clean(&svg);
     let doc = parse(&svg);
     assert_eq!(with_class(&doc, "notch").len(), 20);
-    assert!(has_text(&doc, "sn = 5.61"), "{:?}", texts(&doc));
+    // h and c still measured (a split notch keeps its x extent); s_n in two shares.
+    for needle in ["h = 0.50", "c = 0.50"] {
+        assert!(
+            has_text(&doc, needle),
+            "missing {needle:?} in {:?}",
+            texts(&doc)
+        );
+    }
+    let shares: Vec<f64> = texts(&doc)
+        .iter()
+        .filter_map(|t| {
+            t.strip_prefix("sn: ")?
+                .strip_suffix(" of 5.61")?
+                .parse()
+                .ok()
+        })
+        .collect();
+    assert_eq!(shares.len(), 2, "{:?}", texts(&doc));
+    assert!(
+        (shares.iter().sum::<f64>() - 5.61).abs() < 0.011,
+        "{shares:?}"
+    );
 }
 
 #[test]
@@ -449,7 +455,7 @@ fn write_samples_when_asked() {
         .collect();
     designs.push(("outside".into(), outside_design()));
     for (stem, d) in designs {
-        let l = layout_for(&d, seam_for(&d));
+        let l = Layout::from_design(&d).unwrap();
         let layout = layout_svg(&l, &d).unwrap();
         let section = section_svg(&d).unwrap();
         parse(&layout);
