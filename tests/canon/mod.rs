@@ -62,10 +62,15 @@ pub struct Canon {
 
 /// Runs `rs274 -g FILE`; panics with a clear message if rs274 is missing, exits non-zero or
 /// reports an error.
+///
+/// Each run gets its own `HOME`: rs274 truncates and maps `$HOME/.tool.mmap` shared, so two
+/// runs at once (parallel tests, or another user's) crash each other with SIGBUS.
 pub fn run_rs274(file: &Path) -> String {
+    let home = tempfile::tempdir().expect("a temporary HOME for rs274");
     let out = Command::new("rs274")
         .arg("-g")
         .arg(file)
+        .env("HOME", home.path())
         .output()
         .unwrap_or_else(|e| {
             panic!(
