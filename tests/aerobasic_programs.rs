@@ -216,3 +216,20 @@ fn the_parser_and_checks_catch_broken_programs() {
         assert!(fails(&text), "{what} is caught");
     }
 }
+
+/// Helical moves: `F` is the X component of the speed, and the surface speed still holds.
+#[test]
+fn helical_moves_keep_the_surface_speed() {
+    let (design, mut e) = canon::checks::sheared_joint_a(Some("aerotech-aerobasic"));
+    let job = dlw::job::make_job(&design, &e.layout, &e.sets, &e.profile, "helix.pgm").unwrap();
+    let moves = parse_aerobasic(&job.program);
+    let helical = moves
+        .moves
+        .iter()
+        .filter(|m| m.feed && m.from[0] != m.to[0] && m.from[3] != m.to[3])
+        .count();
+    assert!(helical >= 10, "only {helical} helical moves");
+    e.a_print_deg = 0.5e-6;
+    e.inverse_time = false;
+    check(&moves, &e, "sheared joint A, AeroBasic");
+}

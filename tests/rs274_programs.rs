@@ -292,3 +292,21 @@ fn the_checks_catch_broken_programs() {
         assert!(fails(&text, 0.0), "{what} is caught");
     }
 }
+
+/// Helical moves (X and A at once) keep the surface speed through the interpreter too.
+#[test]
+fn helical_moves_keep_the_surface_speed() {
+    let (design, e) = canon::checks::sheared_joint_a(None);
+    let job = dlw::job::make_job(&design, &e.layout, &e.sets, &e.profile, "helix.ngc").unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("helix.ngc");
+    std::fs::write(&file, &job.program).unwrap();
+    let canon = parse(&run_rs274(&file));
+    let helical = canon
+        .moves
+        .iter()
+        .filter(|m| m.feed && m.from[0] != m.to[0] && m.from[3] != m.to[3])
+        .count();
+    assert!(helical >= 10, "only {helical} helical moves");
+    check(&canon, &e, "sheared joint A");
+}

@@ -341,3 +341,28 @@ pub fn check(canon: &Canon, e: &Expected, what: &str) {
         }
     }
 }
+
+/// Joint A's layout with every written line sheared, `s += 0.02·x`, so that every written move
+/// turns and travels at once (a helix): the case where RS-274's plain `F` would be wrong.
+/// Notches are left as drawn. Returns the design and the sheared layout's expectation.
+pub fn sheared_joint_a(machine: Option<&str>) -> (dlw::design::Design, Expected) {
+    use geo::MapCoordsInPlace;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("designs/joint-a.toml");
+    let mut e = expected(&path, machine);
+    for t in e
+        .layout
+        .sensors
+        .iter_mut()
+        .chain(&mut e.layout.leads)
+        .chain(&mut e.layout.pads)
+    {
+        for piece in &mut t.pieces {
+            piece.map_coords_in_place(|c| geo::Coord {
+                x: c.x,
+                y: c.y + 0.02 * c.x,
+            });
+        }
+    }
+    let design = dlw::design::Design::load(&path).unwrap();
+    (design, e)
+}
