@@ -137,6 +137,7 @@ fn check_clearance(plan: &Plan, layout: &Layout) -> Result<(), ToolpathError> {
             for pts in [Some(&path.forward), path.reverse.as_ref()]
                 .into_iter()
                 .flatten()
+                .filter(|pts| pts.len() >= 2)
             {
                 match path.feature {
                     Feature::Notch { level, side } => {
@@ -149,7 +150,7 @@ fn check_clearance(plan: &Plan, layout: &Layout) -> Result<(), ToolpathError> {
                                 vec![],
                             )],
                         });
-                        parting.push(LineString::new(to_xs(&pts[..=skip.min(pts.len() - 1)])));
+                        parting.push(LineString::new(to_xs(&pts[..=skip])));
                     }
                     _ => parting.push(LineString::new(to_xs(pts))),
                 }
