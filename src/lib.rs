@@ -9,6 +9,10 @@
 //! - [`drawing`]: drawings of the joint: DXF for designers (written and read back), SVG for
 //!   people;
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
+//! - [`process`], [`machine`]: laser parameter sets (Table II) and machine profiles;
+//! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting) and the setup sheet;
+//! - [`post`]: post-processors that write the plan in a controller's dialect;
+//! - [`job`]: a design made into a program and a setup sheet for one machine;
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file.
 //!
 //! The cross-section and strain math lives in the `dlw-geometry` crate, shared with the
@@ -16,6 +20,11 @@
 
 pub mod design;
 pub mod drawing;
+pub mod job;
 pub mod layout;
+pub mod machine;
 pub mod output;
+pub mod post;
+pub mod process;
 pub mod rules;
+pub mod toolpath;

@@ -3,9 +3,11 @@
 
 use clap::{Parser, Subcommand};
 
+mod build;
 mod draw;
 mod import_dxf;
 mod inspect;
+mod program;
 
 /// From a sensing continuum-robot joint's design parameters to drawings, laser programs and a
 /// working sensor.
@@ -24,6 +26,10 @@ enum Command {
     Draw(draw::Args),
     /// Read a DXF drawing in dlw's convention back and summarize it, with the design rules.
     ImportDxf(import_dxf::Args),
+    /// Write the laser program (sensor, notches, parting in one setup) and its setup sheet.
+    Program(program::Args),
+    /// Write everything for one joint into a folder: DXF, SVGs, laser program, setup sheet.
+    Build(build::Args),
 }
 
 /// Runs the parsed command.
@@ -32,5 +38,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Inspect(args) => inspect::run(args),
         Command::Draw(args) => draw::run(args),
         Command::ImportDxf(args) => import_dxf::run(args),
+        Command::Program(args) => program::run(args),
+        Command::Build(args) => build::run(args),
     }
 }
