@@ -11,8 +11,10 @@
 //!   overlays its drawing exactly.
 //!
 //! Geometry is held in `geo` types with `x` as the first coordinate and `s` as the second.
-//! Notches are designed outlines (the kerf is applied by the toolpath planner); traces, leads,
-//! pads and the parting line are the centre lines the beam follows.
+//! Cut features are drawn as the finished part's edges: notches are designed outlines and the
+//! parting line is the joint's proximal end; the toolpath planner puts the cutting beam kerf/2
+//! into the scrap from them (inside a notch, beyond the parting line). Written features (traces,
+//! leads, pads) are the centre lines the writing beam follows.
 //!
 //! [`Layout::from_design`] builds the layout from a design; `docs/frames.md` draws the frame,
 //! the stations along `x` and the seam.
@@ -60,7 +62,8 @@ pub struct Layout {
     pub leads: Vec<Trace>,
     /// Square-spiral contact pads, each one continuous centre line.
     pub pads: Vec<Trace>,
-    /// The parting cut all the way round at `x = length_mm`, split at the seam.
+    /// The joint's proximal end all the way round at `x = length_mm`, split at the seam; the
+    /// parting beam runs kerf/2 beyond it, in the stock.
     pub parting: Vec<LineString<f64>>,
 }
 
