@@ -86,9 +86,9 @@ impl JointConfig {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum ModelConfig {
-    /// Linear gauge-factor model (Eq. 5).
+    /// Linear gauge-factor model (Eqs. 5-6).
     Linear(LinearModel),
-    /// The paper's generalized PI model with direction-switched tanh input (Eqs. 9-13).
+    /// The paper's generalized PI model with direction-switched tanh input (Eqs. 10-14).
     Pi(PiConfig),
     /// The continuous generalized PI model (envelopes inside the plays).
     ContinuousPi(ContinuousPiConfig),
@@ -161,7 +161,7 @@ pub struct EstimatorConfig {
     pub joint: JointConfig,
     /// Sensor 1.
     pub sensor: SensorConfig,
-    /// Sensor 2 of a BSN joint; with it the angle comes from both (Eq. 6).
+    /// Sensor 2 of a BSN joint; with it the angle comes from both (Eq. 7).
     #[cfg_attr(
         feature = "serde",
         serde(default, skip_serializing_if = "Option::is_none")

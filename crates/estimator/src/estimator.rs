@@ -102,10 +102,10 @@ impl Channel {
 
 /// Divider voltage(s) in, joint angle out: the runtime estimator.
 ///
-/// Built from an [`EstimatorConfig`]; `step` (one sensor) or `step2` (both BSN sensors, Eq. 6)
+/// Built from an [`EstimatorConfig`]; `step` (one sensor) or `step2` (both BSN sensors, Eq. 7)
 /// once per sample. Per sample it reads the divider (Eq. 4), filters each resistance, runs each
-/// sensor's model (Eq. 5 or Eqs. 11-13), turns strain into angle with the joint's geometry
-/// (Eq. 3, or Eq. 6 for two sensors) and filters the angle.
+/// sensor's model (Eq. 6 or Eqs. 12-14), turns strain into angle with the joint's geometry
+/// (Eq. 3, or Eq. 7 for two sensors) and filters the angle.
 ///
 /// It never allocates and never returns NaN or ∞. An `Estimator` holds up to three moving
 /// average buffers inline (about 100 KiB); keep it in a `static` or a `Box` on small stacks.
@@ -114,7 +114,7 @@ pub struct Estimator {
     joint: Joint,
     /// `dθ/dε` of Eq. 3, asked of the joint once: the per-sample path does no trigonometry.
     angle_per_strain: f64,
-    /// `dθ/d(ε₁ − ε₂)` of Eq. 6 (BSN only).
+    /// `dθ/d(ε₁ − ε₂)` of Eq. 7 (BSN only).
     angle_per_strain_difference: f64,
     first: Channel,
     second: Option<Channel>,
@@ -189,7 +189,7 @@ impl Estimator {
         self.finish(angle, [strain, 0.0], [ohm, 0.0], flags)
     }
 
-    /// Estimates the angle from both sensors' divider voltages (Eq. 6): `v1` from sensor 1
+    /// Estimates the angle from both sensors' divider voltages (Eq. 7): `v1` from sensor 1
     /// (plane `+y_s`), `v2` from sensor 2 (plane `−y_s`).
     ///
     /// If either voltage is unusable the whole sample is held (and neither sensor's state

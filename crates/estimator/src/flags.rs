@@ -16,7 +16,7 @@ impl Flags {
     /// The resistance lay outside the model's characterized range and was clamped to it
     /// (`[min_ohm, max_ohm]` for the PI model; the strain bracket for the continuous PI model).
     pub const RESISTANCE_CLAMPED: Self = Self(1 << 1);
-    /// The argument of `atanh` in the PI inverse (Eq. 13) was clamped to `±ATANH_BOUND`.
+    /// The argument of `atanh` in the PI inverse (Eq. 14) was clamped to `±ATANH_BOUND`.
     pub const ATANH_CLAMPED: Self = Self(1 << 2);
     /// The PI inverse switched tanh branch (or, for the continuous model, the resistance turned)
     /// at this sample. Near a turn of the strain the tanh-PI inverse may be off by up to the

@@ -7,21 +7,21 @@
 //! (Rothe, Malhotra, Desai), Sections III-B to III-D:
 //!
 //! - [`divider_resistance`]: divider voltage to resistance (Eq. 4), flagging the rails;
-//! - [`LinearModel`]: the gauge-factor model (Eq. 5), forward and inverse;
-//! - [`PlayOperator`], [`PiOperator`], [`InversePiOperator`]: the play operator (Eqs. 7-8),
-//!   the weighted sum of plays and its exact inverse (Eqs. 11-12, corrected, see below);
+//! - [`LinearModel`]: the gauge-factor model (Eqs. 5-6), forward and inverse;
+//! - [`PlayOperator`], [`PiOperator`], [`InversePiOperator`]: the play operator (Eqs. 8-9),
+//!   the weighted sum of plays and its exact inverse (Eqs. 11-13, corrected, see below);
 //! - [`TanhInput`], [`GeneralizedPi`], [`PiInverse`]: the paper's generalized PI model with a
-//!   direction-switched tanh input (Eqs. 9-13);
+//!   direction-switched tanh input (Eqs. 10-14);
 //! - [`ContinuousPi`], [`ContinuousPiInverse`]: a continuous variant with loading and unloading
 //!   envelopes inside the plays, which does not jump at reversals;
 //! - [`MovingAverage`], [`LowPass`], [`Filter`]: streaming filters to trade noise for delay;
 //! - [`Estimator`]: all of it from an [`EstimatorConfig`], for one sensor (Eq. 3) or both
-//!   sensors of a BSN joint (Eq. 6), returning an [`Estimate`] with [`Flags`].
+//!   sensors of a BSN joint (Eq. 7), returning an [`Estimate`] with [`Flags`].
 //!
 //! Strain ↔ angle is `dlw_geometry::Joint`, the code the planner cuts the joint with.
 //!
 //! # The inverse weights (a typo in the paper)
-//! The paper prints the inverse weights (Eq. 12) as
+//! The paper prints the inverse weights (Eq. 13) as
 //! `Qᵢ = −Pᵢ/((P₁ + Σ_{j≤i} Pⱼ)(P₁ + Σ_{j<i} Pⱼ))`, which counts `P₁` twice. The inverse of a
 //! PI operator has `Qᵢ = −Pᵢ/(Sᵢ·Sᵢ₋₁)` with the partial sums `Sᵢ = Σ_{j≤i} Pⱼ` (and
 //! `Q₁ = 1/P₁`, `ζᵢ = Σ_{j≤i} Pⱼ(ρᵢ − ρⱼ)`); see [`PiOperator::inverse`] for the derivation.
@@ -110,17 +110,17 @@ pub use estimator::{Estimate, Estimator};
 pub use filter::{Filter, FilterConfig};
 /// What happened to a sample (rail, clamps, reversal, non-finite, held).
 pub use flags::Flags;
-/// The linear gauge-factor model (Eq. 5).
+/// The linear gauge-factor model (Eqs. 5-6).
 pub use linear::LinearModel;
 /// First-order low-pass filter.
 pub use low_pass::LowPass;
 /// O(1) moving average with a fixed maximum window (`MAX_MOVING_AVERAGE` = 4096 samples).
 pub use moving_average::{MovingAverage, MAX_MOVING_AVERAGE};
-/// The PI operator (weighted sum of plays) and its exact inverse (Eqs. 11-12, corrected).
+/// The PI operator (weighted sum of plays) and its exact inverse (Eqs. 11-13, corrected).
 pub use pi::{InversePiOperator, PiOperator};
-/// The paper's generalized PI model with tanh input, forward and inverse (Eqs. 9-13).
+/// The paper's generalized PI model with tanh input, forward and inverse (Eqs. 10-14).
 pub use pi_model::{GeneralizedPi, PiConfig, PiInverse};
-/// The play operator (Eqs. 7-8).
+/// The play operator (Eqs. 8-9).
 pub use play::PlayOperator;
-/// The direction-switched tanh input and its inverse (Eqs. 10 and 13).
+/// The direction-switched tanh input and its inverse (Eqs. 10 and 14).
 pub use tanh_input::{TanhBranch, TanhInput, ATANH_BOUND};

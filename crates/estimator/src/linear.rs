@@ -1,6 +1,6 @@
 use crate::error::{finite, positive, EstimatorError};
 
-/// The linear gauge-factor model (Eqs. 5): `GF = (R − R₀)/(R₀·ε)`, so
+/// The linear gauge-factor model (Eqs. 5-6): `GF = (R − R₀)/(R₀·ε)`, so
 /// `R = R₀·GF·ε + R₀` (forward) and `ε = (R − R₀)/(R₀·GF)` (inverse).
 ///
 /// Strain is a fraction (0.01 is 1 %). A negative gauge factor (resistance falling with strain)
@@ -43,13 +43,13 @@ impl LinearModel {
         Ok(())
     }
 
-    /// Resistance at strain `ε` (Eq. 5, forward).
+    /// Resistance at strain `ε` (Eq. 6, forward).
     #[inline]
     pub fn resistance(&self, strain: f64) -> f64 {
         self.r0_ohm * self.gauge_factor * strain + self.r0_ohm
     }
 
-    /// Strain at resistance `R` (Eq. 5, inverse).
+    /// Strain at resistance `R` (Eq. 6, inverse).
     #[inline]
     pub fn strain(&self, resistance_ohm: f64) -> f64 {
         (resistance_ohm - self.r0_ohm) / (self.r0_ohm * self.gauge_factor)
@@ -86,7 +86,7 @@ mod tests {
         }
     }
 
-    /// Eq. 6 through geometry, with Table III's two linear models for Joint C: the sensor in
+    /// Eq. 7 through geometry, with Table III's two linear models for Joint C: the sensor in
     /// tension (sensor 1, `+y_s`) and the one in compression (sensor 2, `−y_s`).
     #[test]
     fn two_sensor_angle_via_geometry() {

@@ -19,7 +19,7 @@ pub struct PiOperator {
 }
 
 impl PiOperator {
-    /// The operator with weights `Pᵢ`, radii `ρᵢ` and every play starting at `M₀` (Eq. 8).
+    /// The operator with weights `Pᵢ`, radii `ρᵢ` and every play starting at `M₀` (Eq. 9).
     ///
     /// # Errors
     /// No weights or more than [`MAX_PLAYS`]; lengths that differ; a value that is not finite;
@@ -88,7 +88,7 @@ impl PiOperator {
     /// The exact inverse, starting from this operator's *current* state (so that
     /// `inverse.step(self.step(x)) == x` from here on) and resetting to the inverse of `M₀`.
     ///
-    /// With partial sums `Sᵢ = P₁ + … + Pᵢ` (Eq. 12, corrected):
+    /// With partial sums `Sᵢ = P₁ + … + Pᵢ` (Eq. 13, corrected):
     ///
     /// - weights `Q₁ = 1/P₁`, `Qᵢ = −Pᵢ/(Sᵢ·Sᵢ₋₁)`;
     /// - radii `ζᵢ = Σ_{j≤i} Pⱼ·(ρᵢ − ρⱼ)`, the forward loading curve's value at `ρᵢ`;
@@ -147,7 +147,7 @@ fn inverse_states(weights: &[f64], states: &[f64]) -> [f64; MAX_PLAYS] {
     out
 }
 
-/// The inverse of a [`PiOperator`]: `Π⁻¹[y](t) = Σᵢ Qᵢ·Γ_ζᵢ(y(t))` (the sum in Eq. 11),
+/// The inverse of a [`PiOperator`]: `Π⁻¹[y](t) = Σᵢ Qᵢ·Γ_ζᵢ(y(t))` (the sum in Eq. 12),
 /// made by [`PiOperator::inverse`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InversePiOperator {

@@ -4,7 +4,7 @@ use crate::flags::Flags;
 use crate::pi::{InversePiOperator, PiOperator};
 use crate::tanh_input::TanhInput;
 
-/// Parameters of the generalized PI sensor model of the paper (Eqs. 9-13).
+/// Parameters of the generalized PI sensor model of the paper (Eqs. 10-14).
 ///
 /// Forward (Eq. 11): `R(t) = Σᵢ Pᵢ·Γ_ρᵢ(ν(ε(t) − ε_c)) + R_c`, where `ν` is the
 /// direction-switched tanh input of Eq. 10 (`loading_tanh` while `ε(t) ≥ ε(t−1)`,
@@ -30,7 +30,7 @@ pub struct PiConfig {
     pub min_ohm: f64,
     /// Largest resistance seen while characterizing (Ω); the inverse clamps above it.
     pub max_ohm: f64,
-    /// Initial state `M₀` of every forward play (Eq. 8), in units of `ν`.
+    /// Initial state `M₀` of every forward play (Eq. 9), in units of `ν`.
     #[cfg_attr(feature = "serde", serde(default))]
     pub initial_state: f64,
 }
@@ -114,7 +114,7 @@ impl GeneralizedPi {
     }
 }
 
-/// The inverse generalized PI model (Eqs. 11-13): resistance in, strain out.
+/// The inverse generalized PI model (Eqs. 12-14): resistance in, strain out.
 ///
 /// `ε(t) = ν⁻¹(Σᵢ Qᵢ·Γ_ζᵢ(R(t) − R_c)) + ε_c` with the corrected weights of
 /// [`PiOperator::inverse`]; `ν⁻¹` takes the loading branch while `μ(t) ≥ μ(t−1)`.

@@ -1,4 +1,4 @@
-/// One step of the play (backlash) operator of radius `ρ` (Eq. 7):
+/// One step of the play (backlash) operator of radius `ρ` (Eq. 8):
 /// `Γ_ρ(ν(t)) = max(ν(t) − ρ, min(ν(t) + ρ, Γ_ρ(ν(t−1))))`.
 ///
 /// The output follows the input at distance `ρ` while the input pushes it, and holds while the
@@ -17,10 +17,10 @@ pub(crate) fn play(input: f64, radius: f64, previous: f64) -> f64 {
     }
 }
 
-/// The play operator `Γ_ρ` as a small state machine (Eqs. 7-8).
+/// The play operator `Γ_ρ` as a small state machine (Eqs. 8-9).
 ///
-/// Its state is the last output; it starts at `M₀`, so the first step is Eq. 8,
-/// `Γ_ρ(ν(0)) = max(ν(0) − ρ, min(ν(0) + ρ, M₀))`, and every later one is Eq. 7.
+/// Its state is the last output; it starts at `M₀`, so the first step is Eq. 9,
+/// `Γ_ρ(ν(0)) = max(ν(0) − ρ, min(ν(0) + ρ, M₀))`, and every later one is Eq. 8.
 ///
 /// ```
 /// use dlw_estimator::PlayOperator;
@@ -59,7 +59,7 @@ impl PlayOperator {
         self.state
     }
 
-    /// Feeds one input sample and returns the output (Eq. 7, or Eq. 8 on the first step).
+    /// Feeds one input sample and returns the output (Eq. 8, or Eq. 9 on the first step).
     #[inline]
     pub fn step(&mut self, input: f64) -> f64 {
         self.state = play(input, self.radius, self.state);

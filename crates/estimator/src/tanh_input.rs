@@ -1,6 +1,6 @@
 use crate::error::{finite, EstimatorError};
 
-/// Bound on the argument of `atanh` in the inverse (Eq. 13): `|(μ − d)/a| ≤ 1 − 10⁻⁹`.
+/// Bound on the argument of `atanh` in the inverse (Eq. 14): `|(μ − d)/a| ≤ 1 − 10⁻⁹`.
 ///
 /// `atanh` is infinite at ±1. Clamping there keeps the strain finite: `|atanh| ≤ 10.71`, so the
 /// inverse's strain lies within `(±10.71 − c)/b` of the branch's centre. A clamped sample is
@@ -67,7 +67,7 @@ impl TanhBranch {
         (self.a * t + self.d, self.a * self.b * (1.0 - t * t))
     }
 
-    /// `f⁻¹(μ) = (atanh((μ − d)/a) − c)/b` (Eq. 13), with the `atanh` argument clamped to
+    /// `f⁻¹(μ) = (atanh((μ − d)/a) − c)/b` (Eq. 14), with the `atanh` argument clamped to
     /// `±`[`ATANH_BOUND`]. Returns the strain and whether it was clamped.
     #[inline]
     pub fn inverse(&self, mu: f64) -> (f64, bool) {
@@ -110,7 +110,7 @@ impl TanhInput {
         }
     }
 
-    /// `ν⁻¹(μ)` on the loading (`true`) or unloading branch (Eq. 13), and whether the `atanh`
+    /// `ν⁻¹(μ)` on the loading (`true`) or unloading branch (Eq. 14), and whether the `atanh`
     /// argument was clamped.
     #[inline]
     pub fn nu_inverse(&self, mu: f64, loading: bool) -> (f64, bool) {
@@ -125,7 +125,7 @@ impl TanhInput {
     ///
     /// At a reversal the forward model switches branch, so `ν` jumps from one tanh curve to the
     /// other and its direction need not match the strain's. The inverse picks its branch from
-    /// the direction of `μ = ν` (Eq. 13), so for that one sample it may invert `ν` with the other
+    /// the direction of `μ = ν` (Eq. 14), so for that one sample it may invert `ν` with the other
     /// branch and return `x'` with `f_other(x') = f_this(x)`. The error `|x' − x|` is the
     /// horizontal distance between the two curves at height `ν(x)`; this returns the larger of
     /// the two directions (clamped like the inverse, so it is finite):

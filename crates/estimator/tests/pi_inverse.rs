@@ -1,4 +1,4 @@
-//! The inverse PI operator (Eqs. 11-13): the corrected weights invert the forward operator,
+//! The inverse PI operator (Eqs. 12-14): the corrected weights invert the forward operator,
 //! the paper's printed weights do not, and the tanh-switched model's inverse is exact away from
 //! reversals and within `TanhInput::branch_gap` at them.
 

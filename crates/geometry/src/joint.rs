@@ -106,7 +106,7 @@ impl Joint {
         strain * self.length_mm / self.section.offset_mm()
     }
 
-    /// Bending angle from both BSN sensors (Eq. 6), or `None` for UAN.
+    /// Bending angle from both BSN sensors (Eq. 7), or `None` for UAN.
     ///
     /// Sign convention: sensor 1 lies in the plane `+y_s` and is stretched by a positive angle,
     /// sensor 2 lies at `−y_s` and is compressed, so `θ = L·(ε₁ − ε₂)/Δy^(1,2)`. The paper prints

@@ -7,7 +7,7 @@
 //!
 //! - [`CrossSection`]: the sensor plane `y_s` (Eq. 1), the neutral plane `ȳ` (Eq. 2) and their
 //!   offset `Δy`;
-//! - [`Joint`]: strain `ε = Δy·θ/L` (Eq. 3) and its inverse, the two-sensor angle (Eq. 6), the
+//! - [`Joint`]: strain `ε = Δy·θ/L` (Eq. 3) and its inverse, the two-sensor angle (Eq. 7), the
 //!   angle at which the notches close;
 //! - [`Divider`]: the voltage divider that reads the sensor (Eq. 4).
 //!
@@ -56,7 +56,7 @@ mod section;
 pub use divider::Divider;
 /// Why a geometry value was refused.
 pub use error::GeometryError;
-/// Strain and angle along a whole joint (Eqs. 3 and 6, notch closing).
+/// Strain and angle along a whole joint (Eqs. 3 and 7, notch closing).
 pub use joint::Joint;
 /// The notched cross-section (Eqs. 1 and 2).
 pub use section::{CrossSection, NotchStyle};
