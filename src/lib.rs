@@ -6,7 +6,9 @@
 //! - [`design`]: design files (the paper's Table I plus fabrication tables), read and validated;
 //! - [`layout`]: the unrolled joint (notches, sensor traces, leads, pads, parting line) in the
 //!   drawing frame;
-//! - [`output`]: writing files atomically, so a failed command never leaves a partial file.
+//! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
+//! - [`sim`]: the bench simulator (stroke → angle → strain → resistance → voltage → ADC) and
+//!   recording folders.
 //!
 //! The cross-section and strain math lives in the `dlw-geometry` crate, shared with the
 //! runtime estimator.
@@ -14,3 +16,4 @@
 pub mod design;
 pub mod layout;
 pub mod output;
+pub mod sim;
