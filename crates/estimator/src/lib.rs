@@ -1,4 +1,126 @@
 //! Runtime estimator: turns a sensing joint's divider voltage into its bending angle.
 //!
-//! Placeholder crate root; the models arrive with the estimator issue.
+//! A sensing joint is a notched polyimide tube with a laser-written graphene strain gauge. Its
+//! resistance, read through a voltage divider, follows the strain, and the strain follows the
+//! bending angle through the joint's geometry. This crate runs that chain backwards, once per
+//! sample, with the models of "Shape Sensing of Continuum Robots using Direct Laser Writing"
+//! (Rothe, Malhotra, Desai), Sections III-B to III-D:
+//!
+//! - [`divider_resistance`]: divider voltage to resistance (Eq. 4), flagging the rails;
+//! - [`LinearModel`]: the gauge-factor model (Eq. 5), forward and inverse;
+//! - [`PlayOperator`], [`PiOperator`], [`InversePiOperator`]: the play operator (Eqs. 7-8),
+//!   the weighted sum of plays and its exact inverse (Eqs. 11-12, corrected, see below);
+//! - [`TanhInput`], [`GeneralizedPi`], [`PiInverse`]: the paper's generalized PI model with a
+//!   direction-switched tanh input (Eqs. 9-13);
+//! - [`ContinuousPi`], [`ContinuousPiInverse`]: a continuous variant with loading and unloading
+//!   envelopes inside the plays, which does not jump at reversals;
+//! - [`MovingAverage`], [`LowPass`], [`Filter`]: streaming filters to trade noise for delay;
+//! - [`Estimator`]: all of it from an [`EstimatorConfig`], for one sensor (Eq. 3) or both
+//!   sensors of a BSN joint (Eq. 6), returning an [`Estimate`] with [`Flags`].
+//!
+//! Strain ↔ angle is `dlw_geometry::Joint`, the code the planner cuts the joint with.
+//!
+//! # The inverse weights (a typo in the paper)
+//! The paper prints the inverse weights (Eq. 12) as
+//! `Qᵢ = −Pᵢ/((P₁ + Σ_{j≤i} Pⱼ)(P₁ + Σ_{j<i} Pⱼ))`, which counts `P₁` twice. The inverse of a
+//! PI operator has `Qᵢ = −Pᵢ/(Sᵢ·Sᵢ₋₁)` with the partial sums `Sᵢ = Σ_{j≤i} Pⱼ` (and
+//! `Q₁ = 1/P₁`, `ζᵢ = Σ_{j≤i} Pⱼ(ρᵢ − ρⱼ)`); see [`PiOperator::inverse`] for the derivation.
+//! This crate uses the corrected form; its tests show that the printed form does not invert
+//! the forward model. `docs/estimator.md` writes out every formula.
+//!
+//! # Examples
+//! ```
+//! use dlw_estimator::{nominal_divider, EstimatorConfig, Estimator, Flags, JointConfig};
+//! use dlw_geometry::NotchStyle;
+//!
+//! // Joint A of the paper (Table I) with its linear model (Table II).
+//! let joint = JointConfig {
+//!     style: NotchStyle::Uan,
+//!     outer_radius_mm: 1.24,
+//!     inner_radius_mm: 0.875,
+//!     notch_arc_mm: 5.61,
+//!     notch_width_mm: 0.5,
+//!     notch_spacing_mm: 0.5,
+//!     notch_count: 10,
+//!     joint_length_mm: 9.5,
+//!     sensor_arc_mm: 0.4,
+//! };
+//! let config = EstimatorConfig::nominal_linear(joint, 15.3, 215.0e3, nominal_divider())?;
+//! let mut estimator = Box::new(Estimator::new(&config)?);
+//!
+//! // 2.6 V across the sensor: R = 99.6 kΩ/(5/2.6 − 1) ≈ 107.9 kΩ, below R₀: bent backwards.
+//! let estimate = estimator.step(2.6);
+//! assert!(estimate.flags.is_empty());
+//! assert!(estimate.angle_deg < 0.0);
+//!
+//! // A reading at the rail has no resistance: the last estimate is held and flagged.
+//! let held = estimator.step(5.0);
+//! assert_eq!(held.flags, Flags::RAIL | Flags::HELD);
+//! assert_eq!(held.angle_rad, estimate.angle_rad);
+//! # Ok::<(), dlw_estimator::EstimatorError>(())
+//! ```
+//!
+//! # Errors
+//! Constructors and `validate` methods return [`EstimatorError`], a `Copy` enum whose messages
+//! name the offending value and the limit. Once built, nothing fails: every `step` returns a
+//! finite value, and what went wrong with a sample is reported in its [`Flags`].
+//!
+//! # Features
+//! `std` (default) adds `std::error::Error` for the error type. `serde` derives
+//! `Serialize`/`Deserialize` for the configuration types (TOML and JSON in the tests). Without
+//! features the crate is `no_std`, never allocates and depends on `dlw-geometry` and `libm`.
 #![cfg_attr(not(feature = "std"), no_std)]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+mod coeffs;
+mod config;
+mod continuous_pi;
+mod divider;
+mod error;
+mod estimator;
+mod filter;
+mod flags;
+mod linear;
+mod low_pass;
+mod moving_average;
+mod pi;
+mod pi_model;
+mod play;
+mod tanh_input;
+
+/// Fixed-capacity coefficient lists (`MAX_PLAYS` = 16 play operators).
+pub use coeffs::{Coeffs, MAX_PLAYS};
+/// Estimator configuration: joint geometry, sensors, models and filters.
+pub use config::{
+    nominal_divider, EstimatorConfig, JointConfig, ModelConfig, SensorConfig, DEFAULT_DIVIDER_OHM,
+    DEFAULT_SUPPLY_V,
+};
+/// The continuous generalized PI model (envelopes inside the plays) and its numerical inverse.
+pub use continuous_pi::{
+    ContinuousPi, ContinuousPiConfig, ContinuousPiInverse, MAX_INVERSE_ITERATIONS,
+};
+/// Divider voltage to sensor resistance (Eq. 4), flagging the rails.
+pub use divider::divider_resistance;
+/// Why a configuration was refused.
+pub use error::EstimatorError;
+/// The runtime estimator and its per-sample output.
+pub use estimator::{Estimate, Estimator};
+/// A streaming filter chosen by configuration.
+pub use filter::{Filter, FilterConfig};
+/// What happened to a sample (rail, clamps, reversal, non-finite, held).
+pub use flags::Flags;
+/// The linear gauge-factor model (Eq. 5).
+pub use linear::LinearModel;
+/// First-order low-pass filter.
+pub use low_pass::LowPass;
+/// O(1) moving average with a fixed maximum window (`MAX_MOVING_AVERAGE` = 4096 samples).
+pub use moving_average::{MovingAverage, MAX_MOVING_AVERAGE};
+/// The PI operator (weighted sum of plays) and its exact inverse (Eqs. 11-12, corrected).
+pub use pi::{InversePiOperator, PiOperator};
+/// The paper's generalized PI model with tanh input, forward and inverse (Eqs. 9-13).
+pub use pi_model::{GeneralizedPi, PiConfig, PiInverse};
+/// The play operator (Eqs. 7-8).
+pub use play::PlayOperator;
+/// The direction-switched tanh input and its inverse (Eqs. 10 and 13).
+pub use tanh_input::{TanhBranch, TanhInput, ATANH_BOUND};
