@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 mod inspect;
+mod simulate;
 
 /// From a sensing continuum-robot joint's design parameters to drawings, laser programs and a
 /// working sensor.
@@ -18,11 +19,14 @@ pub struct Cli {
 enum Command {
     /// Print a design's geometry and design-rule warnings.
     Inspect(inspect::Args),
+    /// Simulate the paper's bench and write a recording folder.
+    Simulate(simulate::Args),
 }
 
 /// Runs the parsed command.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Inspect(args) => inspect::run(args),
+        Command::Simulate(args) => simulate::run(args),
     }
 }

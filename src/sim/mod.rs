@@ -40,6 +40,7 @@
 //! drives a sensor to a non-physical resistance or a divider to a rail.
 
 mod measure;
+mod pi_default;
 mod plant;
 mod protocol;
 mod recording;
@@ -55,6 +56,8 @@ use crate::design::Design;
 
 /// The divider, ADC and EM tracker models.
 pub use measure::{Adc, Tracker};
+/// Default PI sensor models from the paper's Table IV.
+pub use pi_default::{PiCharacteristics, JOINT_A_PI, JOINT_C_PI};
 /// Stroke → angle with backlash, relaxation and the notch limit.
 pub use plant::Plant;
 /// Stroke profiles of the paper's protocols and from CSV.
@@ -199,20 +202,16 @@ impl Plan {
             .enumerate()
             .map(|(i, p)| {
                 let i = i as u64;
-                let sensor = Sensor::new(
-                    p,
-                    i as usize + 1,
-                    dt_s,
-                    Stream::new(sc.seed, streams::DRIFT + i),
-                );
+                let drift = Stream::new(sc.seed, streams::DRIFT + i);
+                let sensor = Sensor::new(p, i as usize + 1, dt_s, drift)?;
                 let divider = Divider {
                     fixed_ohm: p.divider_ohm.unwrap_or(f64::NAN),
                     supply_v: sc.supply_v,
                 };
                 let adc = Adc::new(&sc.adc, Stream::new(sc.seed, streams::ADC + i));
-                (sensor, divider, adc)
+                Ok((sensor, divider, adc))
             })
-            .collect();
+            .collect::<Result<_, ScenarioError>>()?;
         let mut tracker = Tracker::new(&sc.tracker, Stream::new(sc.seed, streams::TRACKER));
         let mut stroke = self.profile.sampler();
         let n = self.samples;

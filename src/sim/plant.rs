@@ -4,7 +4,7 @@
 //! in this order:
 //!
 //! 1. **Tendon backlash**: the stroke passes a play operator of radius `width_mm/2` (Eq. 7's
-//!    operator, started at 0), so the joint does not move for the first `width_mm` of stroke
+//!    operator, the estimator crate's `PlayOperator`, started at 0), so the joint does not move for the first `width_mm` of stroke
 //!    after each reversal.
 //! 2. **Viscoelastic relaxation**, a standard linear solid: the elastic angle `θₑ = gain·s` loses
 //!    `δ`, which follows `fraction·θₑ` with time constant `τ`:
@@ -13,6 +13,7 @@
 //! 3. **Notch-closing limit**: the angle stops at `Joint::closing_angle_rad` (UAN: positive
 //!    angles only, since a negative angle opens the notches; BSN: both ways).
 
+use dlw_estimator::PlayOperator;
 use dlw_geometry::{Joint, NotchStyle};
 
 use super::scenario::PlantParams;
@@ -21,8 +22,7 @@ use super::scenario::PlantParams;
 #[derive(Debug, Clone)]
 pub struct Plant {
     gain_rad_per_mm: f64,
-    backlash_radius_mm: Option<f64>,
-    effective_stroke_mm: f64,
+    backlash: Option<PlayOperator>,
     relax: Option<(f64, f64)>,
     relaxed_rad: f64,
     limits_rad: (f64, f64),
@@ -40,11 +40,10 @@ impl Plant {
         };
         Self {
             gain_rad_per_mm: params.gain_deg_per_mm.to_radians(),
-            backlash_radius_mm: params
+            backlash: params
                 .backlash
                 .enabled
-                .then_some(params.backlash.width_mm / 2.0),
-            effective_stroke_mm: 0.0,
+                .then(|| PlayOperator::new(params.backlash.width_mm / 2.0, 0.0)),
             relax: params.relaxation.enabled.then(|| {
                 let r = &params.relaxation;
                 (r.fraction, 1.0 - (-dt_s / r.tau_s).exp())
@@ -57,12 +56,8 @@ impl Plant {
     /// Advances one sample: the angle (rad) at stroke `stroke_mm`.
     #[inline]
     pub fn step(&mut self, stroke_mm: f64) -> f64 {
-        let s = match self.backlash_radius_mm {
-            Some(r) => {
-                self.effective_stroke_mm =
-                    (stroke_mm - r).max((stroke_mm + r).min(self.effective_stroke_mm));
-                self.effective_stroke_mm
-            }
+        let s = match &mut self.backlash {
+            Some(play) => play.step(stroke_mm),
             None => stroke_mm,
         };
         let elastic = self.gain_rad_per_mm * s;

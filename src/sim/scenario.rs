@@ -26,9 +26,11 @@
 use std::path::PathBuf;
 
 use dlw_geometry::NotchStyle;
+use dlw_estimator::{ContinuousPiConfig, EstimatorError, PiConfig};
 use serde::{Deserialize, Serialize};
 
 use super::protocol::{ProtocolKind, ProtocolParams};
+use super::pi_default::{JOINT_A_PI, JOINT_C_PI};
 use crate::design::Design;
 
 /// Why a scenario was refused.
@@ -65,6 +67,25 @@ pub enum ScenarioError {
     SecondSensorOnUan {
         /// The design's name.
         design: String,
+    },
+    /// A sensor model's parameters were refused by the estimator crate, whose forward model
+    /// the simulator runs.
+    #[error("scenario table [{table}]: {reason}")]
+    Model {
+        /// The table, e.g. `sensor1.pi`.
+        table: String,
+        /// What the estimator crate refused.
+        reason: EstimatorError,
+    },
+    /// A model was chosen whose parameters have no default and were not given.
+    #[error("sensor{sensor} uses model {model:?} but [sensor{sensor}.{model}] is missing ({why})")]
+    MissingModel {
+        /// 1 or 2.
+        sensor: usize,
+        /// The model's name.
+        model: &'static str,
+        /// Why there is no default.
+        why: &'static str,
     },
     /// No protocol was chosen on the command line or in the scenario.
     #[error("no protocol chosen: pass --protocol or set protocol in the scenario")]
@@ -219,11 +240,16 @@ pub struct NotchLimit {
 
 /// The resistance model of a sensor.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 pub enum SensorModelKind {
     /// Eq. 5: `R = R0·(1 + GF·ε)`.
     #[default]
     Linear,
+    /// The paper's generalized Prandtl-Ishlinskii model (Eqs. 7-10), `[sensorN.pi]`.
+    Pi,
+    /// The continuous generalized PI variant (envelopes inside the plays),
+    /// `[sensorN.continuous_pi]`; no default.
+    ContinuousPi,
 }
 
 /// One sensor (`[sensor1]`, `[sensor2]`).
@@ -234,7 +260,8 @@ pub enum SensorModelKind {
 /// | `gauge_factor` | 15.3 | 1.28 / 0.680 | Table III (Joint A); Table V (Joint C tension / compression) |
 /// | `r0_ohm` | 215e3 | 74.0e3 / 88.9e3 | same |
 /// | `divider_ohm` | 99.6e3 | 99.6e3 / 102.5e3 | Section II-E |
-/// | `pi` | Joint A | Joint C | [`PiParams`]: from Table IV through the paper's initial-guess formulas |
+/// | `pi` | Joint A | Joint C / none | Table IV's points, see `pi_default` (no default for sensor 2: the paper fits it only linearly) |
+/// | `continuous_pi` | none | none | |
 /// | `saturation` | off, `strain = 0.02` | same | the paper's conclusion: saturation below 2 % |
 /// | `drift` | off, 0 Ω/s, 20 Ω/√s | 0 Ω/s, 0.7 Ω/√s | the spread of R0 over 3000 s (Section IV-A2): 1.10 kΩ (A), 0.038 kΩ (C) |
 /// | `rate` | off, 0.1 per decade, 1e-3 /s, 1 s | same | illustrative (the paper found no correlation) |
@@ -242,7 +269,7 @@ pub enum SensorModelKind {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SensorParams {
-    /// `linear` or `pi`.
+    /// `linear`, `pi` or `continuous_pi`.
     pub model: SensorModelKind,
     /// Gauge factor of the linear model.
     pub gauge_factor: Option<f64>,
@@ -250,6 +277,12 @@ pub struct SensorParams {
     pub r0_ohm: Option<f64>,
     /// The divider's fixed resistor `R_k` (Ω).
     pub divider_ohm: Option<f64>,
+    /// Generalized PI parameters, used when `model = "pi"`: the estimator crate's `PiConfig`,
+    /// the same table as `[sensor.model.pi]` in an estimator config.
+    pub pi: Option<PiConfig>,
+    /// Continuous PI parameters, used when `model = "continuous_pi"`: the estimator crate's
+    /// `ContinuousPiConfig`.
+    pub continuous_pi: Option<ContinuousPiConfig>,
     /// Soft saturation of the strain the sensor feels.
     pub saturation: Saturation,
     /// Baseline drift of the resistance.
@@ -267,6 +300,8 @@ impl Default for SensorParams {
             gauge_factor: None,
             r0_ohm: None,
             divider_ohm: None,
+            pi: None,
+            continuous_pi: None,
             saturation: Saturation::default(),
             drift: Drift::default(),
             rate: RateDependence::default(),
@@ -489,7 +524,7 @@ impl Scenario {
                 max: i64::MAX as u64,
             });
         }
-        resolve_sensor(&mut self.sensor1, style, 1);
+        resolve_sensor(&mut self.sensor1, style, 1)?;
         match (style, self.sensor2.as_mut()) {
             (NotchStyle::Uan, Some(_)) => {
                 return Err(ScenarioError::SecondSensorOnUan {
@@ -497,10 +532,10 @@ impl Scenario {
                 })
             }
             (NotchStyle::Uan, None) => {}
-            (NotchStyle::Bsn, Some(s)) => resolve_sensor(s, style, 2),
+            (NotchStyle::Bsn, Some(s)) => resolve_sensor(s, style, 2)?,
             (NotchStyle::Bsn, None) => {
                 let mut s = SensorParams::default();
-                resolve_sensor(&mut s, style, 2);
+                resolve_sensor(&mut s, style, 2)?;
                 self.sensor2 = Some(s);
             }
         }
@@ -552,6 +587,21 @@ impl Scenario {
             c.finite(&k("creep.fraction"), s.creep.fraction);
             c.positive(&k("creep.tau_s"), s.creep.tau_s);
         }
+        for (i, s) in self.sensors().enumerate() {
+            let table = |name: &str| format!("sensor{}.{name}", i + 1);
+            if let Some(Err(reason)) = s.pi.as_ref().map(PiConfig::validate) {
+                return Err(ScenarioError::Model {
+                    table: table("pi"),
+                    reason,
+                });
+            }
+            if let Some(Err(reason)) = s.continuous_pi.as_ref().map(ContinuousPiConfig::validate) {
+                return Err(ScenarioError::Model {
+                    table: table("continuous_pi"),
+                    reason,
+                });
+            }
+        }
         let a = &self.adc;
         if !(1..=32).contains(&a.bits) {
             c.fail("adc.bits".into(), f64::from(a.bits), "1 to 32");
@@ -568,7 +618,11 @@ impl Scenario {
     }
 }
 
-fn resolve_sensor(s: &mut SensorParams, style: NotchStyle, index: usize) {
+fn resolve_sensor(
+    s: &mut SensorParams,
+    style: NotchStyle,
+    index: usize,
+) -> Result<(), ScenarioError> {
     let d = sensor_defaults(style, index);
     s.gauge_factor.get_or_insert(d.gauge_factor);
     s.r0_ohm.get_or_insert(d.r0_ohm);
@@ -576,6 +630,30 @@ fn resolve_sensor(s: &mut SensorParams, style: NotchStyle, index: usize) {
     s.drift
         .random_walk_ohm_per_sqrt_s
         .get_or_insert(d.random_walk_ohm_per_sqrt_s);
+    match s.model {
+        SensorModelKind::Linear => {}
+        SensorModelKind::Pi if s.pi.is_some() => {}
+        SensorModelKind::Pi => match (style, index) {
+            (NotchStyle::Uan, _) => s.pi = Some(JOINT_A_PI.to_config()),
+            (NotchStyle::Bsn, 1) => s.pi = Some(JOINT_C_PI.to_config()),
+            _ => {
+                return Err(ScenarioError::MissingModel {
+                    sensor: index,
+                    model: "pi",
+                    why: "the paper fits the compression sensor only linearly",
+                })
+            }
+        },
+        SensorModelKind::ContinuousPi if s.continuous_pi.is_some() => {}
+        SensorModelKind::ContinuousPi => {
+            return Err(ScenarioError::MissingModel {
+                sensor: index,
+                model: "continuous_pi",
+                why: "the paper has no continuous PI fit to default to",
+            })
+        }
+    }
+    Ok(())
 }
 
 /// Collects the first out-of-range value.
@@ -645,7 +723,7 @@ mod tests {
 
     #[test]
     fn resolved_scenario_round_trips_through_toml() {
-        let s: Scenario = toml::from_str("seed = 9\n").unwrap();
+        let s: Scenario = toml::from_str("seed = 9\n[sensor1]\nmodel = \"pi\"\n").unwrap();
         let r = s.resolve(&test_design(NotchStyle::Bsn)).unwrap();
         let text = toml::to_string(&r).unwrap();
         let back: Scenario = toml::from_str(&text).unwrap();
@@ -679,6 +757,23 @@ mod tests {
                 .to_string();
             assert!(err.contains(key), "{text}: {err}");
         }
+    }
+
+    #[test]
+    fn pi_defaults_and_missing_models() {
+        let s: Scenario = toml::from_str("[sensor1]\nmodel = \"pi\"\n").unwrap();
+        let r = s.resolve(&test_design(NotchStyle::Uan)).unwrap();
+        assert_eq!(r.sensor1.pi, Some(JOINT_A_PI.to_config()));
+        let s: Scenario = toml::from_str("[sensor2]\nmodel = \"pi\"\n").unwrap();
+        let err = s.resolve(&test_design(NotchStyle::Bsn)).unwrap_err().to_string();
+        assert!(err.contains("[sensor2.pi] is missing"), "{err}");
+        let s: Scenario = toml::from_str("[sensor1]\nmodel = \"continuous_pi\"\n").unwrap();
+        let err = s.resolve(&test_design(NotchStyle::Uan)).unwrap_err().to_string();
+        assert!(err.contains("[sensor1.continuous_pi] is missing"), "{err}");
+        let text = "[sensor1]\nmodel = \"pi\"\n[sensor1.pi]\nweights = [0.0]\nradii = [0.0]\nloading_tanh = [1.0, 1.0, 0.0, 0.0]\nunloading_tanh = [1.0, 1.0, 0.0, 0.0]\ncenter_strain = 0.0\ncenter_ohm = 1e5\nmin_ohm = 9e4\nmax_ohm = 1.1e5\n";
+        let s: Scenario = toml::from_str(text).unwrap();
+        let err = s.resolve(&test_design(NotchStyle::Uan)).unwrap_err().to_string();
+        assert!(err.contains("[sensor1.pi]"), "{err}");
     }
 
     #[test]

@@ -4,7 +4,9 @@
 //! at `−y_s`). Then, in order:
 //!
 //! 1. **Saturation** (switchable): the sensor feels `ε_s·tanh(ε/ε_s)`.
-//! 2. **Model**: linear, Eq. 5, `R = R0·(1 + GF·ε)`.
+//! 2. **Model**: linear, Eq. 5, `R = R0·(1 + GF·ε)`; or the generalized PI model (Eqs. 7-10)
+//!    or its continuous variant, run forward by the estimator crate (`GeneralizedPi`,
+//!    `ContinuousPi`): the very code whose inverse the estimator uses.
 //! 3. **Rate dependence** (switchable): the change `ΔR = R − R_ref` (`R_ref`: the model at zero
 //!    strain) is scaled by `1 + k·log10(1 + r̄/r_ref)`, `r̄` being `|dε/dt|` through a first-order
 //!    low-pass.
@@ -13,8 +15,10 @@
 //! 5. **Baseline drift** (switchable): `rate·t + W(t)` is added, `W` a Gaussian random walk with
 //!    `W(t + Δt) = W(t) + σ·√Δt·N(0, 1)`.
 
+use dlw_estimator::{ContinuousPi, GeneralizedPi};
+
 use super::rng::Stream;
-use super::scenario::{SensorModelKind, SensorParams};
+use super::scenario::{ScenarioError, SensorModelKind, SensorParams};
 
 /// One sensor's strain → resistance model, stepped once per sample.
 #[derive(Debug, Clone)]
@@ -31,6 +35,8 @@ pub struct Sensor {
 #[derive(Debug, Clone)]
 enum Model {
     Linear { r0_ohm: f64, gauge_factor: f64 },
+    Pi(Box<GeneralizedPi>),
+    ContinuousPi(Box<ContinuousPi>),
 }
 
 #[derive(Debug, Clone)]
@@ -65,16 +71,47 @@ impl Sensor {
     ///
     /// Parameters are taken as validated by [`super::Scenario::resolve`], which fills every
     /// `None` this reads.
-    pub fn new(params: &SensorParams, index: usize, dt_s: f64, rng: Stream) -> Self {
+    ///
+    /// # Errors
+    /// The PI parameters the estimator crate refuses, or a PI model without parameters (both
+    /// caught by `resolve` already).
+    pub fn new(
+        params: &SensorParams,
+        index: usize,
+        dt_s: f64,
+        rng: Stream,
+    ) -> Result<Self, ScenarioError> {
+        let missing = |model| ScenarioError::MissingModel {
+            sensor: index,
+            model,
+            why: "the scenario was not resolved",
+        };
+        let refused = |name: &str| {
+            let table = format!("sensor{index}.{name}");
+            move |reason| ScenarioError::Model { table, reason }
+        };
         let model = match params.model {
             SensorModelKind::Linear => Model::Linear {
                 r0_ohm: params.r0_ohm.unwrap_or(f64::NAN),
                 gauge_factor: params.gauge_factor.unwrap_or(f64::NAN),
             },
+            SensorModelKind::Pi => {
+                let config = params.pi.as_ref().ok_or_else(|| missing("pi"))?;
+                Model::Pi(Box::new(GeneralizedPi::new(config).map_err(refused("pi"))?))
+            }
+            SensorModelKind::ContinuousPi => {
+                let config = params
+                    .continuous_pi
+                    .as_ref()
+                    .ok_or_else(|| missing("continuous_pi"))?;
+                Model::ContinuousPi(Box::new(
+                    ContinuousPi::new(config).map_err(refused("continuous_pi"))?,
+                ))
+            }
         };
         let reference_ohm = model.clone().step(0.0);
         let alpha = |tau_s: f64| 1.0 - (-dt_s / tau_s).exp();
-        Self {
+        Ok(Self {
             sign: if index == 2 { -1.0 } else { 1.0 },
             model,
             reference_ohm,
@@ -102,7 +139,7 @@ impl Sensor {
                 linear_ohm: 0.0,
                 rng,
             }),
-        }
+        })
     }
 
     /// Resistance (Ω) at joint strain `strain` (sensor 1's sign convention). May be zero or
@@ -144,6 +181,8 @@ impl Model {
                 r0_ohm,
                 gauge_factor,
             } => *r0_ohm * (1.0 + *gauge_factor * strain),
+            Self::Pi(m) => m.step(strain),
+            Self::ContinuousPi(m) => m.step(strain),
         }
     }
 }
@@ -170,7 +209,7 @@ mod tests {
     }
 
     fn sensor(p: &SensorParams, index: usize) -> Sensor {
-        Sensor::new(p, index, DT, Stream::new(1, 4))
+        Sensor::new(p, index, DT, Stream::new(1, 4)).unwrap()
     }
 
     #[test]
@@ -188,6 +227,19 @@ mod tests {
             88.9e3 * (1.0 - 0.680 * 0.01),
             max_relative = 1e-14
         );
+    }
+
+    #[test]
+    fn pi_model_is_the_estimator_crates_forward() {
+        let (a, _) = params(NotchStyle::Uan, |p| {
+            p.model = SensorModelKind::Pi;
+            p.pi = Some(crate::sim::JOINT_A_PI.to_config());
+        });
+        let mut s = sensor(&a, 1);
+        let mut reference = GeneralizedPi::new(a.pi.as_ref().unwrap()).unwrap();
+        for e in [0.0, 0.004, 0.012, 0.006, 0.001, 0.009] {
+            assert_relative_eq!(s.step(e), reference.step(e), max_relative = 1e-14);
+        }
     }
 
     #[test]
@@ -255,7 +307,7 @@ mod tests {
         let n = 50_000;
         let ends: Vec<f64> = (0..runs)
             .map(|k| {
-                let mut s = Sensor::new(&a, 1, DT, Stream::new(k, 4));
+                let mut s = Sensor::new(&a, 1, DT, Stream::new(k, 4)).unwrap();
                 (0..=n).map(|_| s.step(0.0)).last().unwrap() - 215e3
             })
             .collect();
