@@ -7,6 +7,9 @@
 //! - [`layout`]: the unrolled joint (notches, sensor traces, leads, pads, parting line) in the
 //!   drawing frame;
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
+//! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
+//!   config files;
+//! - [`fixed`]: fixed-point CSV number formatting;
 //! - [`sim`]: the bench simulator (stroke → angle → strain → resistance → voltage → ADC) and
 //!   recording folders.
 //!
@@ -14,6 +17,8 @@
 //! runtime estimator.
 
 pub mod design;
+pub mod fixed;
 pub mod layout;
 pub mod output;
+pub mod replay;
 pub mod sim;

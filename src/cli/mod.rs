@@ -3,6 +3,8 @@
 
 use clap::{Parser, Subcommand};
 
+mod estimate;
+mod estimator_config;
 mod inspect;
 mod simulate;
 
@@ -21,6 +23,10 @@ enum Command {
     Inspect(inspect::Args),
     /// Simulate the paper's bench and write a recording folder.
     Simulate(simulate::Args),
+    /// Write a nominal linear estimator config from a design's geometry.
+    EstimatorConfig(estimator_config::Args),
+    /// Run the runtime estimator over a recording and report its error.
+    Estimate(estimate::Args),
 }
 
 /// Runs the parsed command.
@@ -28,5 +34,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Inspect(args) => inspect::run(args),
         Command::Simulate(args) => simulate::run(args),
+        Command::EstimatorConfig(args) => estimator_config::run(args),
+        Command::Estimate(args) => estimate::run(args),
     }
 }

@@ -41,7 +41,10 @@ pub struct Args {
 fn parse_protocol(s: &str) -> Result<ProtocolKind, String> {
     ProtocolKind::from_name(s).ok_or_else(|| {
         let names: Vec<&str> = ProtocolKind::ALL.iter().map(|(_, n)| *n).collect();
-        format!("unknown protocol {s:?} (expected one of: {})", names.join(", "))
+        format!(
+            "unknown protocol {s:?} (expected one of: {})",
+            names.join(", ")
+        )
     })
 }
 

@@ -101,7 +101,9 @@ mod tests {
         let mut pi = GeneralizedPi::new(&c.to_config()).unwrap();
         let n = 2000;
         let mut out = [0.0; 4];
-        let up: Vec<f64> = (0..=n).map(|i| c.peak_strain * i as f64 / n as f64).collect();
+        let up: Vec<f64> = (0..=n)
+            .map(|i| c.peak_strain * i as f64 / n as f64)
+            .collect();
         for &e in &up {
             let r = pi.step(e);
             if (e - c.center_strain).abs() < c.peak_strain / n as f64 / 2.0 {

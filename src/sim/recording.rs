@@ -14,13 +14,13 @@
 //! explains. Writing builds the folder under a temporary name next to the destination and
 //! renames it into place, so a failure never leaves a partial recording.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
 use super::scenario::Scenario;
 use crate::design::DesignFile;
+use crate::fixed::push_fixed;
 use crate::output::{write_atomic, OutputError};
 
 /// The data file's name inside a recording.
@@ -514,81 +514,9 @@ fn parse_field(field: &str, line: usize, column: &str, path: &Path) -> Result<f6
     Ok(v)
 }
 
-/// Appends `x` with exactly `decimals` digits after the point, rounding half away from zero.
-/// Much faster than `format!` and identical on every platform.
-fn push_fixed(out: &mut Vec<u8>, x: f64, decimals: u32) {
-    let scale = 10f64.powi(decimals as i32);
-    let scaled = (x * scale).round();
-    // Beyond 2^53 the integer path would lose digits; such values never occur in a recording,
-    // but are still written faithfully.
-    if !(scaled.abs() < 9.0e15) {
-        let _ = write!(out, "{x:.prec$}", prec = decimals as usize);
-        return;
-    }
-    let mut n = scaled as i64;
-    if n < 0 {
-        out.push(b'-');
-        n = -n;
-    }
-    let p = 10i64.pow(decimals);
-    let (int, frac) = (n / p, n % p);
-    let mut buf = itoa_buf(int);
-    out.append(&mut buf);
-    if decimals > 0 {
-        out.push(b'.');
-        let digits = itoa_buf(frac);
-        for _ in digits.len()..decimals as usize {
-            out.push(b'0');
-        }
-        out.extend_from_slice(&digits);
-    }
-}
-
-fn itoa_buf(mut n: i64) -> Vec<u8> {
-    let mut tmp = [0u8; 20];
-    let mut i = tmp.len();
-    loop {
-        i -= 1;
-        tmp[i] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
-    }
-    tmp[i..].to_vec()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn fixed(x: f64, d: u32) -> String {
-        let mut v = Vec::new();
-        push_fixed(&mut v, x, d);
-        String::from_utf8(v).unwrap()
-    }
-
-    #[test]
-    fn fixed_point_matches_format() {
-        let table = [
-            (0.0, 6, "0.000000"),
-            (1.5, 4, "1.5000"),
-            (-0.25, 2, "-0.25"),
-            (-0.000_000_4, 6, "0.000000"),
-            (2.999_999_96, 6, "3.000000"),
-            (1234.567_89, 4, "1234.5679"),
-            (-17.745, 0, "-18"),
-            (0.002, 6, "0.002000"),
-        ];
-        for (x, d, s) in table {
-            assert_eq!(fixed(x, d), s, "{x}");
-        }
-        for i in 0..10_000 {
-            let x = (i as f64 - 5000.0) * 0.001_234_567;
-            let ours: f64 = fixed(x, 6).parse().unwrap();
-            assert!((ours - x).abs() <= 5e-7 + 1e-12, "{x}");
-        }
-    }
 
     fn rig(channels: usize) -> Rig {
         Rig {

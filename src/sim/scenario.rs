@@ -25,12 +25,12 @@
 
 use std::path::PathBuf;
 
-use dlw_geometry::NotchStyle;
 use dlw_estimator::{ContinuousPiConfig, EstimatorError, PiConfig};
+use dlw_geometry::NotchStyle;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{ProtocolKind, ProtocolParams};
 use super::pi_default::{JOINT_A_PI, JOINT_C_PI};
+use super::protocol::{ProtocolKind, ProtocolParams};
 use crate::design::Design;
 
 /// Why a scenario was refused.
@@ -765,14 +765,23 @@ mod tests {
         let r = s.resolve(&test_design(NotchStyle::Uan)).unwrap();
         assert_eq!(r.sensor1.pi, Some(JOINT_A_PI.to_config()));
         let s: Scenario = toml::from_str("[sensor2]\nmodel = \"pi\"\n").unwrap();
-        let err = s.resolve(&test_design(NotchStyle::Bsn)).unwrap_err().to_string();
+        let err = s
+            .resolve(&test_design(NotchStyle::Bsn))
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("[sensor2.pi] is missing"), "{err}");
         let s: Scenario = toml::from_str("[sensor1]\nmodel = \"continuous_pi\"\n").unwrap();
-        let err = s.resolve(&test_design(NotchStyle::Uan)).unwrap_err().to_string();
+        let err = s
+            .resolve(&test_design(NotchStyle::Uan))
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("[sensor1.continuous_pi] is missing"), "{err}");
         let text = "[sensor1]\nmodel = \"pi\"\n[sensor1.pi]\nweights = [0.0]\nradii = [0.0]\nloading_tanh = [1.0, 1.0, 0.0, 0.0]\nunloading_tanh = [1.0, 1.0, 0.0, 0.0]\ncenter_strain = 0.0\ncenter_ohm = 1e5\nmin_ohm = 9e4\nmax_ohm = 1.1e5\n";
         let s: Scenario = toml::from_str(text).unwrap();
-        let err = s.resolve(&test_design(NotchStyle::Uan)).unwrap_err().to_string();
+        let err = s
+            .resolve(&test_design(NotchStyle::Uan))
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("[sensor1.pi]"), "{err}");
     }
 

@@ -110,7 +110,10 @@ impl<'de> serde::Deserialize<'de> for Coeffs {
                 write!(f, "a list of at most {MAX_PLAYS} numbers")
             }
 
-            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Coeffs, A::Error> {
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<Coeffs, A::Error> {
                 let mut out = Coeffs::default();
                 while let Some(v) = seq.next_element::<f64>()? {
                     if !out.push(v) {

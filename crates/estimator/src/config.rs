@@ -266,7 +266,8 @@ mod tests {
 
     #[test]
     fn nominal_linear_fills_every_sensor() {
-        let uan = EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
+        let uan =
+            EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
         assert_eq!(uan.sensor_count(), 1);
         assert_eq!(uan.sensor.divider_ohm, 99.6e3);
         assert_eq!(uan.sensor.supply_v, 5.0);
@@ -278,7 +279,8 @@ mod tests {
             sensor_arc_mm: 2.13,
             ..joint_a()
         };
-        let bsn = EstimatorConfig::nominal_linear(bsn_joint, 1.28, 74.0e3, nominal_divider()).unwrap();
+        let bsn =
+            EstimatorConfig::nominal_linear(bsn_joint, 1.28, 74.0e3, nominal_divider()).unwrap();
         assert_eq!(bsn.sensor_count(), 2);
         assert_eq!(bsn.second_sensor, Some(bsn.sensor));
     }
@@ -288,7 +290,9 @@ mod tests {
         let d = nominal_divider();
         assert_eq!(
             EstimatorConfig::nominal_linear(joint_a(), 0.0, 1.0, d),
-            Err(EstimatorError::Zero { name: "gauge_factor" })
+            Err(EstimatorError::Zero {
+                name: "gauge_factor"
+            })
         );
         let mut bad_joint = joint_a();
         bad_joint.notch_count = 0;
@@ -300,13 +304,19 @@ mod tests {
         c.second_sensor = Some(c.sensor);
         assert_eq!(
             c.validate(),
-            Err(EstimatorError::TooManySensors { configured: 2, joint_carries: 1 })
+            Err(EstimatorError::TooManySensors {
+                configured: 2,
+                joint_carries: 1
+            })
         );
         let mut c = EstimatorConfig::nominal_linear(joint_a(), 1.0, 1.0, d).unwrap();
         c.sensor.supply_v = 0.0;
         assert!(matches!(c.validate(), Err(EstimatorError::Geometry(_))));
         let mut c = EstimatorConfig::nominal_linear(joint_a(), 1.0, 1.0, d).unwrap();
         c.output_filter = FilterConfig::MovingAverage { samples: 5000 };
-        assert!(matches!(c.validate(), Err(EstimatorError::CountOutOfRange { value: 5000, .. })));
+        assert!(matches!(
+            c.validate(),
+            Err(EstimatorError::CountOutOfRange { value: 5000, .. })
+        ));
     }
 }

@@ -306,7 +306,11 @@ impl ContinuousPiInverse {
                 newton
             };
             if (next - x).abs() <= self.tolerance || high - low <= self.tolerance {
-                return if high - low <= self.tolerance { 0.5 * (low + high) } else { next };
+                return if high - low <= self.tolerance {
+                    0.5 * (low + high)
+                } else {
+                    next
+                };
             }
             x = next;
         }
@@ -347,7 +351,10 @@ mod tests {
     #[test]
     fn equal_envelopes_round_trip_exactly() {
         let c = config(0.0);
-        let (mut fwd, mut inv) = (ContinuousPi::new(&c).unwrap(), ContinuousPiInverse::new(&c).unwrap());
+        let (mut fwd, mut inv) = (
+            ContinuousPi::new(&c).unwrap(),
+            ContinuousPiInverse::new(&c).unwrap(),
+        );
         for k in 0..300 {
             let strain = 0.005 + 0.008 * libm::sin(k as f64 * 0.05) * libm::cos(k as f64 * 0.013);
             let (back, flags) = inv.step(fwd.step(strain));
@@ -379,7 +386,10 @@ mod tests {
         let mut largest_jump: f64 = 0.0;
         for strain in [0.008_001, 0.008_002, 0.008_001, 0.008_000, 0.008_001] {
             let (r, rj) = (fwd.step(strain), jumping.step(strain));
-            assert!((r - previous).abs() <= 2.0 + 1e-9, "{strain}: {r} vs {previous}");
+            assert!(
+                (r - previous).abs() <= 2.0 + 1e-9,
+                "{strain}: {r} vs {previous}"
+            );
             largest_jump = largest_jump.max((rj - previous_jumping).abs());
             (previous, previous_jumping) = (r, rj);
         }
@@ -404,7 +414,13 @@ mod tests {
     fn refuses_bad_configs() {
         let mut c = config(0.0);
         c.weights = Coeffs::try_from([0.5, -0.1, 0.2, 0.1]).unwrap();
-        assert_eq!(c.validate(), Err(EstimatorError::NegativeWeight { index: 1, value: -0.1 }));
+        assert_eq!(
+            c.validate(),
+            Err(EstimatorError::NegativeWeight {
+                index: 1,
+                value: -0.1
+            })
+        );
         let mut c = config(0.0);
         c.strain_tolerance = 0.0;
         assert!(c.validate().is_err());

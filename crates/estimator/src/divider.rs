@@ -39,13 +39,17 @@ mod tests {
     fn eq4_vectors() {
         let d = bench_divider();
         let table = [
-            (2.5, 99.6e3),                   // R = R_k at mid-supply
-            (1.0, 99.6e3 / 4.0),             // V+/V − 1 = 4
-            (4.0, 99.6e3 * 4.0),             // V+/V − 1 = 1/4
+            (2.5, 99.6e3),                  // R = R_k at mid-supply
+            (1.0, 99.6e3 / 4.0),            // V+/V − 1 = 4
+            (4.0, 99.6e3 * 4.0),            // V+/V − 1 = 1/4
             (5.0 * 215.0 / 314.6, 215.0e3), // Joint A's R_0
         ];
         for (volts, ohm) in table {
-            assert_relative_eq!(divider_resistance(&d, volts).unwrap(), ohm, max_relative = 1e-12);
+            assert_relative_eq!(
+                divider_resistance(&d, volts).unwrap(),
+                ohm,
+                max_relative = 1e-12
+            );
         }
     }
 
@@ -56,7 +60,11 @@ mod tests {
             assert_eq!(divider_resistance(&d, volts), Err(Flags::RAIL), "{volts}");
         }
         for volts in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-            assert_eq!(divider_resistance(&d, volts), Err(Flags::NON_FINITE), "{volts}");
+            assert_eq!(
+                divider_resistance(&d, volts),
+                Err(Flags::NON_FINITE),
+                "{volts}"
+            );
         }
     }
 

@@ -233,7 +233,11 @@ mod tests {
     fn messages_name_value_and_limit() {
         let table: [(EstimatorError, &[&str]); 6] = [
             (
-                EstimatorError::TooMany { name: "weights", count: 20, max: 16 },
+                EstimatorError::TooMany {
+                    name: "weights",
+                    count: 20,
+                    max: 16,
+                },
                 &["weights", "20", "16"],
             ),
             (
@@ -241,15 +245,27 @@ mod tests {
                 &["radii[0] = 0.5", "must be 0"],
             ),
             (
-                EstimatorError::RadiiNotIncreasing { index: 3, value: 0.1, previous: 0.2 },
+                EstimatorError::RadiiNotIncreasing {
+                    index: 3,
+                    value: 0.1,
+                    previous: 0.2,
+                },
                 &["radii[3] = 0.1", "radii[2] = 0.2"],
             ),
             (
-                EstimatorError::PartialSumNotPositive { index: 2, value: -1.5 },
+                EstimatorError::PartialSumNotPositive {
+                    index: 2,
+                    value: -1.5,
+                },
                 &["s_3", "-1.5", "greater than 0"],
             ),
             (
-                EstimatorError::CountOutOfRange { name: "samples", value: 5000, min: 1, max: 4096 },
+                EstimatorError::CountOutOfRange {
+                    name: "samples",
+                    value: 5000,
+                    min: 1,
+                    max: 4096,
+                },
                 &["samples = 5000", "4096"],
             ),
             (
@@ -261,7 +277,10 @@ mod tests {
             let text = error.to_string();
             assert!(text.starts_with(|c: char| !c.is_uppercase()), "{text}");
             for needle in needles {
-                assert!(text.to_lowercase().contains(needle), "{text} lacks {needle}");
+                assert!(
+                    text.to_lowercase().contains(needle),
+                    "{text} lacks {needle}"
+                );
             }
         }
     }
@@ -269,8 +288,14 @@ mod tests {
     #[test]
     fn checks() {
         assert_eq!(positive("r0_ohm", 1.0), Ok(1.0));
-        assert!(matches!(positive("r0_ohm", 0.0), Err(EstimatorError::NotPositive { .. })));
-        assert!(matches!(positive("r0_ohm", f64::NAN), Err(EstimatorError::NotFinite { .. })));
+        assert!(matches!(
+            positive("r0_ohm", 0.0),
+            Err(EstimatorError::NotPositive { .. })
+        ));
+        assert!(matches!(
+            positive("r0_ohm", f64::NAN),
+            Err(EstimatorError::NotFinite { .. })
+        ));
         assert!(range("min_ohm", 1.0, "max_ohm", 2.0).is_ok());
         assert!(matches!(
             range("min_ohm", 2.0, "max_ohm", 2.0),

@@ -208,7 +208,13 @@ impl Estimator {
 
     /// Filters the angle, checks that everything is finite and remembers the estimate.
     #[inline]
-    fn finish(&mut self, angle_rad: f64, strain: [f64; 2], ohm: [f64; 2], flags: Flags) -> Estimate {
+    fn finish(
+        &mut self,
+        angle_rad: f64,
+        strain: [f64; 2],
+        ohm: [f64; 2],
+        flags: Flags,
+    ) -> Estimate {
         if flags.contains(Flags::HELD) {
             return self.hold(flags);
         }
@@ -294,7 +300,8 @@ mod tests {
     /// Joint A at 26° with Table II's linear model, through the divider and back.
     #[test]
     fn linear_joint_a_recovers_the_angle() {
-        let config = EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
+        let config =
+            EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
         let mut est = Box::new(Estimator::new(&config).unwrap());
         let joint = joint_a().to_joint().unwrap();
         let model = LinearModel::new(15.3, 215.0e3).unwrap();
@@ -312,7 +319,10 @@ mod tests {
     #[test]
     fn two_sensors_use_eq6() {
         let (d1, d2) = (nominal_divider(), Divider::new(102.5e3, 5.0).unwrap());
-        let (m1, m2) = (LinearModel::new(1.28, 74.0e3).unwrap(), LinearModel::new(0.68, 88.9e3).unwrap());
+        let (m1, m2) = (
+            LinearModel::new(1.28, 74.0e3).unwrap(),
+            LinearModel::new(0.68, 88.9e3).unwrap(),
+        );
         let mut config = EstimatorConfig::nominal_linear(joint_c(), 1.0, 1.0, d1).unwrap();
         config.sensor = SensorConfig::new(d1, ModelConfig::Linear(m1));
         config.second_sensor = Some(SensorConfig::new(d2, ModelConfig::Linear(m2)));
@@ -331,7 +341,8 @@ mod tests {
 
     #[test]
     fn rails_hold_the_last_good_estimate() {
-        let config = EstimatorConfig::nominal_linear(joint_c(), 1.28, 74.0e3, nominal_divider()).unwrap();
+        let config =
+            EstimatorConfig::nominal_linear(joint_c(), 1.28, 74.0e3, nominal_divider()).unwrap();
         let mut est = Box::new(Estimator::new(&config).unwrap());
         let initial = *est.last();
         assert_eq!(initial.resistance_ohm, [74.0e3, 74.0e3]);
@@ -343,13 +354,17 @@ mod tests {
         let held = est.step2(2.6, f64::NAN);
         assert_eq!(held.flags, Flags::NON_FINITE | Flags::HELD);
         assert_eq!(held.angle_rad, good.angle_rad);
-        assert_eq!(est.step2(f64::INFINITY, 5.0).flags, Flags::NON_FINITE | Flags::RAIL | Flags::HELD);
+        assert_eq!(
+            est.step2(f64::INFINITY, 5.0).flags,
+            Flags::NON_FINITE | Flags::RAIL | Flags::HELD
+        );
     }
 
     /// A computed value that overflows is held and flagged, not returned.
     #[test]
     fn overflow_is_held() {
-        let mut config = EstimatorConfig::nominal_linear(joint_a(), 1e-300, 1e-300, nominal_divider()).unwrap();
+        let mut config =
+            EstimatorConfig::nominal_linear(joint_a(), 1e-300, 1e-300, nominal_divider()).unwrap();
         config.sensor.divider_ohm = 1e300;
         let mut est = Box::new(Estimator::new(&config).unwrap());
         let e = est.step(4.999);
@@ -359,7 +374,8 @@ mod tests {
 
     #[test]
     fn output_filter_delays_and_reset_forgets() {
-        let mut config = EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
+        let mut config =
+            EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
         config.output_filter = FilterConfig::MovingAverage { samples: 3 };
         let mut est = Box::new(Estimator::new(&config).unwrap());
         assert_eq!(est.delay_samples(), 1.0);

@@ -8,7 +8,10 @@ use crate::moving_average::MovingAverage;
 /// `samples = 1000`, or `[output_filter.low_pass]` with `time_constant_samples = 50.0`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case", deny_unknown_fields))]
+#[cfg_attr(
+    feature = "serde",
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum FilterConfig {
     /// Pass samples through.
     #[default]
@@ -119,7 +122,12 @@ mod tests {
         let table = [
             (FilterConfig::None, 0.0),
             (FilterConfig::MovingAverage { samples: 501 }, 250.0),
-            (FilterConfig::LowPass { time_constant_samples: 1.0 }, 1.0 / (1f64.exp() - 1.0)),
+            (
+                FilterConfig::LowPass {
+                    time_constant_samples: 1.0,
+                },
+                1.0 / (1f64.exp() - 1.0),
+            ),
         ];
         for (config, delay) in table {
             assert!(config.validate().is_ok());
@@ -136,7 +144,9 @@ mod tests {
         for config in [
             FilterConfig::MovingAverage { samples: 0 },
             FilterConfig::MovingAverage { samples: 100_000 },
-            FilterConfig::LowPass { time_constant_samples: -1.0 },
+            FilterConfig::LowPass {
+                time_constant_samples: -1.0,
+            },
         ] {
             assert!(config.validate().is_err(), "{config:?}");
             assert!(Filter::new(&config).is_err());

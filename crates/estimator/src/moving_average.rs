@@ -129,7 +129,14 @@ mod tests {
     #[test]
     fn averages_what_it_has_then_the_window() {
         let mut ma = MovingAverage::new(3).unwrap();
-        let table = [(3.0, 3.0), (6.0, 4.5), (9.0, 6.0), (0.0, 5.0), (0.0, 3.0), (0.0, 0.0)];
+        let table = [
+            (3.0, 3.0),
+            (6.0, 4.5),
+            (9.0, 6.0),
+            (0.0, 5.0),
+            (0.0, 3.0),
+            (0.0, 0.0),
+        ];
         for (x, mean) in table {
             assert_relative_eq!(ma.step(x), mean, epsilon = 1e-15);
         }
@@ -154,8 +161,10 @@ mod tests {
     #[test]
     fn glitch_leaves_no_residue() {
         let mut ma = Box::new(MovingAverage::new(4).unwrap());
-        let outputs: std::vec::Vec<f64> =
-            [1.0, 1e300, 1.0, 1.0, 1.0, 1.0].iter().map(|&x| ma.step(x)).collect();
+        let outputs: std::vec::Vec<f64> = [1.0, 1e300, 1.0, 1.0, 1.0, 1.0]
+            .iter()
+            .map(|&x| ma.step(x))
+            .collect();
         assert_eq!(outputs[5], 1.0);
         let mut ma = MovingAverage::new(5).unwrap();
         for x in [0.1, 1e17, -1e17, 0.1, 0.1, 0.1, 0.1] {
@@ -176,7 +185,12 @@ mod tests {
     fn refuses_windows_beyond_the_limit() {
         assert_eq!(
             MovingAverage::new(4097).unwrap_err(),
-            EstimatorError::CountOutOfRange { name: "samples", value: 4097, min: 1, max: 4096 }
+            EstimatorError::CountOutOfRange {
+                name: "samples",
+                value: 4097,
+                min: 1,
+                max: 4096
+            }
         );
         assert!(MovingAverage::new(0).is_err());
         assert!(MovingAverage::new(4096).is_ok());

@@ -266,7 +266,13 @@ mod tests {
     #[test]
     fn loading_curve_vectors() {
         let mut op = PiOperator::new(&[1.0, 2.0, 1.0], &[0.0, 1.0, 3.0], 0.0).unwrap();
-        let table = [(0.5, 0.5), (1.0, 1.0), (2.0, 2.0 + 2.0), (3.0, 3.0 + 4.0), (4.0, 4.0 + 6.0 + 1.0)];
+        let table = [
+            (0.5, 0.5),
+            (1.0, 1.0),
+            (2.0, 2.0 + 2.0),
+            (3.0, 3.0 + 4.0),
+            (4.0, 4.0 + 6.0 + 1.0),
+        ];
         for (x, y) in table {
             assert_relative_eq!(op.step(x), y, epsilon = 1e-15);
         }
@@ -301,19 +307,42 @@ mod tests {
             (
                 &[1.0, 1.0],
                 &[0.0],
-                EstimatorError::LengthMismatch { name: "radii", len: 1, other: "weights", other_len: 2 },
+                EstimatorError::LengthMismatch {
+                    name: "radii",
+                    len: 1,
+                    other: "weights",
+                    other_len: 2,
+                },
             ),
-            (&[1.0], &[0.1], EstimatorError::FirstRadiusNotZero { value: 0.1 }),
+            (
+                &[1.0],
+                &[0.1],
+                EstimatorError::FirstRadiusNotZero { value: 0.1 },
+            ),
             (
                 &[1.0, 1.0],
                 &[0.0, 0.0],
-                EstimatorError::RadiiNotIncreasing { index: 1, value: 0.0, previous: 0.0 },
+                EstimatorError::RadiiNotIncreasing {
+                    index: 1,
+                    value: 0.0,
+                    previous: 0.0,
+                },
             ),
-            (&[0.0], &[0.0], EstimatorError::PartialSumNotPositive { index: 0, value: 0.0 }),
+            (
+                &[0.0],
+                &[0.0],
+                EstimatorError::PartialSumNotPositive {
+                    index: 0,
+                    value: 0.0,
+                },
+            ),
             (
                 &[1.0, -1.5],
                 &[0.0, 1.0],
-                EstimatorError::PartialSumNotPositive { index: 1, value: -0.5 },
+                EstimatorError::PartialSumNotPositive {
+                    index: 1,
+                    value: -0.5,
+                },
             ),
         ];
         for (weights, radii, error) in cases {

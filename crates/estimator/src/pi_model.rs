@@ -238,7 +238,10 @@ mod tests {
     #[test]
     fn forward_then_inverse_on_a_monotone_ramp() {
         let config = joint_a();
-        let (mut fwd, mut inv) = (GeneralizedPi::new(&config).unwrap(), PiInverse::new(&config).unwrap());
+        let (mut fwd, mut inv) = (
+            GeneralizedPi::new(&config).unwrap(),
+            PiInverse::new(&config).unwrap(),
+        );
         for k in 0..100 {
             let strain = 0.00307 + 0.00002 * k as f64;
             let (back, flags) = inv.step(fwd.step(strain));
@@ -288,13 +291,22 @@ mod tests {
     fn refuses_bad_configs() {
         let mut c = joint_a();
         c.min_ohm = c.max_ohm;
-        assert!(matches!(c.validate(), Err(EstimatorError::EmptyRange { .. })));
+        assert!(matches!(
+            c.validate(),
+            Err(EstimatorError::EmptyRange { .. })
+        ));
         let mut c = joint_a();
         c.unloading_tanh[0] = -1.0;
-        assert!(matches!(c.validate(), Err(EstimatorError::BranchNotIncreasing { .. })));
+        assert!(matches!(
+            c.validate(),
+            Err(EstimatorError::BranchNotIncreasing { .. })
+        ));
         let mut c = joint_a();
         c.radii = Coeffs::try_from([0.0; 9]).unwrap();
-        assert!(matches!(c.validate(), Err(EstimatorError::LengthMismatch { .. })));
+        assert!(matches!(
+            c.validate(),
+            Err(EstimatorError::LengthMismatch { .. })
+        ));
         let mut c = joint_a();
         c.center_ohm = f64::NAN;
         assert!(c.validate().is_err());

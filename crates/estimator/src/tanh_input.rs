@@ -165,7 +165,10 @@ mod tests {
     #[test]
     fn eq10_vectors() {
         let b = TanhBranch::new("loading_tanh", [2.0, 3.0, 0.5, -1.0]).unwrap();
-        let table = [(0.0, 2.0 * 0.5f64.tanh() - 1.0), (1.0, 2.0 * 3.5f64.tanh() - 1.0)];
+        let table = [
+            (0.0, 2.0 * 0.5f64.tanh() - 1.0),
+            (1.0, 2.0 * 3.5f64.tanh() - 1.0),
+        ];
         for (x, y) in table {
             assert_relative_eq!(b.value(x), y, epsilon = 1e-15);
         }

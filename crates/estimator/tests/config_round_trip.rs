@@ -2,7 +2,7 @@
 //! unknown fields and over-long lists.
 
 use dlw_estimator::{
-    nominal_divider, Coeffs, ContinuousPiConfig, EstimatorConfig, Estimator, FilterConfig,
+    nominal_divider, Coeffs, ContinuousPiConfig, Estimator, EstimatorConfig, FilterConfig,
     JointConfig, ModelConfig, PiConfig, SensorConfig, MAX_PLAYS,
 };
 use dlw_geometry::{Divider, NotchStyle};
@@ -64,7 +64,8 @@ fn continuous_pi() -> ContinuousPiConfig {
 
 /// One config of every shape: each model kind, one and two sensors, each filter.
 fn configs() -> Vec<EstimatorConfig> {
-    let linear = EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
+    let linear =
+        EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
     let mut with_pi = linear;
     with_pi.sensor.model = ModelConfig::Pi(pi());
     with_pi.output_filter = FilterConfig::MovingAverage { samples: 1000 };
@@ -73,7 +74,8 @@ fn configs() -> Vec<EstimatorConfig> {
     with_continuous.input_filter = FilterConfig::LowPass {
         time_constant_samples: 12.5,
     };
-    let mut two = EstimatorConfig::nominal_linear(joint_c(), 1.28, 74.0e3, nominal_divider()).unwrap();
+    let mut two =
+        EstimatorConfig::nominal_linear(joint_c(), 1.28, 74.0e3, nominal_divider()).unwrap();
     two.second_sensor = Some(SensorConfig::new(
         Divider::new(102.5e3, 5.0).unwrap(),
         ModelConfig::Pi(pi()),
@@ -131,12 +133,18 @@ samples = 500
 #[test]
 fn reads_the_documented_shape() {
     let config: EstimatorConfig = toml::from_str(DOCUMENTED).unwrap();
-    let mut expected = EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
+    let mut expected =
+        EstimatorConfig::nominal_linear(joint_a(), 15.3, 215.0e3, nominal_divider()).unwrap();
     expected.input_filter = FilterConfig::MovingAverage { samples: 500 };
     assert_eq!(config, expected);
     // The nominal config writes the same keys.
     let written = toml::to_string(&expected).unwrap();
-    for key in ["[sensor.model.linear]", "divider_ohm = 99600.0", "r0_ohm = 215000.0", "style = \"uan\""] {
+    for key in [
+        "[sensor.model.linear]",
+        "divider_ohm = 99600.0",
+        "r0_ohm = 215000.0",
+        "style = \"uan\"",
+    ] {
         assert!(written.contains(key), "{written} lacks {key}");
     }
 }
@@ -154,7 +162,9 @@ fn refuses_unknown_fields() {
     for text in typos {
         assert!(toml::from_str::<EstimatorConfig>(&text).is_err(), "{text}");
     }
-    let json = serde_json::to_string(&configs()[0]).unwrap().replace("\"gauge_factor\"", "\"gf\"");
+    let json = serde_json::to_string(&configs()[0])
+        .unwrap()
+        .replace("\"gauge_factor\"", "\"gf\"");
     assert!(serde_json::from_str::<EstimatorConfig>(&json).is_err());
 }
 
@@ -168,7 +178,9 @@ fn refuses_more_plays_than_the_limit() {
         "weights = [0.4, 0.3, 0.2, 0.1]",
         &format!("weights = [{}]", too_many.join(", ")),
     );
-    let error = toml::from_str::<EstimatorConfig>(&text).unwrap_err().to_string();
+    let error = toml::from_str::<EstimatorConfig>(&text)
+        .unwrap_err()
+        .to_string();
     assert!(error.contains("more than 16 values"), "{error}");
 }
 
@@ -178,10 +190,12 @@ fn invalid_values_are_refused_at_build_time() {
     let text = DOCUMENTED.replace("samples = 500", "samples = 5000");
     let config: EstimatorConfig = toml::from_str(&text).unwrap();
     let error = Estimator::new(&config).unwrap_err().to_string();
-    assert!(error.contains("samples = 5000") && error.contains("4096"), "{error}");
+    assert!(
+        error.contains("samples = 5000") && error.contains("4096"),
+        "{error}"
+    );
     let text = DOCUMENTED.replace("inner_radius_mm = 0.875", "inner_radius_mm = 1.5");
     let config: EstimatorConfig = toml::from_str(&text).unwrap();
     let error = Estimator::new(&config).unwrap_err().to_string();
     assert!(error.contains("inner_radius_mm = 1.5"), "{error}");
 }
-

@@ -4,7 +4,12 @@
 use dlw_estimator::{Coeffs, ContinuousPi, ContinuousPiConfig, ContinuousPiInverse, Flags};
 use proptest::prelude::*;
 
-fn config(weights: &[f64], spacing: f64, loading: [f64; 4], unloading: [f64; 4]) -> ContinuousPiConfig {
+fn config(
+    weights: &[f64],
+    spacing: f64,
+    loading: [f64; 4],
+    unloading: [f64; 4],
+) -> ContinuousPiConfig {
     let radii: Vec<f64> = (0..weights.len()).map(|i| i as f64 * spacing).collect();
     ContinuousPiConfig {
         weights: Coeffs::from_slice("weights", weights).unwrap(),
@@ -25,18 +30,25 @@ fn model_strategy(equal_envelopes: bool) -> impl Strategy<Value = (ContinuousPiC
     (
         prop::collection::vec(0.05f64..1.0, 1..=16),
         100.0f64..3.0e3,
-        (5.0e3f64..30.0e3, 30.0f64..150.0, -0.3f64..0.3, -2.0e3f64..2.0e3),
+        (
+            5.0e3f64..30.0e3,
+            30.0f64..150.0,
+            -0.3f64..0.3,
+            -2.0e3f64..2.0e3,
+        ),
         (0.0f64..0.4, -1.0e3f64..1.0e3),
         prop::collection::vec(-0.01f64..0.02, 2..200),
     )
-        .prop_map(move |(weights, spacing, (a, b, c, d), (shift, offset), strains)| {
-            let unloading = if equal_envelopes {
-                [a, b, c, d]
-            } else {
-                [a, b, c + shift, d + offset]
-            };
-            (config(&weights, spacing, [a, b, c, d], unloading), strains)
-        })
+        .prop_map(
+            move |(weights, spacing, (a, b, c, d), (shift, offset), strains)| {
+                let unloading = if equal_envelopes {
+                    [a, b, c, d]
+                } else {
+                    [a, b, c + shift, d + offset]
+                };
+                (config(&weights, spacing, [a, b, c, d], unloading), strains)
+            },
+        )
 }
 
 proptest! {
@@ -91,7 +103,12 @@ proptest! {
 #[test]
 fn dead_band_error_is_bounded_by_the_envelope_gap() {
     let shift = 0.3; // γ_r(x) = γ_l(x + 0.003): the envelopes are 0.003 apart in strain
-    let c = config(&[1.0], 1.0, [20.0e3, 100.0, 0.0, 0.0], [20.0e3, 100.0, shift, 0.0]);
+    let c = config(
+        &[1.0],
+        1.0,
+        [20.0e3, 100.0, 0.0, 0.0],
+        [20.0e3, 100.0, shift, 0.0],
+    );
     let mut forward = ContinuousPi::new(&c).unwrap();
     let mut inverse = ContinuousPiInverse::new(&c).unwrap();
     let strains = [0.006, 0.008, 0.007, 0.0065, 0.005, 0.004, 0.006];
@@ -100,12 +117,18 @@ fn dead_band_error_is_bounded_by_the_envelope_gap() {
         errors.push((inverse.step(forward.step(s)).0 - s).abs());
     }
     // 0.008 -> 0.007 and -> 0.0065 stay in the band (0.005..0.008): held at 0.008.
-    assert!((errors[2] - 0.001).abs() < 1e-12 && (errors[3] - 0.0015).abs() < 1e-12, "{errors:?}");
+    assert!(
+        (errors[2] - 0.001).abs() < 1e-12 && (errors[3] - 0.0015).abs() < 1e-12,
+        "{errors:?}"
+    );
     for e in &errors {
         assert!(*e <= shift / 100.0 + 1e-12);
     }
     // 0.005 is the band's lower edge: the error reaches the gap. Pushed down by γ_r to 0.004
     // it is exact again; back up to 0.006 it is inside the next band, held at 0.004.
-    assert!((errors[4] - shift / 100.0).abs() < 1e-12 && errors[5] < 1e-9, "{errors:?}");
+    assert!(
+        (errors[4] - shift / 100.0).abs() < 1e-12 && errors[5] < 1e-9,
+        "{errors:?}"
+    );
     assert!((errors[6] - 0.002).abs() < 1e-12, "{errors:?}");
 }

@@ -2,7 +2,7 @@
 //! finite numbers, and a sample it cannot use returns the last good estimate, flagged.
 
 use dlw_estimator::{
-    nominal_divider, Coeffs, ContinuousPiConfig, Estimate, EstimatorConfig, Estimator,
+    nominal_divider, Coeffs, ContinuousPiConfig, Estimate, Estimator, EstimatorConfig,
     FilterConfig, Flags, JointConfig, ModelConfig, PiConfig,
 };
 use dlw_geometry::NotchStyle;
@@ -70,18 +70,37 @@ fn continuous_pi() -> ModelConfig {
 fn estimators() -> Vec<(&'static str, Box<Estimator>)> {
     let mut out = Vec::new();
     let models: [(&str, ModelConfig); 3] = [
-        ("linear", EstimatorConfig::nominal_linear(joint(NotchStyle::Uan), 15.3, 215.0e3, nominal_divider()).unwrap().sensor.model),
+        (
+            "linear",
+            EstimatorConfig::nominal_linear(
+                joint(NotchStyle::Uan),
+                15.3,
+                215.0e3,
+                nominal_divider(),
+            )
+            .unwrap()
+            .sensor
+            .model,
+        ),
         ("pi", pi()),
         ("continuous_pi", continuous_pi()),
     ];
     let filters = [
         FilterConfig::None,
         FilterConfig::MovingAverage { samples: 7 },
-        FilterConfig::LowPass { time_constant_samples: 3.0 },
+        FilterConfig::LowPass {
+            time_constant_samples: 3.0,
+        },
     ];
     for (name, model) in models {
-        for (style, filter) in [(NotchStyle::Uan, filters[0]), (NotchStyle::Uan, filters[1]), (NotchStyle::Bsn, filters[2])] {
-            let mut config = EstimatorConfig::nominal_linear(joint(style), 15.3, 215.0e3, nominal_divider()).unwrap();
+        for (style, filter) in [
+            (NotchStyle::Uan, filters[0]),
+            (NotchStyle::Uan, filters[1]),
+            (NotchStyle::Bsn, filters[2]),
+        ] {
+            let mut config =
+                EstimatorConfig::nominal_linear(joint(style), 15.3, 215.0e3, nominal_divider())
+                    .unwrap();
             config.sensor.model = model;
             if let Some(second) = config.second_sensor.as_mut() {
                 second.model = model;
@@ -111,7 +130,14 @@ fn volts() -> impl Strategy<Value = f64> {
 }
 
 fn check(name: &str, previous: &Estimate, e: &Estimate) -> Result<(), TestCaseError> {
-    for value in [e.angle_rad, e.angle_deg, e.strain[0], e.strain[1], e.resistance_ohm[0], e.resistance_ohm[1]] {
+    for value in [
+        e.angle_rad,
+        e.angle_deg,
+        e.strain[0],
+        e.strain[1],
+        e.resistance_ohm[0],
+        e.resistance_ohm[1],
+    ] {
         prop_assert!(value.is_finite(), "{name}: {e:?}");
     }
     if e.flags.contains(Flags::HELD) {
@@ -119,7 +145,12 @@ fn check(name: &str, previous: &Estimate, e: &Estimate) -> Result<(), TestCaseEr
             e.flags.intersects(Flags::RAIL | Flags::NON_FINITE),
             "{name}: held without a reason: {e:?}"
         );
-        prop_assert_eq!(e.angle_rad, previous.angle_rad, "{}: held estimate moved", name);
+        prop_assert_eq!(
+            e.angle_rad,
+            previous.angle_rad,
+            "{}: held estimate moved",
+            name
+        );
         prop_assert_eq!(e.strain, previous.strain);
     }
     Ok(())

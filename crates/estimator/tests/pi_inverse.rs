@@ -134,17 +134,29 @@ fn tanh_model_strategy() -> impl Strategy<Value = (PiConfig, Vec<f64>)> {
     (
         prop::collection::vec(0.05f64..1.0, 1..=10),
         0.5f64..3.0,
-        (5.0e3f64..30.0e3, 50.0f64..200.0, -0.3f64..0.3, -2.0e3f64..2.0e3),
-        (5.0e3f64..30.0e3, 50.0f64..200.0, -0.3f64..0.3, -2.0e3f64..2.0e3),
+        (
+            5.0e3f64..30.0e3,
+            50.0f64..200.0,
+            -0.3f64..0.3,
+            -2.0e3f64..2.0e3,
+        ),
+        (
+            5.0e3f64..30.0e3,
+            50.0f64..200.0,
+            -0.3f64..0.3,
+            -2.0e3f64..2.0e3,
+        ),
         prop::collection::vec(-0.005f64..0.015, 2..300),
     )
-        .prop_map(|(weights, spread, (a1, a2, a3, a4), (a5, a6, a7, a8), strains)| {
-            let radii: Vec<f64> = (0..weights.len())
-                .map(|i| i as f64 * spread * 1.0e3)
-                .collect();
-            let config = tanh_model(&weights, &radii, [a1, a2, a3, a4], [a5, a6, a7, a8]);
-            (config, strains)
-        })
+        .prop_map(
+            |(weights, spread, (a1, a2, a3, a4), (a5, a6, a7, a8), strains)| {
+                let radii: Vec<f64> = (0..weights.len())
+                    .map(|i| i as f64 * spread * 1.0e3)
+                    .collect();
+                let config = tanh_model(&weights, &radii, [a1, a2, a3, a4], [a5, a6, a7, a8]);
+                (config, strains)
+            },
+        )
 }
 
 proptest! {
@@ -183,7 +195,12 @@ proptest! {
 /// makes the inverse keep the loading branch for that sample.
 #[test]
 fn reversal_error_reaches_the_gap_for_one_sample() {
-    let config = tanh_model(&[1.0], &[0.0], [20.0e3, 100.0, 0.0, 0.0], [20.0e3, 100.0, 0.3, 0.0]);
+    let config = tanh_model(
+        &[1.0],
+        &[0.0],
+        [20.0e3, 100.0, 0.0, 0.0],
+        [20.0e3, 100.0, 0.3, 0.0],
+    );
     let mut forward = GeneralizedPi::new(&config).unwrap();
     let mut inverse = PiInverse::new(&config).unwrap();
     let strains = [0.006, 0.007, 0.008, 0.0079, 0.0078, 0.0077];
@@ -194,8 +211,17 @@ fn reversal_error_reaches_the_gap_for_one_sample() {
     }
     // Sample 3 is the reversal: the loading branch inverts the unloading value.
     let x = 0.0079 - config.center_strain;
-    let expected = (forward.input().loading.inverse(forward.input().unloading.value(x)).0 - x).abs();
-    assert!((errors[3] - expected).abs() < 1e-12 && expected > 1e-3, "{errors:?}");
+    let expected = (forward
+        .input()
+        .loading
+        .inverse(forward.input().unloading.value(x))
+        .0
+        - x)
+        .abs();
+    assert!(
+        (errors[3] - expected).abs() < 1e-12 && expected > 1e-3,
+        "{errors:?}"
+    );
     assert!(errors[3] <= forward.input().branch_gap(x) + 1e-12);
     for (k, e) in errors.iter().enumerate().filter(|(k, _)| *k != 3) {
         assert!(*e < 1e-9, "sample {k}: {e}");
