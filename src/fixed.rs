@@ -18,32 +18,25 @@ pub fn push_fixed(out: &mut Vec<u8>, x: f64, decimals: u32) {
         out.push(b'-');
         n = -n;
     }
-    let p = 10i64.pow(decimals);
-    let (int, frac) = (n / p, n % p);
-    let mut buf = itoa_buf(int);
-    out.append(&mut buf);
-    if decimals > 0 {
-        out.push(b'.');
-        let digits = itoa_buf(frac);
-        for _ in digits.len()..decimals as usize {
-            out.push(b'0');
-        }
-        out.extend_from_slice(&digits);
-    }
-}
-
-fn itoa_buf(mut n: i64) -> Vec<u8> {
-    let mut tmp = [0u8; 20];
-    let mut i = tmp.len();
+    // Digits right to left into a stack buffer, the point after `decimals` of them, and at
+    // least one digit before the point.
+    let mut buf = [0u8; 24];
+    let mut i = buf.len();
+    let mut written = 0;
     loop {
+        if written == decimals && decimals > 0 {
+            i -= 1;
+            buf[i] = b'.';
+        }
         i -= 1;
-        tmp[i] = b'0' + (n % 10) as u8;
+        buf[i] = b'0' + (n % 10) as u8;
         n /= 10;
-        if n == 0 {
+        written += 1;
+        if n == 0 && written > decimals {
             break;
         }
     }
-    tmp[i..].to_vec()
+    out.extend_from_slice(&buf[i..]);
 }
 
 #[cfg(test)]

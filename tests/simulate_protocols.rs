@@ -172,14 +172,17 @@ fn scenario_file_switches_effects_and_is_recorded() {
     assert_eq!(sc["plant"]["relaxation"]["fraction"].as_float(), Some(0.1));
     assert_eq!(sc["sensor1"]["model"].as_str(), Some("pi"));
     assert_eq!(sc["sensor1"]["pi"]["weights"].as_array().unwrap().len(), 10);
-    // The recorded scenario is itself a scenario file that reproduces the run.
+    // The recorded scenario and design are themselves a scenario and a design file that
+    // reproduce the run.
     let again = dir.path().join("again.toml");
     std::fs::write(&again, toml::to_string(sc).unwrap()).unwrap();
+    let design_again = dir.path().join("design.toml");
+    std::fs::write(&design_again, toml::to_string(&rig["design"]).unwrap()).unwrap();
     let out2 = dir.path().join("rec2");
     ok(&dlw(&[
         "simulate",
         "--design",
-        &design("joint-a.toml"),
+        &design_again.display().to_string(),
         "--scenario",
         &again.display().to_string(),
         "-o",
