@@ -351,11 +351,18 @@ impl Recording {
         })?;
         write_atomic(&staging.path().join(RIG_FILE), rig.as_bytes())?;
         write_atomic(&staging.path().join(DATA_FILE), &self.csv_bytes())?;
+        // The staging folder and write_atomic's temporary files are private (0700, 0600);
+        // a recording is for sharing.
         #[cfg(unix)]
         {
             use std::os::unix::fs::PermissionsExt;
-            std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755))
-                .map_err(io("set permissions of", staging.path()))?;
+            let set = |path: &Path, mode| {
+                std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode))
+                    .map_err(io("set permissions of", path))
+            };
+            set(&staging.path().join(RIG_FILE), 0o644)?;
+            set(&staging.path().join(DATA_FILE), 0o644)?;
+            set(staging.path(), 0o755)?;
         }
         if occupied {
             // Move the old folder aside first: rename cannot replace a non-empty folder.
