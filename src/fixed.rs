@@ -9,7 +9,7 @@ pub fn push_fixed(out: &mut Vec<u8>, x: f64, decimals: u32) {
     let scaled = (x * scale).round();
     // Beyond 2^53 the integer path would lose digits; such values never occur in a recording,
     // but are still written faithfully.
-    if !(scaled.abs() < 9.0e15) {
+    if scaled.is_nan() || scaled.abs() >= 9.0e15 {
         let _ = write!(out, "{x:.prec$}", prec = decimals as usize);
         return;
     }
@@ -57,7 +57,7 @@ mod tests {
             (-0.25, 2, "-0.25"),
             (-0.000_000_4, 6, "0.000000"),
             (2.999_999_96, 6, "3.000000"),
-            (1234.567_89, 4, "1234.5679"),
+            (1_234.567_89, 4, "1234.5679"),
             (-17.745, 0, "-18"),
             (0.002, 6, "0.002000"),
         ];
