@@ -112,8 +112,8 @@ impl Core {
     /// `Σ Pᵢ·yᵢ` if the plays were fed `x` now, and its slope `d/dx` (without changing state).
     #[inline]
     fn trial(&self, x: f64) -> (f64, f64) {
-        let (up, down) = (self.loading.value(x), self.unloading.value(x));
-        let (up_slope, down_slope) = (self.loading.slope(x), self.unloading.slope(x));
+        let (up, up_slope) = self.loading.value_and_slope(x);
+        let (down, down_slope) = self.unloading.value_and_slope(x);
         let mut sum = 0.0;
         let mut slope = 0.0;
         for i in 0..self.len {
@@ -265,7 +265,7 @@ impl ContinuousPiInverse {
             self.previous_x
         } else {
             self.previous_target = target;
-            let (now, _) = self.core.trial(self.previous_x);
+            let (now, slope) = self.core.trial(self.previous_x);
             let rising = target > now;
             flags |= Flags::when(rising != self.rising, Flags::REVERSAL);
             self.rising = rising;
@@ -274,10 +274,15 @@ impl ContinuousPiInverse {
             if (rising && at_end <= target) || (!rising && at_end >= target) {
                 flags |= Flags::when(at_end != target, Flags::RESISTANCE_CLAMPED);
                 end
-            } else if rising {
-                self.solve(target, self.previous_x, end)
             } else {
-                self.solve(target, end, self.previous_x)
+                // First guess: a Newton step from where the plays are now.
+                let guess = self.previous_x + (target - now) / slope;
+                let (low, high) = if rising {
+                    (self.previous_x, end)
+                } else {
+                    (end, self.previous_x)
+                };
+                self.solve(target, low, high, guess)
             }
         };
         self.core.step(x);
@@ -285,9 +290,20 @@ impl ContinuousPiInverse {
         (x + self.center_strain, flags)
     }
 
-    /// Root of `trial(x) = target` in `[low, high]`, where `trial(low) < target < trial(high)`.
-    fn solve(&self, target: f64, mut low: f64, mut high: f64) -> f64 {
-        let mut x = 0.5 * (low + high);
+    /// Root of `trial(x) = target` in `[low, high]`, where `trial(low) < target < trial(high)`,
+    /// starting from `guess` (the midpoint if it lies outside).
+    ///
+    /// Newton steps kept in the bracket, falling back to bisection whenever a step would leave
+    /// it or would not at least halve the step before last (as in Numerical Recipes' `rtsafe`),
+    /// so two Newton steps cannot bounce between the bracket's ends.
+    fn solve(&self, target: f64, mut low: f64, mut high: f64, guess: f64) -> f64 {
+        let mut x = if guess > low && guess < high {
+            guess
+        } else {
+            0.5 * (low + high)
+        };
+        let mut step = high - low;
+        let mut step_before = step;
         for _ in 0..MAX_INVERSE_ITERATIONS {
             let (value, slope) = self.core.trial(x);
             let error = value - target;
@@ -299,22 +315,23 @@ impl ContinuousPiInverse {
                 return x;
             }
             let newton = x - error / slope;
-            // `!(..)` also catches the NaN of a zero slope in a dead band.
-            let next = if !(newton > low && newton < high) {
-                0.5 * (low + high)
+            // Written so that the NaN of a zero slope in a dead band counts as not fast and
+            // not inside, which bisects.
+            let fast = 2.0 * error.abs() < (step_before * slope).abs();
+            let inside = newton > low && newton < high;
+            step_before = step;
+            if !fast || !inside {
+                step = 0.5 * (high - low);
+                x = low + step;
             } else {
-                newton
-            };
-            if (next - x).abs() <= self.tolerance || high - low <= self.tolerance {
-                return if high - low <= self.tolerance {
-                    0.5 * (low + high)
-                } else {
-                    next
-                };
+                step = (newton - x).abs();
+                x = newton;
             }
-            x = next;
+            if step <= self.tolerance {
+                return x;
+            }
         }
-        x
+        0.5 * (low + high)
     }
 
     /// Returns to the initial state.

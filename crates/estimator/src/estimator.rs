@@ -112,6 +112,10 @@ impl Channel {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Estimator {
     joint: Joint,
+    /// `dθ/dε` of Eq. 3, asked of the joint once: the per-sample path does no trigonometry.
+    angle_per_strain: f64,
+    /// `dθ/d(ε₁ − ε₂)` of Eq. 6 (BSN only).
+    angle_per_strain_difference: f64,
     first: Channel,
     second: Option<Channel>,
     output_filter: Filter,
@@ -132,6 +136,10 @@ impl Estimator {
         };
         let mut estimator = Self {
             joint,
+            // Eqs. 3 and 6 are linear in strain, so their slopes are the geometry crate's own
+            // answers at unit strain.
+            angle_per_strain: joint.angle_from_strain(1.0),
+            angle_per_strain_difference: joint.two_sensor_angle(1.0, 0.0).unwrap_or(0.0),
             first,
             second,
             output_filter: Filter::new(&config.output_filter)?,
@@ -177,7 +185,7 @@ impl Estimator {
             Err(flags) => return self.hold(flags),
         };
         let (strain, flags) = self.first.strain(ohm);
-        let angle = self.joint.angle_from_strain(strain);
+        let angle = strain * self.angle_per_strain;
         self.finish(angle, [strain, 0.0], [ohm, 0.0], flags)
     }
 
@@ -199,10 +207,7 @@ impl Estimator {
         let (e1, f1) = self.first.strain(r1);
         let (e2, f2) = second.strain(r2);
         // A second channel exists only for BSN joints (validated), which have Δy^(1,2).
-        let angle = self
-            .joint
-            .two_sensor_angle(e1, e2)
-            .unwrap_or_else(|| self.joint.angle_from_strain(e1));
+        let angle = (e1 - e2) * self.angle_per_strain_difference;
         self.finish(angle, [e1, e2], [r1, r2], f1 | f2)
     }
 
@@ -312,6 +317,28 @@ mod tests {
             assert_relative_eq!(e.angle_deg, deg, epsilon = 1e-9);
             assert_relative_eq!(e.angle_rad, deg.to_radians(), epsilon = 1e-11);
             assert_relative_eq!(e.resistance_ohm[0], r, max_relative = 1e-12);
+        }
+    }
+
+    /// The precomputed slopes give the geometry crate's angles.
+    #[test]
+    fn angles_match_geometry() {
+        for (config, e1, e2) in [(joint_a(), 0.0123, 0.0), (joint_c(), 0.004, -0.0031)] {
+            let c = EstimatorConfig::nominal_linear(config, 1.0, 1.0, nominal_divider()).unwrap();
+            let est = Box::new(Estimator::new(&c).unwrap());
+            let joint = config.to_joint().unwrap();
+            assert_relative_eq!(
+                e1 * est.angle_per_strain,
+                joint.angle_from_strain(e1),
+                max_relative = 1e-15
+            );
+            if let Some(theta) = joint.two_sensor_angle(e1, e2) {
+                assert_relative_eq!(
+                    (e1 - e2) * est.angle_per_strain_difference,
+                    theta,
+                    max_relative = 1e-15
+                );
+            }
         }
     }
 

@@ -57,6 +57,9 @@ fn check_window(samples: u32) -> Result<(), EstimatorError> {
 }
 
 /// A running filter built from a [`FilterConfig`].
+// Without an allocator the moving average's buffer has to live inline, so every variant is as
+// large as it (32 KiB).
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum Filter {
     /// Passes samples through.

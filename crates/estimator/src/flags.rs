@@ -18,8 +18,9 @@ impl Flags {
     pub const RESISTANCE_CLAMPED: Self = Self(1 << 1);
     /// The argument of `atanh` in the PI inverse (Eq. 13) was clamped to `±ATANH_BOUND`.
     pub const ATANH_CLAMPED: Self = Self(1 << 2);
-    /// The input reversed direction at this sample; the tanh-PI inverse may be off by up to the
-    /// branch gap for this one sample (see `TanhInput::branch_gap`).
+    /// The PI inverse switched tanh branch (or, for the continuous model, the resistance turned)
+    /// at this sample. Near a turn of the strain the tanh-PI inverse may be off by up to the
+    /// branch gap for one sample (see `TanhInput::branch_gap`); it cannot always tell which.
     pub const REVERSAL: Self = Self(1 << 3);
     /// An input (or a value computed from it) was NaN or infinite.
     pub const NON_FINITE: Self = Self(1 << 4);

@@ -29,7 +29,7 @@ impl TanhBranch {
             finite(name, value)?;
         }
         let slope = a * b;
-        if !(slope > 0.0) {
+        if slope.is_nan() || slope <= 0.0 {
             return Err(EstimatorError::BranchNotIncreasing { name, slope });
         }
         Ok(Self {
@@ -60,19 +60,20 @@ impl TanhBranch {
         self.a * self.b * (1.0 - t * t)
     }
 
+    /// `(f(x), f'(x))` with one `tanh`.
+    #[inline]
+    pub fn value_and_slope(&self, x: f64) -> (f64, f64) {
+        let t = libm::tanh(self.b * x + self.c);
+        (self.a * t + self.d, self.a * self.b * (1.0 - t * t))
+    }
+
     /// `f⁻¹(μ) = (atanh((μ − d)/a) − c)/b` (Eq. 13), with the `atanh` argument clamped to
     /// `±`[`ATANH_BOUND`]. Returns the strain and whether it was clamped.
     #[inline]
     pub fn inverse(&self, mu: f64) -> (f64, bool) {
         let arg = (mu - self.d) * self.inv_a;
-        let clamped = !(arg.abs() <= ATANH_BOUND);
-        let arg = if arg > ATANH_BOUND {
-            ATANH_BOUND
-        } else if arg < -ATANH_BOUND {
-            -ATANH_BOUND
-        } else {
-            arg
-        };
+        let clamped = arg.abs() > ATANH_BOUND;
+        let arg = arg.clamp(-ATANH_BOUND, ATANH_BOUND);
         ((libm::atanh(arg) - self.c) * self.inv_b, clamped)
     }
 }
@@ -178,6 +179,7 @@ mod tests {
             (b.value(0.2 + h) - b.value(0.2 - h)) / (2.0 * h),
             max_relative = 1e-8
         );
+        assert_eq!(b.value_and_slope(0.2), (b.value(0.2), b.slope(0.2)));
     }
 
     #[test]

@@ -52,7 +52,7 @@ fn model_strategy(equal_envelopes: bool) -> impl Strategy<Value = (ContinuousPiC
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(1024))]
 
     /// With γ_l = γ_r the first play always moves with the strain, so every sample inverts to
     /// 1e-9.
@@ -131,4 +131,43 @@ fn dead_band_error_is_bounded_by_the_envelope_gap() {
         "{errors:?}"
     );
     assert!((errors[6] - 0.002).abs() < 1e-12, "{errors:?}");
+}
+
+/// Regression: a case where plain safeguarded Newton bounced between the bracket's ends (each
+/// step landing just inside the far end) and stopped 0.0035 off; the root search must halve
+/// its bracket when Newton does not make progress.
+#[test]
+fn newton_cannot_bounce_between_bracket_ends() {
+    let weights = [
+        0.36053912698745233,
+        0.8380135423894969,
+        0.7832814206584218,
+        0.6005584969692119,
+        0.05,
+        0.468536181397639,
+        0.635215495552699,
+        0.5305655952267616,
+        0.05,
+        0.05,
+    ];
+    let envelope = [
+        8556.95029964608,
+        87.79992700885974,
+        -0.21458942752658022,
+        0.0,
+    ];
+    let c = config(&weights, 719.6051551212078, envelope, envelope);
+    let mut forward = ContinuousPi::new(&c).unwrap();
+    let mut inverse = ContinuousPiInverse::new(&c).unwrap();
+    let strains = [
+        -0.009658636387030206,
+        0.013539721003006155,
+        -0.0028463715007354473,
+        0.010968798933134979,
+        0.005651491771782632,
+    ];
+    for s in strains {
+        let back = inverse.step(forward.step(s)).0;
+        assert!((back - s).abs() < 1e-9, "{s} came back as {back}");
+    }
 }
