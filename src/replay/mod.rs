@@ -252,6 +252,33 @@ mod tests {
         assert_eq!(r.metrics.filter_delay_s, 0.1);
     }
 
+    /// The simulator's PI sensor is the estimator crate's forward model, so the estimator's PI
+    /// inverse with the same parameters recovers the angle of a noise-free recording; only the
+    /// samples at reversals may be off (the tanh branch switch, bounded in the estimator crate).
+    #[test]
+    fn pi_inverse_recovers_the_simulated_pi_sensor() {
+        use crate::sim::{SensorModelKind, JOINT_A_PI};
+        use dlw_estimator::ModelConfig;
+        let rec = recording(NotchStyle::Uan, |s| {
+            s.adc.enabled = false;
+            s.tracker.enabled = false;
+            s.sensor1.model = SensorModelKind::Pi;
+        });
+        let mut cfg = nominal(NotchStyle::Uan, 15.3, 215e3);
+        cfg.sensor.model = ModelConfig::Pi(JOINT_A_PI.to_config());
+        let r = replay(&cfg, &rec).unwrap();
+        let clean: Vec<f64> = (0..rec.samples.len())
+            .filter(|&i| r.flags[i].is_empty())
+            .map(|i| (r.estimate_deg[i] - rec.samples.angle_deg[i]).abs())
+            .collect();
+        let worst = clean.iter().cloned().fold(0.0, f64::max);
+        assert!(clean.len() > 14_000, "{} clean samples", clean.len());
+        assert!(worst < 1e-6, "largest error on unflagged samples {worst}°");
+        // The linear model of the same sensor is degrees off.
+        let linear = replay(&nominal(NotchStyle::Uan, 15.3, 215e3), &rec).unwrap();
+        assert!(linear.metrics.rmse_deg > 0.5, "{:?}", linear.metrics);
+    }
+
     #[test]
     fn csv_has_a_row_per_sample() {
         let rec = recording(NotchStyle::Uan, |s| s.duration_s = Some(0.01));
