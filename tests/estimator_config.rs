@@ -28,11 +28,23 @@ fn toml_and_json_carry_the_same_config_from_the_design() {
     let mut configs = Vec::new();
     for name in ["c.toml", "c.json"] {
         let out = dir.path().join(name).display().to_string();
-        let o = dlw(&["estimator-config", &design("joint-a.toml"), "--gauge-factor", "15.3", "--r0-ohm", "215e3", "-o", &out]);
+        let o = dlw(&[
+            "estimator-config",
+            &design("joint-a.toml"),
+            "--gauge-factor",
+            "15.3",
+            "--r0-ohm",
+            "215e3",
+            "-o",
+            &out,
+        ]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         let text = std::fs::read_to_string(&out).unwrap();
         let config: EstimatorConfig = if name.ends_with("toml") {
-            assert!(text.starts_with("# Nominal linear estimator config for Joint A"), "{text}");
+            assert!(
+                text.starts_with("# Nominal linear estimator config for Joint A"),
+                "{text}"
+            );
             toml::from_str(&text).unwrap()
         } else {
             serde_json::from_str(&text).unwrap()
@@ -57,9 +69,22 @@ fn bsn_design_gets_two_sensors_and_per_sensor_values() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("c.toml").display().to_string();
     let o = dlw(&[
-        "estimator-config", &design("joint-c.toml"), "--gauge-factor", "1.28", "--r0-ohm", "74e3",
-        "--second-gauge-factor", "0.68", "--second-r0-ohm", "88.9e3", "--second-divider-ohm", "102.5e3",
-        "--supply-v", "3.3", "-o", &out,
+        "estimator-config",
+        &design("joint-c.toml"),
+        "--gauge-factor",
+        "1.28",
+        "--r0-ohm",
+        "74e3",
+        "--second-gauge-factor",
+        "0.68",
+        "--second-r0-ohm",
+        "88.9e3",
+        "--second-divider-ohm",
+        "102.5e3",
+        "--supply-v",
+        "3.3",
+        "-o",
+        &out,
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let c: EstimatorConfig = toml::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
@@ -75,11 +100,41 @@ fn bsn_design_gets_two_sensors_and_per_sensor_values() {
 fn refusals_name_the_problem_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let cases: [(&str, &[&str], &str); 5] = [
-        ("c.yaml", &["--gauge-factor", "15.3", "--r0-ohm", "215e3"], ".toml or .json"),
+        (
+            "c.yaml",
+            &["--gauge-factor", "15.3", "--r0-ohm", "215e3"],
+            ".toml or .json",
+        ),
         ("c.toml", &["--gauge-factor", "15.3", "--r0-ohm=-5"], "-5"),
-        ("c.toml", &["--gauge-factor", "15.3", "--r0-ohm", "215e3", "--divider-ohm", "0"], "divider_ohm = 0"),
-        ("c.toml", &["--gauge-factor", "nan", "--r0-ohm", "215e3"], "NaN"),
-        ("c.toml", &["--gauge-factor", "15.3", "--r0-ohm", "215e3", "--second-r0-ohm", "9e4"], "need a BSN design"),
+        (
+            "c.toml",
+            &[
+                "--gauge-factor",
+                "15.3",
+                "--r0-ohm",
+                "215e3",
+                "--divider-ohm",
+                "0",
+            ],
+            "divider_ohm = 0",
+        ),
+        (
+            "c.toml",
+            &["--gauge-factor", "nan", "--r0-ohm", "215e3"],
+            "NaN",
+        ),
+        (
+            "c.toml",
+            &[
+                "--gauge-factor",
+                "15.3",
+                "--r0-ohm",
+                "215e3",
+                "--second-r0-ohm",
+                "9e4",
+            ],
+            "need a BSN design",
+        ),
     ];
     for (name, extra, needle) in cases {
         let out = dir.path().join(name).display().to_string();
@@ -91,6 +146,10 @@ fn refusals_name_the_problem_and_write_nothing() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "{extra:?} succeeded");
         assert!(err.contains(needle), "{extra:?}: {err}");
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "{extra:?} wrote a file");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "{extra:?} wrote a file"
+        );
     }
 }

@@ -100,6 +100,18 @@ pub enum SimError {
         /// The joint strain at that sample.
         strain: f64,
     },
+    /// The recording would not fit in memory.
+    #[error("duration_s = {duration_s} s at {sample_hz} Hz is {samples} samples, more than the {max} a simulation may hold")]
+    TooLong {
+        /// Requested duration (s).
+        duration_s: f64,
+        /// Sample rate (Hz).
+        sample_hz: f64,
+        /// Samples that would need.
+        samples: f64,
+        /// The limit, [`MAX_SAMPLES`].
+        max: usize,
+    },
     /// A recorded voltage reached a rail, which no reader accepts.
     #[error("sensor {sensor} voltage is {volts} V at t = {time_s} s, at or beyond a rail (must lie strictly between 0 and supply_v = {supply_v} V): check the ADC range and the divider")]
     Rail {
@@ -113,6 +125,10 @@ pub enum SimError {
         supply_v: f64,
     },
 }
+
+/// Most samples one simulation holds in memory: 20 million, 11 hours at 500 Hz (about 1 GB of
+/// samples and 750 MB of CSV).
+pub const MAX_SAMPLES: usize = 20_000_000;
 
 /// A resolved simulation: everything concrete, ready to run.
 #[derive(Debug, Clone)]
@@ -177,7 +193,16 @@ pub fn plan(
     let duration_s = *scenario
         .duration_s
         .get_or_insert(stroke.natural_duration_s());
-    let samples = (duration_s * scenario.sample_hz).round().max(1.0) as usize;
+    let samples = (duration_s * scenario.sample_hz).round().max(1.0);
+    if samples > MAX_SAMPLES as f64 {
+        return Err(SimError::TooLong {
+            duration_s,
+            sample_hz: scenario.sample_hz,
+            samples,
+            max: MAX_SAMPLES,
+        });
+    }
+    let samples = samples as usize;
     Ok(Plan {
         design: design.clone(),
         scenario,
@@ -366,6 +391,18 @@ mod tests {
         assert!(
             err.contains("sensor 1 resistance")
                 && err.contains("must be finite and greater than 0"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn refuses_recordings_too_long_to_hold() {
+        let design = test_design(NotchStyle::Uan);
+        let err = plan(&design, scenario(ProtocolKind::Random, 1e6), None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("500000000 samples") && err.contains("20000000"),
             "{err}"
         );
     }
