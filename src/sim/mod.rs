@@ -56,7 +56,7 @@ use crate::design::Design;
 
 /// The divider, ADC and EM tracker models.
 pub use measure::{Adc, Tracker};
-/// Default PI sensor models from the paper's Table IV.
+/// Default PI sensor models from the paper's Table III.
 pub use pi_default::{PiCharacteristics, JOINT_A_PI, JOINT_C_PI};
 /// Stroke → angle with backlash, relaxation and the notch limit.
 pub use plant::Plant;

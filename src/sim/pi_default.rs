@@ -1,13 +1,13 @@
 //! Default generalized-PI sensor models, built from the characteristic points the paper prints
-//! in Table IV (its fitted weights are not printed).
+//! in Table III (its fitted weights are not printed).
 //!
 //! From the centre `(ε_c, R_c)`, the centre slope `m_c` and the peak `(ε_peak, R_peak)`:
 //!
 //! - `a₁ = a₅ = R_peak − R_c`, `a₃ = a₄ = a₇ = a₈ = 0`: the paper's initial guesses;
 //! - `a₂ = a₆ = m_c/a₁`, so the loading curve's slope at the centre is `m_c`, which is how
-//!   Table IV defines it. (The paper's initial guess `m_c/(2a₁)` is a starting point for its
+//!   Table III defines it. (The paper's initial guess `m_c/(2a₁)` is a starting point for its
 //!   optimizer; with it the tanh alone reaches only 244 of Joint A's 250 kΩ at `ε_peak`. With
-//!   `m_c/a₁` it reaches 249 kΩ, and 210 kΩ at zero strain against Table III's linear
+//!   `m_c/a₁` it reaches 249 kΩ, and 210 kΩ at zero strain against the same table's linear
 //!   intercept of 215 kΩ.)
 //! - `N = 10` radii evenly spaced from 0 to `ρ_max = a₁·tanh(a₂·ε_peak)`, the paper's choice;
 //! - weights: `P₁ = 0.8` on the zero-radius play (the hysteresis-free part) and `0.2/9` on each
@@ -18,13 +18,13 @@
 //!   linear one (2.76° → 1.76° RMSE).
 //! - `min_ohm`, `max_ohm` (the range the inverse clamps to): the tanh's asymptotes `R_c ∓ a₁`.
 //!
-//! Joint C's Table IV prints `R_peak = 754 kΩ` against `R_c = 74.7 kΩ`, `m_c = 181 kΩ` and a
+//! Joint C's Table III prints `R_peak = 754 kΩ` against `R_c = 74.7 kΩ`, `m_c = 181 kΩ` and a
 //! linear model that changes by 1.3 kΩ over the whole range: a misplaced decimal point for
 //! 75.4 kΩ, which we use. With it the model gives 74.0 kΩ at zero strain, Table V's `R₀`.
 
 use dlw_estimator::{Coeffs, PiConfig};
 
-/// The characteristic points of a sensor's resistance–strain loop (the paper's Table IV).
+/// The characteristic points of a sensor's resistance–strain loop (the paper's Table III).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PiCharacteristics {
     /// Strain at the centre `ε_c` (fraction).
@@ -39,7 +39,7 @@ pub struct PiCharacteristics {
     pub peak_strain: f64,
 }
 
-/// Joint A, Table IV.
+/// Joint A, Table III.
 pub const JOINT_A_PI: PiCharacteristics = PiCharacteristics {
     center_strain: 0.00307,
     center_ohm: 224e3,
@@ -48,7 +48,7 @@ pub const JOINT_A_PI: PiCharacteristics = PiCharacteristics {
     peak_strain: 0.0135,
 };
 
-/// Joint C (sensor in tension), Table IV, with `R_peak` read as 75.4 kΩ (see the module doc).
+/// Joint C (sensor in tension), Table III, with `R_peak` read as 75.4 kΩ (see the module doc).
 pub const JOINT_C_PI: PiCharacteristics = PiCharacteristics {
     center_strain: 0.00804,
     center_ohm: 74.7e3,

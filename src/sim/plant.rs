@@ -9,7 +9,7 @@
 //! 2. **Viscoelastic relaxation**, a standard linear solid: the elastic angle `θₑ = gain·s` loses
 //!    `δ`, which follows `fraction·θₑ` with time constant `τ`:
 //!    `δ ← δ + (fraction·θₑ − δ)·(1 − e^(−Δt/τ))` (exact for a held stroke). Under a hold the
-//!    angle decays from `θₑ` to `(1 − fraction)·θₑ`, as in the paper's Fig. 7(b).
+//!    angle decays from `θₑ` to `(1 − fraction)·θₑ`, as in the paper's relaxation experiment (Section IV-A3).
 //! 3. **Notch-closing limit**: the angle stops at `Joint::closing_angle_rad` (UAN: positive
 //!    angles only, since a negative angle opens the notches; BSN: both ways).
 

@@ -158,9 +158,9 @@ impl Default for Scenario {
 ///
 /// | key | default | source |
 /// |---|---|---|
-/// | `gain_deg_per_mm` | 35.49 | the paper's Joint D, `m_t` (Section IV-D) |
+/// | `gain_deg_per_mm` | 35.49 | the paper's Joint D, `m_t` (Section IV-C) |
 /// | `backlash` | off, `width_mm = 0.05` | illustrative: ~1.8° of dead band at Joint D's gain |
-/// | `relaxation` | off, `fraction = 0.05`, `tau_s = 20` | illustrative: the paper shows the decay (Fig. 7b) but no numbers |
+/// | `relaxation` | off, `fraction = 0.05`, `tau_s = 20` | illustrative: the paper shows the decay (Section IV-A3) but no numbers |
 /// | `notch_limit` | off | the angle stops where the notches close (`Joint::closing_angle_rad`) |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -259,13 +259,13 @@ pub enum SensorModelKind {
 /// | `model` | `linear` | `linear` | |
 /// | `gauge_factor` | 15.3 | 1.28 / 0.680 | Table III (Joint A); Table V (Joint C tension / compression) |
 /// | `r0_ohm` | 215e3 | 74.0e3 / 88.9e3 | same |
-/// | `divider_ohm` | 99.6e3 | 99.6e3 / 102.5e3 | Section II-E |
-/// | `pi` | Joint A | Joint C / none | Table IV's points, see `pi_default` (no default for sensor 2: the paper fits it only linearly) |
+/// | `divider_ohm` | 99.6e3 | 99.6e3 / 102.5e3 | Section II-B, System Assembly |
+/// | `pi` | Joint A | Joint C / none | Table III's points, see `pi_default` (no default for sensor 2: the paper fits it only linearly) |
 /// | `continuous_pi` | none | none | |
 /// | `saturation` | off, `strain = 0.02` | same | the paper's conclusion: saturation below 2 % |
 /// | `drift` | off, 0 Ω/s, 20 Ω/√s | 0 Ω/s, 0.7 Ω/√s | the spread of R0 over 3000 s (Section IV-A2): 1.10 kΩ (A), 0.038 kΩ (C) |
 /// | `rate` | off, 0.1 per decade, 1e-3 /s, 1 s | same | illustrative (the paper found no correlation) |
-/// | `creep` | off, 0.03, 30 s | same | illustrative (Fig. 7c: small) |
+/// | `creep` | off, 0.03, 30 s | same | illustrative (Section IV-A3: the resistance barely changed during holds) |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SensorParams {
