@@ -13,18 +13,26 @@
 //! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting) and the setup sheet;
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
 //! - [`job`]: a design made into a program and a setup sheet for one machine;
-//! - [`output`]: writing files atomically, so a failed command never leaves a partial file.
+//! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
+//! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
+//!   config files;
+//! - [`fixed`]: fixed-point CSV number formatting;
+//! - [`sim`]: the bench simulator (stroke → angle → strain → resistance → voltage → ADC) and
+//!   recording folders.
 //!
 //! The cross-section and strain math lives in the `dlw-geometry` crate, shared with the
 //! runtime estimator.
 
 pub mod design;
 pub mod drawing;
+pub mod fixed;
 pub mod job;
 pub mod layout;
 pub mod machine;
 pub mod output;
 pub mod post;
 pub mod process;
+pub mod replay;
 pub mod rules;
+pub mod sim;
 pub mod toolpath;

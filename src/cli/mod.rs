@@ -5,9 +5,12 @@ use clap::{Parser, Subcommand};
 
 mod build;
 mod draw;
+mod estimate;
+mod estimator_config;
 mod import_dxf;
 mod inspect;
 mod program;
+mod simulate;
 
 /// From a sensing continuum-robot joint's design parameters to drawings, laser programs and a
 /// working sensor.
@@ -30,6 +33,12 @@ enum Command {
     Program(program::Args),
     /// Write everything for one joint into a folder: DXF, SVGs, laser program, setup sheet.
     Build(build::Args),
+    /// Simulate the paper's bench and write a recording folder.
+    Simulate(simulate::Args),
+    /// Write a nominal linear estimator config from a design's geometry.
+    EstimatorConfig(estimator_config::Args),
+    /// Run the runtime estimator over a recording and report its error.
+    Estimate(estimate::Args),
 }
 
 /// Runs the parsed command.
@@ -40,5 +49,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::ImportDxf(args) => import_dxf::run(args),
         Command::Program(args) => program::run(args),
         Command::Build(args) => build::run(args),
+        Command::Simulate(args) => simulate::run(args),
+        Command::EstimatorConfig(args) => estimator_config::run(args),
+        Command::Estimate(args) => estimate::run(args),
     }
 }

@@ -1,0 +1,296 @@
+//! Running the runtime estimator over a recording, as a controller would have run it live.
+//!
+//! [`replay`] feeds every sample's divider voltage(s) to a `dlw_estimator::Estimator`, in order,
+//! and compares each estimate with the angle the EM tracker recorded at the same sample:
+//! `error = estimate − recorded`. The metrics are over every sample, held or not:
+//! `rmse_deg = √(mean(error²))`, `max_abs_error_deg = max |error|`.
+//!
+//! The error is raw: a filter's delay is not compensated. A moving average of `N` samples lags
+//! a ramp by `(N − 1)/2` samples, so on a signal moving at `ω` °/s it adds about
+//! `ω·(N − 1)/(2·f_s)` degrees of lag error while it removes noise (by `√N` for white noise);
+//! the report gives the delay so a reader can tell the two apart.
+//!
+//! [`config_file`] reads and writes estimator configs as TOML or JSON.
+
+mod config_file;
+
+use dlw_estimator::{Estimator, EstimatorConfig, EstimatorError, Flags};
+use serde::Serialize;
+
+use crate::fixed::push_fixed;
+use crate::sim::Recording;
+
+/// Estimator config files in TOML or JSON.
+pub use config_file::{config_text, load_config, ConfigFileError, ConfigFormat};
+
+/// Why a replay could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum ReplayError {
+    /// The config needs more sensors than the recording has.
+    #[error(
+        "the config reads {config} sensors but the recording has {recording} voltage column(s)"
+    )]
+    SensorCount {
+        /// Sensors in the config.
+        config: u32,
+        /// Voltage columns in the recording.
+        recording: usize,
+    },
+    /// The estimator could not be built.
+    #[error("cannot build the estimator: {0}")]
+    Estimator(#[from] EstimatorError),
+}
+
+/// The comparison of the estimates with the recorded angle. The JSON keys are part of the
+/// interface.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Metrics {
+    /// Root mean square of `estimate − recorded` (°).
+    pub rmse_deg: f64,
+    /// Largest `|estimate − recorded|` (°).
+    pub max_abs_error_deg: f64,
+    /// Samples compared (every sample of the recording).
+    pub samples: usize,
+    /// Samples whose estimate carried any flag.
+    pub flagged_samples: usize,
+    /// Samples held (the estimate is a previous one).
+    pub held_samples: usize,
+    /// Delay of the estimator's filters on a ramp (samples), not compensated in the error.
+    pub filter_delay_samples: f64,
+    /// The same delay in seconds, at the recording's sample rate.
+    pub filter_delay_s: f64,
+}
+
+/// The estimates for every sample and their metrics.
+#[derive(Debug, Clone)]
+pub struct Replay {
+    /// The estimated angle per sample (°).
+    pub estimate_deg: Vec<f64>,
+    /// The estimator's flags per sample.
+    pub flags: Vec<Flags>,
+    /// The comparison with the recorded angle.
+    pub metrics: Metrics,
+    /// Things the user should know (a divider that differs from the rig, an unused column).
+    pub warnings: Vec<String>,
+}
+
+/// Runs `config`'s estimator over `recording`.
+///
+/// # Errors
+/// [`ReplayError`]: a config the estimator crate refuses, or one that needs a second sensor the
+/// recording does not have.
+pub fn replay(config: &EstimatorConfig, recording: &Recording) -> Result<Replay, ReplayError> {
+    let rig = &recording.rig;
+    let samples = &recording.samples;
+    let channels = samples.volts.len();
+    let two = config.second_sensor.is_some();
+    if config.sensor_count() as usize > channels {
+        return Err(ReplayError::SensorCount {
+            config: config.sensor_count(),
+            recording: channels,
+        });
+    }
+    let mut warnings = Vec::new();
+    if !two && channels > 1 {
+        warnings.push(format!(
+            "the recording has {channels} voltage columns; the config reads only v1_V"
+        ));
+    }
+    let sensors = std::iter::once(&config.sensor).chain(config.second_sensor.as_ref());
+    for (i, s) in sensors.enumerate() {
+        let rig_ohm = rig.divider_ohm[i];
+        if !close(s.divider_ohm, rig_ohm) {
+            warnings.push(format!(
+                "sensor {} divider_ohm is {} Ω in the config but {} Ω in rig.toml",
+                i + 1,
+                s.divider_ohm,
+                rig_ohm
+            ));
+        }
+        if !close(s.supply_v, rig.supply_v) {
+            warnings.push(format!(
+                "sensor {} supply_v is {} V in the config but {} V in rig.toml",
+                i + 1,
+                s.supply_v,
+                rig.supply_v
+            ));
+        }
+    }
+    // About 100 KiB of filter buffers: on the heap.
+    let mut estimator = Box::new(Estimator::new(config)?);
+    let n = samples.len();
+    let mut estimate_deg = Vec::with_capacity(n);
+    let mut flags = Vec::with_capacity(n);
+    let (mut sum_sq, mut max_abs) = (0.0f64, 0.0f64);
+    let (mut flagged, mut held) = (0, 0);
+    for i in 0..n {
+        let e = if two {
+            estimator.step2(samples.volts[0][i], samples.volts[1][i])
+        } else {
+            estimator.step(samples.volts[0][i])
+        };
+        let err = e.angle_deg - samples.angle_deg[i];
+        sum_sq += err * err;
+        max_abs = max_abs.max(err.abs());
+        flagged += usize::from(!e.flags.is_empty());
+        held += usize::from(e.flags.contains(Flags::HELD));
+        estimate_deg.push(e.angle_deg);
+        flags.push(e.flags);
+    }
+    let delay = estimator.delay_samples();
+    Ok(Replay {
+        estimate_deg,
+        flags,
+        metrics: Metrics {
+            rmse_deg: (sum_sq / n.max(1) as f64).sqrt(),
+            max_abs_error_deg: max_abs,
+            samples: n,
+            flagged_samples: flagged,
+            held_samples: held,
+            filter_delay_samples: delay,
+            filter_delay_s: delay / rig.sample_hz,
+        },
+        warnings,
+    })
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
+}
+
+impl Replay {
+    /// The estimates as CSV: `time_s,angle_deg,estimate_deg,error_deg,flags`, where `angle_deg`
+    /// is the recorded angle, `error_deg = estimate_deg − angle_deg` and `flags` the estimator's
+    /// flag names joined by `|` (`none` when clean).
+    pub fn csv_bytes(&self, recording: &Recording) -> Vec<u8> {
+        let s = &recording.samples;
+        let mut out = Vec::with_capacity(s.len() * 48 + 64);
+        out.extend_from_slice(b"time_s,angle_deg,estimate_deg,error_deg,flags\n");
+        for i in 0..s.len() {
+            push_fixed(&mut out, s.time_s[i], 6);
+            out.push(b',');
+            push_fixed(&mut out, s.angle_deg[i], 4);
+            out.push(b',');
+            push_fixed(&mut out, self.estimate_deg[i], 4);
+            out.push(b',');
+            push_fixed(&mut out, self.estimate_deg[i] - s.angle_deg[i], 4);
+            out.push(b',');
+            out.extend_from_slice(self.flags[i].to_string().as_bytes());
+            out.push(b'\n');
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::{plan, ProtocolKind, Scenario};
+    use dlw_estimator::{nominal_divider, FilterConfig, JointConfig};
+    use dlw_geometry::NotchStyle;
+
+    fn recording(style: NotchStyle, edit: impl FnOnce(&mut Scenario)) -> Recording {
+        let design = crate::sim::test_design(style);
+        let mut sc = Scenario {
+            protocol: Some(ProtocolKind::Random),
+            duration_s: Some(30.0),
+            ..Scenario::default()
+        };
+        edit(&mut sc);
+        let p = plan(&design, sc, None).unwrap();
+        Recording {
+            rig: p.rig(),
+            samples: p.run().unwrap().samples,
+        }
+    }
+
+    fn nominal(style: NotchStyle, gf: f64, r0: f64) -> EstimatorConfig {
+        let design = crate::sim::test_design(style);
+        EstimatorConfig::nominal_linear(
+            JointConfig::from_joint(&design.joint),
+            gf,
+            r0,
+            nominal_divider(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn noise_free_linear_recording_is_recovered_exactly() {
+        let rec = recording(NotchStyle::Uan, |s| {
+            s.adc.enabled = false;
+            s.tracker.enabled = false;
+        });
+        let r = replay(&nominal(NotchStyle::Uan, 15.3, 215e3), &rec).unwrap();
+        assert!(r.metrics.rmse_deg < 1e-9, "{:?}", r.metrics);
+        assert_eq!(r.metrics.samples, 15_000);
+        assert_eq!(r.metrics.flagged_samples, 0);
+        assert!(r.warnings.is_empty());
+        let wrong = replay(&nominal(NotchStyle::Uan, 14.0, 215e3), &rec).unwrap();
+        assert!(wrong.metrics.rmse_deg > 0.5, "{:?}", wrong.metrics);
+    }
+
+    #[test]
+    fn two_sensor_config_needs_two_columns_and_reports_divider_mismatch() {
+        let uan = recording(NotchStyle::Uan, |_| {});
+        let mut cfg = nominal(NotchStyle::Bsn, 1.28, 74e3);
+        let err = replay(&cfg, &uan).unwrap_err().to_string();
+        assert!(
+            err.contains("2 sensors") && err.contains("1 voltage column"),
+            "{err}"
+        );
+        let bsn = recording(NotchStyle::Bsn, |_| {});
+        cfg.output_filter = FilterConfig::MovingAverage { samples: 101 };
+        let r = replay(&cfg, &bsn).unwrap();
+        // The nominal config gives sensor 2 the 99.6 kΩ divider; the bench has 102.5 kΩ.
+        assert!(
+            r.warnings.iter().any(|w| w.contains("102500")),
+            "{:?}",
+            r.warnings
+        );
+        assert_eq!(r.metrics.filter_delay_samples, 50.0);
+        assert_eq!(r.metrics.filter_delay_s, 0.1);
+    }
+
+    /// The simulator's PI sensor is the estimator crate's forward model, so the estimator's PI
+    /// inverse with the same parameters recovers the angle of a noise-free recording; only the
+    /// samples at reversals may be off (the tanh branch switch, bounded in the estimator crate).
+    #[test]
+    fn pi_inverse_recovers_the_simulated_pi_sensor() {
+        use crate::sim::{SensorModelKind, JOINT_A_PI};
+        use dlw_estimator::ModelConfig;
+        let rec = recording(NotchStyle::Uan, |s| {
+            s.adc.enabled = false;
+            s.tracker.enabled = false;
+            s.sensor1.model = SensorModelKind::Pi;
+        });
+        let mut cfg = nominal(NotchStyle::Uan, 15.3, 215e3);
+        cfg.sensor.model = ModelConfig::Pi(JOINT_A_PI.to_config());
+        let r = replay(&cfg, &rec).unwrap();
+        let clean: Vec<f64> = (0..rec.samples.len())
+            .filter(|&i| r.flags[i].is_empty())
+            .map(|i| (r.estimate_deg[i] - rec.samples.angle_deg[i]).abs())
+            .collect();
+        let worst = clean.iter().cloned().fold(0.0, f64::max);
+        assert!(clean.len() > 14_000, "{} clean samples", clean.len());
+        assert!(worst < 1e-6, "largest error on unflagged samples {worst}°");
+        // The linear model of the same sensor is degrees off.
+        let linear = replay(&nominal(NotchStyle::Uan, 15.3, 215e3), &rec).unwrap();
+        assert!(linear.metrics.rmse_deg > 0.5, "{:?}", linear.metrics);
+    }
+
+    #[test]
+    fn csv_has_a_row_per_sample() {
+        let rec = recording(NotchStyle::Uan, |s| s.duration_s = Some(0.01));
+        let r = replay(&nominal(NotchStyle::Uan, 15.3, 215e3), &rec).unwrap();
+        let text = String::from_utf8(r.csv_bytes(&rec)).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "time_s,angle_deg,estimate_deg,error_deg,flags");
+        assert_eq!(lines.len(), 6);
+        assert!(
+            lines[1].starts_with("0.000000,") && lines[1].ends_with(",none"),
+            "{}",
+            lines[1]
+        );
+    }
+}

@@ -1,0 +1,424 @@
+//! The bench simulator: produces recordings of the paper's bench, in the format a real bench
+//! recording uses, from a design, a protocol and a scenario.
+//!
+//! The chain, one sample at a time (500 Hz by default):
+//!
+//! ```text
+//! tendon stroke ─plant─▶ joint angle θ ─Joint::strain─▶ ε ─sensor─▶ R ─Divider::voltage─▶ V ─ADC─▶ v1_V
+//!   (protocol)              │                          (sensor 2: −ε, its own divider)          ─▶ v2_V
+//!                           └──────────── EM tracker ─────────────────────────────────────────▶ angle_deg
+//! ```
+//!
+//! Strain and voltage use `dlw_geometry`, the code the planner and the runtime estimator use, so
+//! a simulated joint is read with exactly the geometry it was simulated with. Each effect
+//! (backlash, relaxation, the notch limit, saturation, drift, rate dependence, creep, ADC and
+//! tracker noise) is switched on in the [`Scenario`] with its parameters. Every random draw comes
+//! from a ChaCha stream of the scenario's seed, one stream per source, so a seed gives the same
+//! recording on every platform.
+//!
+//! Plan, then run: [`plan`] resolves the scenario against the design and builds the stroke
+//! profile; [`Plan::run`] generates the samples in memory; [`Recording::write`] writes them.
+//!
+//! # Examples
+//! ```
+//! use dlw::design::Design;
+//! use dlw::sim::{plan, ProtocolKind, Scenario};
+//!
+//! let design = Design::from_toml(include_str!("../../designs/joint-d.toml"))?;
+//! let scenario = Scenario {
+//!     protocol: Some(ProtocolKind::Characterization),
+//!     duration_s: Some(2.0),
+//!     ..Scenario::default()
+//! };
+//! let run = plan(&design, scenario, None)?.run()?;
+//! assert_eq!(run.samples.len(), 1000);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Errors
+//! [`SimError`]: a scenario value out of range, an unreadable stroke profile, or a scenario that
+//! drives a sensor to a non-physical resistance or a divider to a rail.
+
+mod measure;
+mod pi_default;
+mod plant;
+mod protocol;
+mod recording;
+mod rng;
+mod scenario;
+mod sensor;
+
+use std::path::PathBuf;
+
+use dlw_geometry::Divider;
+
+use crate::design::Design;
+
+/// The divider, ADC and EM tracker models.
+pub use measure::{Adc, Tracker};
+/// Default PI sensor models from the paper's Table III.
+pub use pi_default::{PiCharacteristics, JOINT_A_PI, JOINT_C_PI};
+/// Stroke → angle with backlash, relaxation and the notch limit.
+pub use plant::Plant;
+/// Stroke profiles of the paper's protocols and from CSV.
+pub use protocol::{
+    Characterization, CustomProtocol, Knot, ProtocolError, ProtocolKind, ProtocolParams,
+    RandomProtocol, RateDependenceProtocol, RelaxationProtocol, Sampler, StrokeProfile,
+};
+/// Recording folders: reading, checking and writing.
+pub use recording::{
+    header, Recording, RecordingError, Rig, Samples, SimulationInfo, DATA_FILE, RIG_FILE,
+};
+/// Seeded random streams.
+pub use rng::{streams, Stream};
+/// The scenario file: every effect, switchable, with documented defaults.
+pub use scenario::{
+    AdcParams, Backlash, Creep, Drift, NotchLimit, PlantParams, RateDependence, Relaxation,
+    Saturation, Scenario, ScenarioError, SensorModelKind, SensorParams, TrackerParams,
+};
+/// Strain → resistance with saturation, drift, rate dependence and creep.
+pub use sensor::Sensor;
+
+/// Why a simulation failed.
+#[derive(Debug, thiserror::Error)]
+pub enum SimError {
+    /// The scenario was refused.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// The stroke profile could not be built.
+    #[error(transparent)]
+    Protocol(#[from] ProtocolError),
+    /// A sensor model gave a resistance no physical sensor has.
+    #[error("sensor {sensor} resistance is {ohm} Ω at t = {time_s} s (strain {strain}), must be finite and greater than 0: the scenario drives the sensor model beyond where it is physical")]
+    Resistance {
+        /// 1 or 2.
+        sensor: usize,
+        /// Sample time (s).
+        time_s: f64,
+        /// The resistance.
+        ohm: f64,
+        /// The joint strain at that sample.
+        strain: f64,
+    },
+    /// The recording would not fit in memory.
+    #[error("duration_s = {duration_s} s at {sample_hz} Hz is {samples} samples, more than the {max} a simulation may hold")]
+    TooLong {
+        /// Requested duration (s).
+        duration_s: f64,
+        /// Sample rate (Hz).
+        sample_hz: f64,
+        /// Samples that would need.
+        samples: f64,
+        /// The limit, [`MAX_SAMPLES`].
+        max: usize,
+    },
+    /// A recorded voltage reached a rail, which no reader accepts.
+    #[error("sensor {sensor} voltage is {volts} V at t = {time_s} s, at or beyond a rail (must lie strictly between 0 and supply_v = {supply_v} V): check the ADC range and the divider")]
+    Rail {
+        /// 1 or 2.
+        sensor: usize,
+        /// Sample time (s).
+        time_s: f64,
+        /// The recorded voltage.
+        volts: f64,
+        /// The supply.
+        supply_v: f64,
+    },
+}
+
+/// Most samples one simulation holds in memory: 20 million, 11 hours at 500 Hz (about 1 GB of
+/// samples and 750 MB of CSV).
+pub const MAX_SAMPLES: usize = 20_000_000;
+
+/// A resolved simulation: everything concrete, ready to run.
+#[derive(Debug, Clone)]
+pub struct Plan {
+    /// The design.
+    pub design: Design,
+    /// The resolved scenario: protocol, duration, seed and every parameter set.
+    pub scenario: Scenario,
+    /// The stroke profile, covering the duration.
+    pub profile: StrokeProfile,
+    /// Samples to generate: `round(duration_s·sample_hz)`.
+    pub samples: usize,
+}
+
+/// The output of a run.
+#[derive(Debug, Clone)]
+pub struct Run {
+    /// The recorded columns, as the bench would write them.
+    pub samples: Samples,
+    /// The true joint angle (°) before the tracker's noise; not part of a recording.
+    pub true_angle_deg: Vec<f64>,
+}
+
+/// Resolves `scenario` (with any command-line overrides already applied) against `design` and
+/// builds the stroke profile. `profile` overrides the scenario's custom profile path.
+///
+/// # Errors
+/// [`SimError::Scenario`] for a refused value or no protocol; [`SimError::Protocol`] for a bad
+/// or missing stroke profile.
+pub fn plan(
+    design: &Design,
+    scenario: Scenario,
+    profile: Option<PathBuf>,
+) -> Result<Plan, SimError> {
+    let mut scenario = scenario.resolve(design)?;
+    let kind = scenario.protocol.ok_or(ScenarioError::NoProtocol)?;
+    if profile.is_some() {
+        scenario.protocols.custom.profile = profile;
+    }
+    let stroke = match kind {
+        ProtocolKind::Custom => {
+            let path = scenario
+                .protocols
+                .custom
+                .profile
+                .as_ref()
+                .ok_or(ProtocolError::NoProfile)?;
+            StrokeProfile::from_csv(path)?
+        }
+        _ => {
+            let mut rng = Stream::new(scenario.seed, streams::PROTOCOL);
+            let amplitude_mm = scenario.protocols.amplitude_mm.unwrap_or(0.0);
+            StrokeProfile::built_in(
+                kind,
+                &scenario.protocols,
+                amplitude_mm,
+                scenario.duration_s,
+                &mut rng,
+            )?
+        }
+    };
+    let duration_s = *scenario
+        .duration_s
+        .get_or_insert(stroke.natural_duration_s());
+    let samples = (duration_s * scenario.sample_hz).round().max(1.0);
+    if samples > MAX_SAMPLES as f64 {
+        return Err(SimError::TooLong {
+            duration_s,
+            sample_hz: scenario.sample_hz,
+            samples,
+            max: MAX_SAMPLES,
+        });
+    }
+    let samples = samples as usize;
+    Ok(Plan {
+        design: design.clone(),
+        scenario,
+        profile: stroke,
+        samples,
+    })
+}
+
+impl Plan {
+    /// Generates every sample in memory.
+    ///
+    /// # Errors
+    /// [`SimError::Resistance`] or [`SimError::Rail`] at the first sample where the scenario
+    /// leaves the physical range.
+    pub fn run(&self) -> Result<Run, SimError> {
+        let sc = &self.scenario;
+        let joint = &self.design.joint;
+        let dt_s = 1.0 / sc.sample_hz;
+        let mut plant = Plant::new(&sc.plant, joint, dt_s);
+        let mut channels: Vec<(Sensor, Divider, Adc)> = sc
+            .sensors()
+            .enumerate()
+            .map(|(i, p)| {
+                let i = i as u64;
+                let drift = Stream::new(sc.seed, streams::DRIFT + i);
+                let sensor = Sensor::new(p, i as usize + 1, dt_s, drift)?;
+                let divider = Divider {
+                    fixed_ohm: p.divider_ohm.unwrap_or(f64::NAN),
+                    supply_v: sc.supply_v,
+                };
+                let adc = Adc::new(&sc.adc, Stream::new(sc.seed, streams::ADC + i));
+                Ok((sensor, divider, adc))
+            })
+            .collect::<Result<_, ScenarioError>>()?;
+        let mut tracker = Tracker::new(&sc.tracker, Stream::new(sc.seed, streams::TRACKER));
+        let mut stroke = self.profile.sampler();
+        let n = self.samples;
+        let mut out = Samples::with_capacity(channels.len(), n);
+        let mut true_angle_deg = Vec::with_capacity(n);
+        for i in 0..n {
+            let time_s = i as f64 / sc.sample_hz;
+            let stroke_mm = stroke.at(time_s);
+            let angle_rad = plant.step(stroke_mm);
+            let strain = joint.strain(angle_rad);
+            for (c, (sensor, divider, adc)) in channels.iter_mut().enumerate() {
+                let ohm = sensor.step(strain);
+                if !(ohm.is_finite() && ohm > 0.0) {
+                    return Err(SimError::Resistance {
+                        sensor: c + 1,
+                        time_s,
+                        ohm,
+                        strain,
+                    });
+                }
+                let volts = adc.read(divider.voltage(ohm));
+                if !(volts > 0.0 && volts < sc.supply_v) {
+                    return Err(SimError::Rail {
+                        sensor: c + 1,
+                        time_s,
+                        volts,
+                        supply_v: sc.supply_v,
+                    });
+                }
+                out.volts[c].push(volts);
+            }
+            let angle_deg = angle_rad.to_degrees();
+            true_angle_deg.push(angle_deg);
+            out.time_s.push(time_s);
+            out.stroke_mm.push(stroke_mm);
+            out.angle_deg.push(tracker.read(angle_deg));
+        }
+        Ok(Run {
+            samples: out,
+            true_angle_deg,
+        })
+    }
+
+    /// The recording's `rig.toml`: the bench's settings plus the design and resolved scenario.
+    pub fn rig(&self) -> Rig {
+        Rig {
+            sample_hz: self.scenario.sample_hz,
+            supply_v: self.scenario.supply_v,
+            divider_ohm: self
+                .scenario
+                .sensors()
+                .map(|s| s.divider_ohm.unwrap_or(f64::NAN))
+                .collect(),
+            notes: Some(format!(
+                "simulated by dlw {}: {} protocol, seed {}",
+                env!("CARGO_PKG_VERSION"),
+                self.scenario.protocol.map_or("?", ProtocolKind::name),
+                self.scenario.seed
+            )),
+            simulation: Some(SimulationInfo {
+                dlw_version: env!("CARGO_PKG_VERSION").to_string(),
+                design_checksum: self.design.checksum.clone(),
+            }),
+            design: Some(self.design.file.clone()),
+            scenario: Some(self.scenario.clone()),
+        }
+    }
+}
+
+/// Joint A (UAN) or Joint C (BSN) of the paper's Table I, for tests.
+#[cfg(test)]
+pub(crate) fn test_design(style: dlw_geometry::NotchStyle) -> Design {
+    let text = match style {
+        dlw_geometry::NotchStyle::Uan => include_str!("../../designs/joint-a.toml"),
+        dlw_geometry::NotchStyle::Bsn => include_str!("../../designs/joint-c.toml"),
+    };
+    Design::from_toml(text).expect("the shipped designs are valid")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use dlw_geometry::NotchStyle;
+
+    fn scenario(kind: ProtocolKind, duration_s: f64) -> Scenario {
+        Scenario {
+            protocol: Some(kind),
+            duration_s: Some(duration_s),
+            ..Scenario::default()
+        }
+    }
+
+    #[test]
+    fn amplitude_reaches_the_peak_strain_from_the_geometry() {
+        let design = test_design(NotchStyle::Uan);
+        let mut sc = scenario(ProtocolKind::Characterization, 1000.0);
+        sc.tracker.enabled = false;
+        let plan = plan(&design, sc, None).unwrap();
+        let run = plan.run().unwrap();
+        let peak_deg = run.true_angle_deg.iter().cloned().fold(0.0, f64::max);
+        let peak_strain = design.joint.strain(peak_deg.to_radians());
+        assert_relative_eq!(peak_strain, 0.015, max_relative = 1e-3);
+        // Joint A: ~1.5 % at about 28° (the paper: 1.35 % at 26°).
+        assert!((27.0..30.0).contains(&peak_deg), "{peak_deg}");
+    }
+
+    #[test]
+    fn noise_free_chain_inverts_exactly() {
+        let design = test_design(NotchStyle::Bsn);
+        let mut sc = scenario(ProtocolKind::Random, 60.0);
+        sc.adc.enabled = false;
+        sc.tracker.enabled = false;
+        let plan = plan(&design, sc, None).unwrap();
+        let run = plan.run().unwrap();
+        let s = &plan.scenario;
+        let s2 = s.sensor2.as_ref().unwrap();
+        let d1 = Divider::new(99.6e3, 5.0).unwrap();
+        let d2 = Divider::new(102.5e3, 5.0).unwrap();
+        for i in (0..run.samples.len()).step_by(97) {
+            let r1 = d1.resistance(run.samples.volts[0][i]).unwrap();
+            let r2 = d2.resistance(run.samples.volts[1][i]).unwrap();
+            let e1 = (r1 / 74.0e3 - 1.0) / 1.28;
+            let e2 = (r2 / s2.r0_ohm.unwrap() - 1.0) / 0.680;
+            let theta = design.joint.two_sensor_angle(e1, e2).unwrap().to_degrees();
+            assert_relative_eq!(theta, run.samples.angle_deg[i], epsilon = 1e-9);
+        }
+    }
+
+    #[test]
+    fn same_seed_same_samples_other_seed_other_samples() {
+        let design = test_design(NotchStyle::Uan);
+        let run = |seed| {
+            let mut sc = scenario(ProtocolKind::Random, 20.0);
+            sc.seed = seed;
+            plan(&design, sc, None).unwrap().run().unwrap().samples
+        };
+        assert_eq!(run(1), run(1));
+        assert_ne!(run(1), run(2));
+    }
+
+    #[test]
+    fn nonphysical_resistance_is_an_error_not_a_panic() {
+        let design = test_design(NotchStyle::Uan);
+        let mut sc = scenario(ProtocolKind::Characterization, 100.0);
+        sc.sensor1.gauge_factor = Some(-200.0);
+        let err = plan(&design, sc, None)
+            .unwrap()
+            .run()
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("sensor 1 resistance")
+                && err.contains("must be finite and greater than 0"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn refuses_recordings_too_long_to_hold() {
+        let design = test_design(NotchStyle::Uan);
+        let err = plan(&design, scenario(ProtocolKind::Random, 1e6), None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("500000000 samples") && err.contains("20000000"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn rig_records_dividers_design_and_scenario() {
+        let design = test_design(NotchStyle::Bsn);
+        let plan = plan(&design, scenario(ProtocolKind::Relaxation, 10.0), None).unwrap();
+        let rig = plan.rig();
+        assert_eq!(rig.divider_ohm, vec![99.6e3, 102.5e3]);
+        assert_eq!(rig.design.as_ref().unwrap(), &design.file);
+        let sc = rig.scenario.as_ref().unwrap();
+        assert_eq!(sc.duration_s, Some(10.0));
+        assert!(sc.protocols.amplitude_mm.is_some());
+        let text = toml::to_string(&rig).unwrap();
+        let back: Rig = toml::from_str(&text).unwrap();
+        assert_eq!(back, rig);
+    }
+}

@@ -1,0 +1,764 @@
+//! Stroke profiles: the tendon stroke over time for each of the paper's bench protocols, or from
+//! a CSV file.
+//!
+//! A profile is a list of knots `(time_s, stroke_mm)` joined by straight lines (the lead screw
+//! runs at constant speed between knots), held constant before the first and after the last.
+//! A built-in protocol generates one repetition and repeats it until the duration is covered;
+//! its natural duration is `repeats` repetitions.
+//!
+//! | protocol | one repetition (defaults) | natural duration |
+//! |---|---|---|
+//! | `characterization` | 5 triangle cycles of amplitude A/5, 2A/5 … A at constant stroke speed (the largest rises in 30 s), 4 s rest after each: 200 s | 5 × 200 s = 1000 s |
+//! | `rate-dependence` | 5 triangle cycles of amplitude A rising (and falling) in 10, 20, 30, 40, 50 s, equal rests filling 600 s | 5 × 600 s = 3000 s |
+//! | `relaxation` | a staircase up to A in 4 steps and back down, each step a 2 s ramp then a hold: 8 × 75 s = 600 s | 3000 s |
+//! | `random` | seeded ramps of 1-10 s to uniform random strokes in [0, A], each held 0-5 s, back to 0 at 600 s | 3000 s |
+//! | `custom` | the CSV's knots, not repeated | the CSV's last time |
+//!
+//! The amplitude `A` defaults to the stroke that gives the paper's ~1.5 % peak strain for the
+//! design at the plant's nominal gain: `A = θ(ε = 1.5 %)/gain`, with `θ(ε)` from the design's
+//! geometry.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::rng::Stream;
+
+/// Why a stroke profile could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum ProtocolError {
+    /// The custom profile could not be read.
+    #[error("cannot read stroke profile {path}")]
+    Read {
+        /// The CSV file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// The custom profile's content is wrong at one line.
+    #[error("stroke profile {path} line {line}: {reason}")]
+    Line {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong, naming the value.
+        reason: String,
+    },
+    /// The custom profile has a header but no knots.
+    #[error("stroke profile {path} has no data rows (expected lines of time_s,stroke_mm)")]
+    Empty {
+        /// The CSV file.
+        path: PathBuf,
+    },
+    /// `custom` was chosen without a profile file.
+    #[error("protocol custom needs a stroke profile: pass --profile FILE.csv or set protocols.custom.profile")]
+    NoProfile,
+}
+
+/// The bench protocols.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ProtocolKind {
+    /// Five cycles of increasing amplitude, repeated (Section IV-A1).
+    Characterization,
+    /// Five equal-amplitude cycles of different speeds, repeated (Section IV-A2).
+    RateDependence,
+    /// Stepwise holds, repeated (Section IV-A3).
+    Relaxation,
+    /// A seeded random pattern, repeated (Section IV-B).
+    Random,
+    /// A stroke profile from a CSV file.
+    Custom,
+}
+
+impl ProtocolKind {
+    /// Every protocol with its name as written in files and on the command line.
+    pub const ALL: [(Self, &'static str); 5] = [
+        (Self::Characterization, "characterization"),
+        (Self::RateDependence, "rate-dependence"),
+        (Self::Relaxation, "relaxation"),
+        (Self::Random, "random"),
+        (Self::Custom, "custom"),
+    ];
+
+    /// The protocol's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Characterization => "characterization",
+            Self::RateDependence => "rate-dependence",
+            Self::Relaxation => "relaxation",
+            Self::Random => "random",
+            Self::Custom => "custom",
+        }
+    }
+
+    /// The protocol called `name`, if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().find(|(_, n)| *n == name).map(|(k, _)| *k)
+    }
+}
+
+/// Protocol timing and amplitude (`[protocols]` and its sub-tables).
+///
+/// | key | default |
+/// |---|---|
+/// | `peak_strain` | 0.015 (the paper's ~1.5 %) |
+/// | `amplitude_mm` | from `peak_strain`, the geometry and the plant gain |
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ProtocolParams {
+    /// Sensor strain the largest stroke reaches at the nominal gain (fraction).
+    pub peak_strain: f64,
+    /// Largest stroke (mm); `None` means derived from `peak_strain`.
+    pub amplitude_mm: Option<f64>,
+    /// `characterization`.
+    pub characterization: Characterization,
+    /// `rate-dependence`.
+    #[serde(rename = "rate-dependence")]
+    pub rate_dependence: RateDependenceProtocol,
+    /// `relaxation`.
+    pub relaxation: RelaxationProtocol,
+    /// `random`.
+    pub random: RandomProtocol,
+    /// `custom`.
+    pub custom: CustomProtocol,
+}
+
+impl Default for ProtocolParams {
+    fn default() -> Self {
+        Self {
+            peak_strain: 0.015,
+            amplitude_mm: None,
+            characterization: Characterization::default(),
+            rate_dependence: RateDependenceProtocol::default(),
+            relaxation: RelaxationProtocol::default(),
+            random: RandomProtocol::default(),
+            custom: CustomProtocol::default(),
+        }
+    }
+}
+
+/// `[protocols.characterization]`: `cycles` triangle cycles of amplitude `A·k/cycles`,
+/// `k = 1..cycles`, all at the stroke speed that lifts the largest in `full_rise_s`, each
+/// followed by `rest_s` at zero stroke.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Characterization {
+    /// Cycles per repetition (5).
+    pub cycles: u32,
+    /// Rise time of the largest cycle (30 s).
+    pub full_rise_s: f64,
+    /// Rest after each cycle (4 s).
+    pub rest_s: f64,
+    /// Repetitions in the natural duration (5).
+    pub repeats: u32,
+}
+
+impl Default for Characterization {
+    fn default() -> Self {
+        Self {
+            cycles: 5,
+            full_rise_s: 30.0,
+            rest_s: 4.0,
+            repeats: 5,
+        }
+    }
+}
+
+/// `[protocols.rate-dependence]`: one triangle cycle of amplitude `A` per entry of `rise_s`,
+/// rising and falling in that time; equal rests after each fill `repeat_s`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RateDependenceProtocol {
+    /// Rise (= fall) time of each cycle (10, 20, 30, 40, 50 s).
+    pub rise_s: Vec<f64>,
+    /// Length of one repetition (600 s).
+    pub repeat_s: f64,
+    /// Repetitions in the natural duration (5).
+    pub repeats: u32,
+}
+
+impl Default for RateDependenceProtocol {
+    fn default() -> Self {
+        Self {
+            rise_s: vec![10.0, 20.0, 30.0, 40.0, 50.0],
+            repeat_s: 600.0,
+            repeats: 5,
+        }
+    }
+}
+
+/// `[protocols.relaxation]`: a staircase up to `A` in `levels` steps and back down to 0; each
+/// step ramps in `ramp_s` and holds for the rest of its `repeat_s/(2·levels)`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RelaxationProtocol {
+    /// Steps up (4); as many come back down.
+    pub levels: u32,
+    /// Ramp time between levels (2 s).
+    pub ramp_s: f64,
+    /// Length of one repetition (600 s).
+    pub repeat_s: f64,
+    /// Repetitions in the natural duration (5).
+    pub repeats: u32,
+}
+
+impl Default for RelaxationProtocol {
+    fn default() -> Self {
+        Self {
+            levels: 4,
+            ramp_s: 2.0,
+            repeat_s: 600.0,
+            repeats: 5,
+        }
+    }
+}
+
+/// `[protocols.random]`: from zero stroke, ramps lasting `U[min_ramp_s, max_ramp_s]` to strokes
+/// drawn from `U[0, A]`, each held for `U[0, max_hold_s]`, then back to 0 at `repeat_s`. The
+/// draws come from the scenario's seed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RandomProtocol {
+    /// Shortest ramp (1 s).
+    pub min_ramp_s: f64,
+    /// Longest ramp (10 s).
+    pub max_ramp_s: f64,
+    /// Longest hold (5 s).
+    pub max_hold_s: f64,
+    /// Length of the pattern (600 s); it is repeated like the paper's.
+    pub repeat_s: f64,
+    /// Repetitions in the natural duration (5).
+    pub repeats: u32,
+}
+
+impl Default for RandomProtocol {
+    fn default() -> Self {
+        Self {
+            min_ramp_s: 1.0,
+            max_ramp_s: 10.0,
+            max_hold_s: 5.0,
+            repeat_s: 600.0,
+            repeats: 5,
+        }
+    }
+}
+
+/// `[protocols.custom]`: a CSV file with the header `time_s,stroke_mm` and strictly increasing
+/// finite times; the stroke is interpolated linearly between rows.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CustomProtocol {
+    /// The CSV file; the CLI's `--profile` overrides it.
+    pub profile: Option<PathBuf>,
+}
+
+impl ProtocolParams {
+    /// Reports every out-of-range value to `fail(key, value, limit)`.
+    pub(crate) fn check(&self, fail: &mut dyn FnMut(String, f64, &'static str)) {
+        let mut positive = |key: &str, v: f64| {
+            if !(v.is_finite() && v > 0.0) {
+                fail(key.to_string(), v, "must be finite and greater than 0");
+            }
+        };
+        positive("peak_strain", self.peak_strain);
+        if let Some(a) = self.amplitude_mm {
+            positive("amplitude_mm", a);
+        }
+        let c = &self.characterization;
+        positive("characterization.full_rise_s", c.full_rise_s);
+        positive("characterization.cycles", f64::from(c.cycles));
+        positive("characterization.repeats", f64::from(c.repeats));
+        let r = &self.rate_dependence;
+        if r.rise_s.is_empty() {
+            positive("rate-dependence.rise_s (count)", 0.0);
+        }
+        for &t in &r.rise_s {
+            positive("rate-dependence.rise_s", t);
+        }
+        positive("rate-dependence.repeat_s", r.repeat_s);
+        positive("rate-dependence.repeats", f64::from(r.repeats));
+        let l = &self.relaxation;
+        positive("relaxation.levels", f64::from(l.levels));
+        positive("relaxation.ramp_s", l.ramp_s);
+        positive("relaxation.repeat_s", l.repeat_s);
+        positive("relaxation.repeats", f64::from(l.repeats));
+        let m = &self.random;
+        positive("random.min_ramp_s", m.min_ramp_s);
+        positive("random.repeat_s", m.repeat_s);
+        positive("random.repeats", f64::from(m.repeats));
+        if !(c.rest_s.is_finite() && c.rest_s >= 0.0) {
+            fail(
+                "characterization.rest_s".into(),
+                c.rest_s,
+                "must be finite and at least 0",
+            );
+        }
+        if !(m.max_hold_s.is_finite() && m.max_hold_s >= 0.0) {
+            fail(
+                "random.max_hold_s".into(),
+                m.max_hold_s,
+                "must be finite and at least 0",
+            );
+        }
+        if !(m.max_ramp_s.is_finite() && m.max_ramp_s >= m.min_ramp_s) {
+            fail(
+                "random.max_ramp_s".into(),
+                m.max_ramp_s,
+                "must be finite and at least random.min_ramp_s",
+            );
+        }
+        if m.repeat_s < 2.0 * m.max_ramp_s {
+            fail(
+                "random.repeat_s".into(),
+                m.repeat_s,
+                "must be at least twice random.max_ramp_s",
+            );
+        }
+        let cycles_s: f64 = r.rise_s.iter().map(|t| 2.0 * t).sum();
+        if r.repeat_s < cycles_s {
+            fail(
+                "rate-dependence.repeat_s".into(),
+                r.repeat_s,
+                "must be at least the cycles' total, 2·Σ rise_s",
+            );
+        }
+        if l.ramp_s * 2.0 * f64::from(l.levels) > l.repeat_s {
+            fail(
+                "relaxation.ramp_s".into(),
+                l.ramp_s,
+                "must leave time to hold: 2·levels·ramp_s ≤ repeat_s",
+            );
+        }
+    }
+}
+
+/// One point of a stroke profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Knot {
+    /// Time (s).
+    pub time_s: f64,
+    /// Tendon stroke (mm).
+    pub stroke_mm: f64,
+}
+
+/// A piecewise-linear stroke profile covering a whole recording.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StrokeProfile {
+    knots: Vec<Knot>,
+    natural_duration_s: f64,
+}
+
+impl StrokeProfile {
+    /// Builds the profile of a built-in protocol with amplitude `amplitude_mm`, covering at
+    /// least `duration_s` (or its natural duration when `None`). `rng` feeds the random pattern.
+    ///
+    /// # Errors
+    /// [`ProtocolError::NoProfile`] for [`ProtocolKind::Custom`], which has no built-in
+    /// pattern: use [`StrokeProfile::from_csv`].
+    pub fn built_in(
+        kind: ProtocolKind,
+        params: &ProtocolParams,
+        amplitude_mm: f64,
+        duration_s: Option<f64>,
+        rng: &mut Stream,
+    ) -> Result<Self, ProtocolError> {
+        let a = amplitude_mm;
+        let (one, repeats) = match kind {
+            ProtocolKind::Characterization => (
+                characterization(&params.characterization, a),
+                params.characterization.repeats,
+            ),
+            ProtocolKind::RateDependence => (
+                rate_dependence(&params.rate_dependence, a),
+                params.rate_dependence.repeats,
+            ),
+            ProtocolKind::Relaxation => {
+                (relaxation(&params.relaxation, a), params.relaxation.repeats)
+            }
+            ProtocolKind::Random => (random(&params.random, a, rng), params.random.repeats),
+            ProtocolKind::Custom => return Err(ProtocolError::NoProfile),
+        };
+        let period_s = one.last().map_or(0.0, |k| k.time_s);
+        let natural_duration_s = period_s * f64::from(repeats);
+        let cover_s = duration_s.unwrap_or(natural_duration_s);
+        let count = (cover_s / period_s).ceil().max(1.0) as usize;
+        let mut knots = Vec::with_capacity(one.len() * count);
+        for rep in 0..count {
+            let offset = period_s * rep as f64;
+            // Each repetition starts where the last ended (zero stroke), so its first knot is
+            // the previous one's last.
+            let skip = usize::from(rep > 0);
+            knots.extend(one.iter().skip(skip).map(|k| Knot {
+                time_s: k.time_s + offset,
+                stroke_mm: k.stroke_mm,
+            }));
+        }
+        Ok(Self {
+            knots,
+            natural_duration_s,
+        })
+    }
+
+    /// Reads a custom profile: header `time_s,stroke_mm`, then rows of finite numbers with
+    /// strictly increasing time.
+    ///
+    /// # Errors
+    /// [`ProtocolError`] naming the file, the line and the value.
+    pub fn from_csv(path: &Path) -> Result<Self, ProtocolError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ProtocolError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse_csv(&text).map_err(|e| match e {
+            ProtocolError::Line { line, reason, .. } => ProtocolError::Line {
+                path: path.to_path_buf(),
+                line,
+                reason,
+            },
+            ProtocolError::Empty { .. } => ProtocolError::Empty {
+                path: path.to_path_buf(),
+            },
+            other => other,
+        })
+    }
+
+    fn parse_csv(text: &str) -> Result<Self, ProtocolError> {
+        let bad = |line: usize, reason: String| ProtocolError::Line {
+            path: PathBuf::new(),
+            line,
+            reason,
+        };
+        let mut lines = text.lines().enumerate();
+        match lines.next() {
+            Some((_, h)) if h.trim_end_matches('\r') == "time_s,stroke_mm" => {}
+            Some((_, h)) => {
+                return Err(bad(
+                    1,
+                    format!("header is {h:?}, expected \"time_s,stroke_mm\""),
+                ))
+            }
+            None => {
+                return Err(ProtocolError::Empty {
+                    path: PathBuf::new(),
+                })
+            }
+        }
+        let mut knots: Vec<Knot> = Vec::new();
+        for (i, raw) in lines {
+            let line = i + 1;
+            let row = raw.trim_end_matches('\r');
+            if row.is_empty() {
+                continue;
+            }
+            let fields: Vec<&str> = row.split(',').collect();
+            if fields.len() != 2 {
+                return Err(bad(
+                    line,
+                    format!("has {} fields, expected 2 (time_s,stroke_mm)", fields.len()),
+                ));
+            }
+            let num = |name: &str, s: &str| -> Result<f64, ProtocolError> {
+                let v: f64 = s
+                    .trim()
+                    .parse()
+                    .map_err(|_| bad(line, format!("{name} = {s:?} is not a number")))?;
+                if !v.is_finite() {
+                    return Err(bad(line, format!("{name} = {v} is not finite")));
+                }
+                Ok(v)
+            };
+            let time_s = num("time_s", fields[0])?;
+            let stroke_mm = num("stroke_mm", fields[1])?;
+            if time_s < 0.0 {
+                return Err(bad(line, format!("time_s = {time_s} is negative")));
+            }
+            if let Some(prev) = knots.last() {
+                if time_s <= prev.time_s {
+                    return Err(bad(
+                        line,
+                        format!(
+                            "time_s = {time_s} does not increase (previous row: {})",
+                            prev.time_s
+                        ),
+                    ));
+                }
+            }
+            knots.push(Knot { time_s, stroke_mm });
+        }
+        let natural_duration_s = match knots.last() {
+            Some(k) if k.time_s > 0.0 => k.time_s,
+            Some(_) => {
+                return Err(bad(
+                    2,
+                    "the profile ends at time 0, so it has no duration".into(),
+                ))
+            }
+            None => {
+                return Err(ProtocolError::Empty {
+                    path: PathBuf::new(),
+                })
+            }
+        };
+        Ok(Self {
+            knots,
+            natural_duration_s,
+        })
+    }
+
+    /// The protocol's own length (s): its repetitions, or a CSV's last time.
+    pub fn natural_duration_s(&self) -> f64 {
+        self.natural_duration_s
+    }
+
+    /// The knots.
+    pub fn knots(&self) -> &[Knot] {
+        &self.knots
+    }
+
+    /// The largest stroke magnitude (mm).
+    pub fn peak_mm(&self) -> f64 {
+        self.knots
+            .iter()
+            .fold(0.0, |m, k| f64::max(m, k.stroke_mm.abs()))
+    }
+
+    /// A cursor that evaluates the profile at non-decreasing times in O(1) amortized.
+    pub fn sampler(&self) -> Sampler<'_> {
+        Sampler {
+            knots: &self.knots,
+            next: 0,
+        }
+    }
+}
+
+/// Evaluates a [`StrokeProfile`] at non-decreasing times.
+#[derive(Debug, Clone)]
+pub struct Sampler<'a> {
+    knots: &'a [Knot],
+    /// Index of the first knot later than the last time asked for.
+    next: usize,
+}
+
+impl Sampler<'_> {
+    /// Stroke (mm) at `time_s`; times must not decrease between calls.
+    #[inline]
+    pub fn at(&mut self, time_s: f64) -> f64 {
+        while self.next < self.knots.len() && self.knots[self.next].time_s <= time_s {
+            self.next += 1;
+        }
+        match (self.next.checked_sub(1), self.knots.get(self.next)) {
+            (Some(i), Some(b)) => {
+                let a = self.knots[i];
+                let u = (time_s - a.time_s) / (b.time_s - a.time_s);
+                a.stroke_mm + u * (b.stroke_mm - a.stroke_mm)
+            }
+            (None, Some(b)) => b.stroke_mm,
+            (Some(i), None) => self.knots[i].stroke_mm,
+            (None, None) => 0.0,
+        }
+    }
+}
+
+fn characterization(p: &Characterization, a: f64) -> Vec<Knot> {
+    let mut k = Knots::default();
+    let n = f64::from(p.cycles);
+    for c in 1..=p.cycles {
+        let share = f64::from(c) / n;
+        let rise = p.full_rise_s * share;
+        k.ramp(rise, a * share);
+        k.ramp(rise, 0.0);
+        k.hold(p.rest_s);
+    }
+    k.0
+}
+
+fn rate_dependence(p: &RateDependenceProtocol, a: f64) -> Vec<Knot> {
+    let mut k = Knots::default();
+    let cycles_s: f64 = p.rise_s.iter().map(|t| 2.0 * t).sum();
+    let rest = (p.repeat_s - cycles_s) / p.rise_s.len() as f64;
+    for &rise in &p.rise_s {
+        k.ramp(rise, a);
+        k.ramp(rise, 0.0);
+        k.hold(rest);
+    }
+    k.0
+}
+
+fn relaxation(p: &RelaxationProtocol, a: f64) -> Vec<Knot> {
+    let mut k = Knots::default();
+    let n = p.levels;
+    let step_s = p.repeat_s / f64::from(2 * n);
+    let levels = (1..=n).chain((0..n).rev());
+    for level in levels {
+        k.ramp(p.ramp_s, a * f64::from(level) / f64::from(n));
+        k.hold(step_s - p.ramp_s);
+    }
+    k.0
+}
+
+fn random(p: &RandomProtocol, a: f64, rng: &mut Stream) -> Vec<Knot> {
+    let mut k = Knots::default();
+    loop {
+        let ramp = p.min_ramp_s + (p.max_ramp_s - p.min_ramp_s) * rng.uniform();
+        let target = a * rng.uniform();
+        let hold = p.max_hold_s * rng.uniform();
+        // Leave room for the final ramp back to zero, no shorter than the longest ramp.
+        if k.end_s() + ramp + hold > p.repeat_s - p.max_ramp_s {
+            break;
+        }
+        k.ramp(ramp, target);
+        k.hold(hold);
+    }
+    let back = p.repeat_s - k.end_s();
+    k.ramp(back, 0.0);
+    k.0
+}
+
+/// Knots under construction, starting at (0 s, 0 mm).
+struct Knots(Vec<Knot>);
+
+impl Default for Knots {
+    fn default() -> Self {
+        Self(vec![Knot {
+            time_s: 0.0,
+            stroke_mm: 0.0,
+        }])
+    }
+}
+
+impl Knots {
+    fn end_s(&self) -> f64 {
+        self.0.last().map_or(0.0, |k| k.time_s)
+    }
+
+    fn ramp(&mut self, duration_s: f64, to_mm: f64) {
+        if duration_s > 0.0 {
+            let time_s = self.end_s() + duration_s;
+            self.0.push(Knot {
+                time_s,
+                stroke_mm: to_mm,
+            });
+        }
+    }
+
+    fn hold(&mut self, duration_s: f64) {
+        let now = self.0.last().map_or(0.0, |k| k.stroke_mm);
+        self.ramp(duration_s, now);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    fn build(kind: ProtocolKind, duration: Option<f64>) -> StrokeProfile {
+        let mut rng = Stream::new(1, 0);
+        StrokeProfile::built_in(kind, &ProtocolParams::default(), 2.0, duration, &mut rng).unwrap()
+    }
+
+    #[test]
+    fn natural_durations_match_the_paper() {
+        use ProtocolKind::*;
+        let table = [
+            (Characterization, 1000.0),
+            (RateDependence, 3000.0),
+            (Relaxation, 3000.0),
+            (Random, 3000.0),
+        ];
+        for (kind, dur) in table {
+            let p = build(kind, None);
+            assert_relative_eq!(p.natural_duration_s(), dur, epsilon = 1e-9);
+            assert!(p.knots().last().unwrap().time_s >= dur - 1e-9, "{kind:?}");
+            assert_relative_eq!(p.peak_mm(), 2.0, max_relative = 0.05);
+            for w in p.knots().windows(2) {
+                assert!(w[1].time_s > w[0].time_s, "{kind:?} {w:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn characterization_cycles_grow_and_share_one_speed() {
+        let p = build(ProtocolKind::Characterization, None);
+        let peaks: Vec<f64> = p.knots()[..16]
+            .iter()
+            .map(|k| k.stroke_mm)
+            .filter(|&s| s > 0.0)
+            .collect();
+        assert_eq!(peaks, vec![0.4, 0.8, 1.2, 1.6, 2.0]);
+        // First cycle rises 0.4 mm in 6 s, the last 2 mm in 30 s.
+        assert_relative_eq!(p.knots()[1].time_s, 6.0);
+    }
+
+    #[test]
+    fn rate_dependence_rises_in_ten_to_fifty_seconds() {
+        let p = build(ProtocolKind::RateDependence, None);
+        let k = p.knots();
+        let rises: Vec<f64> = k
+            .windows(2)
+            .filter(|w| w[1].stroke_mm > w[0].stroke_mm)
+            .take(5)
+            .map(|w| w[1].time_s - w[0].time_s)
+            .collect();
+        assert_eq!(rises, vec![10.0, 20.0, 30.0, 40.0, 50.0]);
+    }
+
+    #[test]
+    fn sampler_interpolates_and_holds() {
+        let p = build(ProtocolKind::Characterization, None);
+        let mut s = p.sampler();
+        assert_eq!(s.at(0.0), 0.0);
+        assert_relative_eq!(s.at(3.0), 0.2, epsilon = 1e-12);
+        assert_relative_eq!(s.at(6.0), 0.4, epsilon = 1e-12);
+        assert_relative_eq!(s.at(9.0), 0.2, epsilon = 1e-12);
+        assert_eq!(s.at(1e9), 0.0);
+    }
+
+    #[test]
+    fn random_pattern_follows_the_seed() {
+        let params = ProtocolParams::default();
+        let make = |seed| {
+            let mut rng = Stream::new(seed, 0);
+            StrokeProfile::built_in(ProtocolKind::Random, &params, 1.0, None, &mut rng).unwrap()
+        };
+        assert_eq!(make(3), make(3));
+        assert_ne!(make(3), make(4));
+        let p = make(3);
+        assert!(p.knots().iter().all(|k| (0.0..=1.0).contains(&k.stroke_mm)));
+        // The pattern repeats every 600 s.
+        let mut s = p.sampler();
+        let first = s.at(123.4);
+        assert_relative_eq!(s.at(723.4), first, epsilon = 1e-9);
+    }
+
+    #[test]
+    fn duration_beyond_natural_repeats_the_pattern() {
+        let p = build(ProtocolKind::Characterization, Some(1100.0));
+        assert!(p.knots().last().unwrap().time_s >= 1100.0);
+        let mut s = p.sampler();
+        let a = s.at(50.0);
+        assert_relative_eq!(s.at(1050.0), a, epsilon = 1e-9);
+    }
+
+    #[test]
+    fn csv_profile_parses_and_reports_lines() {
+        let p = StrokeProfile::parse_csv("time_s,stroke_mm\n0,0\n1.5,0.3\r\n3,0\n").unwrap();
+        assert_eq!(p.knots().len(), 3);
+        assert_eq!(p.natural_duration_s(), 3.0);
+        let table = [
+            ("time,stroke\n0,0\n", "line 1"),
+            ("time_s,stroke_mm\n0,0\n1,nan\n", "line 3"),
+            ("time_s,stroke_mm\n0,0\n1,x\n", "\"x\""),
+            ("time_s,stroke_mm\n0,0\n2,1\n2,0\n", "does not increase"),
+            ("time_s,stroke_mm\n0,0,1\n", "3 fields"),
+            ("time_s,stroke_mm\n", "no data rows"),
+            ("time_s,stroke_mm\n-1,0\n", "negative"),
+        ];
+        for (text, needle) in table {
+            let err = StrokeProfile::parse_csv(text).unwrap_err().to_string();
+            assert!(err.contains(needle), "{text:?}: {err}");
+        }
+    }
+}

@@ -1,0 +1,614 @@
+//! Recording directories: what the bench (real or simulated) writes, read back and checked.
+//!
+//! A recording is a folder with two files (the format is documented in
+//! `docs/recording-format.md`):
+//!
+//! - `rig.toml`: `sample_hz`, `supply_v`, `divider_ohm` (one entry per sensor), an optional
+//!   `notes` string, and for simulated recordings `[simulation]`, `[design]` and `[scenario]`;
+//! - `data.csv`: the header `time_s,stroke_mm,angle_deg,v1_V` (plus `,v2_V` for a second
+//!   sensor), then one row per sample.
+//!
+//! Reading refuses, naming the file, line and value: a wrong header, a row with missing or extra
+//! fields, a field that is not a number or not finite, a time that does not increase, and a
+//! voltage at or beyond a rail (`≤ 0` or `≥ supply_v`), which no finite sensor resistance
+//! explains. Writing builds the folder under a temporary name next to the destination and
+//! renames it into place, so a failure never leaves a partial recording.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::scenario::Scenario;
+use crate::design::DesignFile;
+use crate::fixed::push_fixed;
+use crate::output::{write_atomic, OutputError};
+
+/// The data file's name inside a recording.
+pub const DATA_FILE: &str = "data.csv";
+/// The rig file's name inside a recording.
+pub const RIG_FILE: &str = "rig.toml";
+
+/// Why a recording could not be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum RecordingError {
+    /// A file could not be read.
+    #[error("cannot read {path}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// `rig.toml` is not valid TOML for a rig (unknown key, wrong type, missing key).
+    #[error("{path}: {message}")]
+    RigParse {
+        /// The rig file.
+        path: PathBuf,
+        /// The TOML parser's message, which names the key and line.
+        message: String,
+    },
+    /// A rig value is out of range.
+    #[error("{path}: {key} = {value} is out of range ({limit})")]
+    RigValue {
+        /// The rig file.
+        path: PathBuf,
+        /// The key.
+        key: &'static str,
+        /// The value given.
+        value: f64,
+        /// The allowed range, in words.
+        limit: &'static str,
+    },
+    /// The header line is not the one the rig implies.
+    #[error("{path} line 1: header is {found:?}, expected {expected:?} ({channels} sensor(s) in rig.toml's divider_ohm)")]
+    Header {
+        /// The data file.
+        path: PathBuf,
+        /// The header found.
+        found: String,
+        /// The header expected.
+        expected: String,
+        /// Sensors listed in the rig.
+        channels: usize,
+    },
+    /// A row has missing or extra fields.
+    #[error("{path} line {line}: has {found} fields, expected {expected} ({header})")]
+    Fields {
+        /// The data file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// Fields found.
+        found: usize,
+        /// Fields expected.
+        expected: usize,
+        /// The header, naming the expected fields.
+        header: String,
+    },
+    /// A field is not a number.
+    #[error("{path} line {line}: {column} = {text:?} is not a number")]
+    Number {
+        /// The data file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// Column name.
+        column: String,
+        /// The field as written.
+        text: String,
+    },
+    /// A field is NaN or infinite.
+    #[error("{path} line {line}: {column} = {value} is not finite")]
+    NotFinite {
+        /// The data file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// Column name.
+        column: String,
+        /// The value.
+        value: f64,
+    },
+    /// Time does not strictly increase.
+    #[error(
+        "{path} line {line}: time_s = {time_s} does not increase (previous row: {previous_s})"
+    )]
+    TimeNotIncreasing {
+        /// The data file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// This row's time.
+        time_s: f64,
+        /// The previous row's time.
+        previous_s: f64,
+    },
+    /// A voltage at or beyond a rail.
+    #[error("{path} line {line}: {column} = {volts} V is at or beyond a rail (must lie strictly between 0 and supply_v = {supply_v} V)")]
+    Rail {
+        /// The data file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// Column name.
+        column: String,
+        /// The reading.
+        volts: f64,
+        /// The rig's supply.
+        supply_v: f64,
+    },
+    /// The data file has a header but no rows.
+    #[error("{path} has no data rows")]
+    NoRows {
+        /// The data file.
+        path: PathBuf,
+    },
+    /// The destination exists and replacing it was not asked for.
+    #[error("output folder {path} already exists and is not empty (pass --force to replace it)")]
+    Exists {
+        /// The destination.
+        path: PathBuf,
+    },
+    /// The rig could not be written as TOML.
+    #[error("cannot write rig.toml: {message}")]
+    RigWrite {
+        /// The serializer's message.
+        message: String,
+    },
+    /// A file or folder could not be written.
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    /// A folder operation failed.
+    #[error("cannot {action} {path}")]
+    Io {
+        /// What was being done.
+        action: &'static str,
+        /// The folder.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+}
+
+/// `rig.toml`: how the bench was set up.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Rig {
+    /// Sample rate (Hz).
+    pub sample_hz: f64,
+    /// Divider supply `V+` (V).
+    pub supply_v: f64,
+    /// The divider's fixed resistor `R_k` for each sensor, in column order (Ω).
+    pub divider_ohm: Vec<f64>,
+    /// Free text.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub notes: Option<String>,
+    /// What made a simulated recording.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub simulation: Option<SimulationInfo>,
+    /// The design simulated, as its design file (with defaults filled in).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub design: Option<DesignFile>,
+    /// The resolved scenario simulated (every parameter, seed included).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scenario: Option<Scenario>,
+}
+
+/// `[simulation]` of a simulated recording.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimulationInfo {
+    /// The `dlw` version that simulated.
+    pub dlw_version: String,
+    /// The design's checksum (as in program headers).
+    pub design_checksum: String,
+}
+
+/// The samples of a recording, one vector per column.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Samples {
+    /// `time_s` (s).
+    pub time_s: Vec<f64>,
+    /// `stroke_mm`: tendon stroke (mm).
+    pub stroke_mm: Vec<f64>,
+    /// `angle_deg`: the angle the EM tracker recorded (°).
+    pub angle_deg: Vec<f64>,
+    /// `v1_V`, `v2_V`: one vector of divider voltages (V) per sensor.
+    pub volts: Vec<Vec<f64>>,
+}
+
+impl Samples {
+    /// Empty columns for `channels` sensors with room for `rows`.
+    pub fn with_capacity(channels: usize, rows: usize) -> Self {
+        Self {
+            time_s: Vec::with_capacity(rows),
+            stroke_mm: Vec::with_capacity(rows),
+            angle_deg: Vec::with_capacity(rows),
+            volts: (0..channels).map(|_| Vec::with_capacity(rows)).collect(),
+        }
+    }
+
+    /// Rows.
+    pub fn len(&self) -> usize {
+        self.time_s.len()
+    }
+
+    /// Whether there are no rows.
+    pub fn is_empty(&self) -> bool {
+        self.time_s.is_empty()
+    }
+}
+
+/// A recording: rig and samples.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Recording {
+    /// `rig.toml`.
+    pub rig: Rig,
+    /// `data.csv`.
+    pub samples: Samples,
+}
+
+/// The header line for `channels` sensors.
+pub fn header(channels: usize) -> String {
+    let mut h = String::from("time_s,stroke_mm,angle_deg");
+    for c in 1..=channels {
+        h.push_str(&format!(",v{c}_V"));
+    }
+    h
+}
+
+impl Rig {
+    fn check(&self, path: &Path) -> Result<(), RecordingError> {
+        let bad = |key, value, limit| {
+            Err(RecordingError::RigValue {
+                path: path.to_path_buf(),
+                key,
+                value,
+                limit,
+            })
+        };
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !positive(self.sample_hz) {
+            return bad(
+                "sample_hz",
+                self.sample_hz,
+                "must be finite and greater than 0",
+            );
+        }
+        if !positive(self.supply_v) {
+            return bad(
+                "supply_v",
+                self.supply_v,
+                "must be finite and greater than 0",
+            );
+        }
+        let n = self.divider_ohm.len();
+        if !(1..=2).contains(&n) {
+            return bad("divider_ohm (entries)", n as f64, "one or two sensors");
+        }
+        if let Some(&r) = self.divider_ohm.iter().find(|r| !positive(**r)) {
+            return bad("divider_ohm", r, "must be finite and greater than 0");
+        }
+        Ok(())
+    }
+}
+
+impl Recording {
+    /// Reads and checks a recording folder.
+    ///
+    /// # Errors
+    /// [`RecordingError`] naming the file, the line and the value.
+    pub fn read(dir: &Path) -> Result<Self, RecordingError> {
+        let rig_path = dir.join(RIG_FILE);
+        let rig_text = read_text(&rig_path)?;
+        let rig: Rig = toml::from_str(&rig_text).map_err(|e| RecordingError::RigParse {
+            path: rig_path.clone(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        rig.check(&rig_path)?;
+        let data_path = dir.join(DATA_FILE);
+        let text = read_text(&data_path)?;
+        let samples = parse_data(&text, &rig, &data_path)?;
+        Ok(Self { rig, samples })
+    }
+
+    /// Writes the recording as folder `dest`, atomically: it is built under a temporary name
+    /// next to `dest` and renamed into place. An existing non-empty `dest` is replaced only
+    /// with `replace`.
+    ///
+    /// # Errors
+    /// [`RecordingError::Exists`], or an I/O error naming the path; `dest` is then untouched.
+    pub fn write(&self, dest: &Path, replace: bool) -> Result<(), RecordingError> {
+        let io = |action, path: &Path| {
+            let path = path.to_path_buf();
+            move |source| RecordingError::Io {
+                action,
+                path,
+                source,
+            }
+        };
+        let occupied = match std::fs::read_dir(dest) {
+            Ok(mut entries) => entries.next().is_some(),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
+            // A file, or a folder we may not list: not ours to replace silently.
+            Err(_) => true,
+        };
+        if occupied && !replace {
+            return Err(RecordingError::Exists {
+                path: dest.to_path_buf(),
+            });
+        }
+        let parent = match dest.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        let staging = tempfile::Builder::new()
+            .prefix(".dlw-recording-")
+            .tempdir_in(parent)
+            .map_err(io("create a folder in", parent))?;
+        let rig = toml::to_string(&self.rig).map_err(|e| RecordingError::RigWrite {
+            message: e.to_string(),
+        })?;
+        write_atomic(&staging.path().join(RIG_FILE), rig.as_bytes())?;
+        write_atomic(&staging.path().join(DATA_FILE), &self.csv_bytes())?;
+        // The staging folder and write_atomic's temporary files are private (0700, 0600);
+        // a recording is for sharing.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let set = |path: &Path, mode| {
+                std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode))
+                    .map_err(io("set permissions of", path))
+            };
+            set(&staging.path().join(RIG_FILE), 0o644)?;
+            set(&staging.path().join(DATA_FILE), 0o644)?;
+            set(staging.path(), 0o755)?;
+        }
+        if occupied {
+            // Move the old folder aside first: rename cannot replace a non-empty folder.
+            let old = tempfile::Builder::new()
+                .prefix(".dlw-replaced-")
+                .tempdir_in(parent)
+                .map_err(io("create a folder in", parent))?;
+            let aside = old.path().join("old");
+            std::fs::rename(dest, &aside).map_err(io("move aside", dest))?;
+            if let Err(source) = std::fs::rename(staging.path(), dest) {
+                // Put the old recording back; the staging folder is removed on drop.
+                let _ = std::fs::rename(&aside, dest);
+                return Err(io("rename into", dest)(source));
+            }
+            let _ = staging.keep();
+            drop(old);
+        } else {
+            std::fs::rename(staging.path(), dest).map_err(io("rename into", dest))?;
+            let _ = staging.keep();
+        }
+        Ok(())
+    }
+
+    /// `data.csv` as bytes: fixed decimals (time and stroke to 1e-6, angle to 1e-4°, voltage to
+    /// 1 µV), `.` as decimal point, `\n` line ends.
+    pub fn csv_bytes(&self) -> Vec<u8> {
+        let s = &self.samples;
+        let channels = s.volts.len();
+        let mut out = Vec::with_capacity(s.len() * (40 + 10 * channels) + 64);
+        out.extend_from_slice(header(channels).as_bytes());
+        out.push(b'\n');
+        for i in 0..s.len() {
+            push_fixed(&mut out, s.time_s[i], 6);
+            out.push(b',');
+            push_fixed(&mut out, s.stroke_mm[i], 6);
+            out.push(b',');
+            push_fixed(&mut out, s.angle_deg[i], 4);
+            for v in &s.volts {
+                out.push(b',');
+                push_fixed(&mut out, v[i], 6);
+            }
+            out.push(b'\n');
+        }
+        out
+    }
+}
+
+fn read_text(path: &Path) -> Result<String, RecordingError> {
+    std::fs::read_to_string(path).map_err(|source| RecordingError::Read {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingError> {
+    let channels = rig.divider_ohm.len();
+    let expected = header(channels);
+    let columns: Vec<String> = expected.split(',').map(str::to_string).collect();
+    let mut lines = text.split('\n').enumerate();
+    let first = lines.next().map_or("", |(_, l)| l.trim_end_matches('\r'));
+    if first != expected {
+        return Err(RecordingError::Header {
+            path: path.to_path_buf(),
+            found: first.to_string(),
+            expected,
+            channels,
+        });
+    }
+    let mut samples = Samples::with_capacity(channels, text.len() / (30 + 9 * channels));
+    let mut row = [0.0f64; 5];
+    let mut blank = None;
+    for (i, raw) in lines {
+        let line = i + 1;
+        let text = raw.trim_end_matches('\r');
+        if text.is_empty() {
+            // Blank lines are tolerated only at the end (a final newline leaves one).
+            blank.get_or_insert(line);
+            continue;
+        }
+        if let Some(line) = blank {
+            return Err(RecordingError::Fields {
+                path: path.to_path_buf(),
+                line,
+                found: 0,
+                expected: columns.len(),
+                header: expected,
+            });
+        }
+        let mut n = 0;
+        for field in text.split(',') {
+            if n < columns.len() {
+                row[n] = parse_field(field, line, &columns[n], path)?;
+            }
+            n += 1;
+        }
+        if n != columns.len() {
+            return Err(RecordingError::Fields {
+                path: path.to_path_buf(),
+                line,
+                found: n,
+                expected: columns.len(),
+                header: expected,
+            });
+        }
+        if let Some(&previous_s) = samples.time_s.last() {
+            if row[0] <= previous_s {
+                return Err(RecordingError::TimeNotIncreasing {
+                    path: path.to_path_buf(),
+                    line,
+                    time_s: row[0],
+                    previous_s,
+                });
+            }
+        }
+        for c in 0..channels {
+            let volts = row[3 + c];
+            if !(volts > 0.0 && volts < rig.supply_v) {
+                return Err(RecordingError::Rail {
+                    path: path.to_path_buf(),
+                    line,
+                    column: columns[3 + c].clone(),
+                    volts,
+                    supply_v: rig.supply_v,
+                });
+            }
+            samples.volts[c].push(volts);
+        }
+        samples.time_s.push(row[0]);
+        samples.stroke_mm.push(row[1]);
+        samples.angle_deg.push(row[2]);
+    }
+    if samples.is_empty() {
+        return Err(RecordingError::NoRows {
+            path: path.to_path_buf(),
+        });
+    }
+    Ok(samples)
+}
+
+#[inline]
+fn parse_field(field: &str, line: usize, column: &str, path: &Path) -> Result<f64, RecordingError> {
+    let v: f64 = field.trim().parse().map_err(|_| RecordingError::Number {
+        path: path.to_path_buf(),
+        line,
+        column: column.to_string(),
+        text: field.to_string(),
+    })?;
+    if !v.is_finite() {
+        return Err(RecordingError::NotFinite {
+            path: path.to_path_buf(),
+            line,
+            column: column.to_string(),
+            value: v,
+        });
+    }
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rig(channels: usize) -> Rig {
+        Rig {
+            sample_hz: 500.0,
+            supply_v: 5.0,
+            divider_ohm: vec![99.6e3; channels],
+            notes: None,
+            simulation: None,
+            design: None,
+            scenario: None,
+        }
+    }
+
+    #[test]
+    fn parses_good_data_and_names_bad_lines() {
+        let path = Path::new("data.csv");
+        let good = "time_s,stroke_mm,angle_deg,v1_V\n0,0,0,1.5\n0.002,0.1,1.2,1.6\n";
+        let s = parse_data(good, &rig(1), path).unwrap();
+        assert_eq!(s.len(), 2);
+        assert_eq!(s.volts[0], vec![1.5, 1.6]);
+        let table = [
+            ("time_s,stroke_mm,angle_deg\n0,0,0\n", "line 1"),
+            (
+                "time_s,stroke_mm,angle_deg,v1_V\n0,0,0,1\n0.1,0,0\n",
+                "line 3: has 3 fields",
+            ),
+            (
+                "time_s,stroke_mm,angle_deg,v1_V\n0,0,0,1,2\n",
+                "line 2: has 5 fields",
+            ),
+            (
+                "time_s,stroke_mm,angle_deg,v1_V\n0,0,NaN,1\n",
+                "angle_deg = NaN",
+            ),
+            (
+                "time_s,stroke_mm,angle_deg,v1_V\n0,0,inf,1\n",
+                "angle_deg = inf",
+            ),
+            ("time_s,stroke_mm,angle_deg,v1_V\n0,0,0,x\n", "v1_V = \"x\""),
+            (
+                "time_s,stroke_mm,angle_deg,v1_V\n1,0,0,1\n1,0,0,1\n",
+                "line 3: time_s = 1 does not increase",
+            ),
+            (
+                "time_s,stroke_mm,angle_deg,v1_V\n0,0,0,5\n",
+                "v1_V = 5 V is at or beyond a rail",
+            ),
+            ("time_s,stroke_mm,angle_deg,v1_V\n0,0,0,0\n", "v1_V = 0 V"),
+            ("time_s,stroke_mm,angle_deg,v1_V\n", "no data rows"),
+            (
+                "time_s,stroke_mm,angle_deg,v1_V\n0,0,0,1\n\n1,0,0,1\n",
+                "line 3: has 0 fields",
+            ),
+        ];
+        for (text, needle) in table {
+            let err = parse_data(text, &rig(1), path).unwrap_err().to_string();
+            assert!(err.contains(needle), "{text:?}: {err}");
+        }
+        let two = "time_s,stroke_mm,angle_deg,v1_V,v2_V\n0,0,0,1,6\n";
+        let err = parse_data(two, &rig(2), path).unwrap_err().to_string();
+        assert!(err.contains("v2_V = 6 V"), "{err}");
+    }
+
+    #[test]
+    fn write_then_read_round_trips_and_refuses_to_clobber() {
+        let dir = tempfile::tempdir().unwrap();
+        let dest = dir.path().join("rec");
+        let rec = Recording {
+            rig: rig(2),
+            samples: Samples {
+                time_s: vec![0.0, 0.002],
+                stroke_mm: vec![0.0, 0.001],
+                angle_deg: vec![0.0, 0.0355],
+                volts: vec![vec![2.0, 2.1], vec![2.2, 2.3]],
+            },
+        };
+        rec.write(&dest, false).unwrap();
+        assert_eq!(Recording::read(&dest).unwrap(), rec);
+        let err = rec.write(&dest, false).unwrap_err().to_string();
+        assert!(err.contains("already exists"), "{err}");
+        let mut other = rec.clone();
+        other.samples.volts[0][0] = 1.0;
+        other.write(&dest, true).unwrap();
+        assert_eq!(Recording::read(&dest).unwrap(), other);
+        // Only the recording is left next to it: no staging or set-aside folders.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+}

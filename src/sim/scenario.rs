@@ -1,0 +1,797 @@
+//! The scenario file: which effects the simulated bench has, each switchable with its
+//! parameters, and every key's documented default.
+//!
+//! A scenario is TOML with unknown keys refused at every level, so a misspelt parameter never
+//! silently takes its default. Every key may be left out. Sensor parameters whose defaults depend
+//! on the design's notch style are `None` in the file and filled in by [`Scenario::resolve`]; the
+//! resolved scenario (everything concrete, seed included) is what `rig.toml` records, and it is
+//! itself a valid scenario file that reproduces the run.
+//!
+//! ```toml
+//! protocol = "random"          # characterization | rate-dependence | relaxation | random | custom
+//! seed = 7
+//! [plant.relaxation]
+//! enabled = true
+//! fraction = 0.08
+//! [sensor1]
+//! gauge_factor = 22.0
+//! r0_ohm = 77.2e3
+//! [sensor1.drift]
+//! enabled = true
+//! ```
+//!
+//! The defaults, where they come from, and what each effect does, are in the doc of each table's
+//! type and in `docs/simulator.md`.
+
+use std::path::PathBuf;
+
+use dlw_estimator::{ContinuousPiConfig, EstimatorError, PiConfig};
+use dlw_geometry::NotchStyle;
+use serde::{Deserialize, Serialize};
+
+use super::pi_default::{JOINT_A_PI, JOINT_C_PI};
+use super::protocol::{ProtocolKind, ProtocolParams};
+use crate::design::Design;
+
+/// Why a scenario was refused.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// The file could not be read.
+    #[error("cannot read scenario {path}")]
+    Read {
+        /// The scenario file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// Not valid TOML for a scenario (unknown key, wrong type).
+    #[error("scenario {path}: {message}")]
+    Parse {
+        /// The scenario file.
+        path: PathBuf,
+        /// The TOML parser's message, which names the key and line.
+        message: String,
+    },
+    /// A number is outside its allowed range.
+    #[error("scenario key {key} = {value} is out of range ({limit})")]
+    OutOfRange {
+        /// Dotted key, as written in the file.
+        key: String,
+        /// The value given.
+        value: f64,
+        /// The allowed range, in words.
+        limit: &'static str,
+    },
+    /// A second sensor was configured for a one-sensor (UAN) design.
+    #[error("scenario sets [sensor2], but design {design:?} is UAN with one sensor")]
+    SecondSensorOnUan {
+        /// The design's name.
+        design: String,
+    },
+    /// A sensor model's parameters were refused by the estimator crate, whose forward model
+    /// the simulator runs.
+    #[error("scenario table [{table}]: {reason}")]
+    Model {
+        /// The table, e.g. `sensor1.pi`.
+        table: String,
+        /// What the estimator crate refused.
+        reason: EstimatorError,
+    },
+    /// A model was chosen whose parameters have no default and were not given.
+    #[error("sensor{sensor} uses model {model:?} but [sensor{sensor}.{model}] is missing ({why})")]
+    MissingModel {
+        /// 1 or 2.
+        sensor: usize,
+        /// The model's name.
+        model: &'static str,
+        /// Why there is no default.
+        why: &'static str,
+    },
+    /// No protocol was chosen on the command line or in the scenario.
+    #[error("no protocol chosen: pass --protocol or set protocol in the scenario")]
+    NoProtocol,
+    /// The seed does not fit the TOML integer that records it.
+    #[error("seed {seed} is too large (at most {max})")]
+    SeedTooLarge {
+        /// The seed given.
+        seed: u64,
+        /// The largest seed a TOML file can record, 2^63 − 1.
+        max: u64,
+    },
+}
+
+/// A whole scenario (the top level of the file).
+///
+/// | key | default | meaning |
+/// |---|---|---|
+/// | `protocol` | none (the CLI's `--protocol`) | which stroke profile to run |
+/// | `duration_s` | the protocol's (1000 s characterization, 3000 s others, the CSV's last time) | recording length |
+/// | `seed` | 0 | seeds every random stream (noise, drift, the random protocol) |
+/// | `sample_hz` | 500 | the paper's DAQ rate |
+/// | `supply_v` | 5 | divider supply `V+` |
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scenario {
+    /// The stroke profile to run; the CLI's `--protocol` overrides it.
+    pub protocol: Option<ProtocolKind>,
+    /// Recording length (s); `None` means the protocol's natural length.
+    pub duration_s: Option<f64>,
+    /// Seed of every random stream; the CLI's `--seed` overrides it.
+    pub seed: u64,
+    /// Sample rate (Hz).
+    pub sample_hz: f64,
+    /// Divider supply `V+` (V).
+    pub supply_v: f64,
+    /// Stroke → angle.
+    pub plant: PlantParams,
+    /// Sensor 1 (the only sensor of a UAN joint; the one in tension for positive angles).
+    pub sensor1: SensorParams,
+    /// Sensor 2 of a BSN joint (reads `−ε`); must be absent for UAN.
+    pub sensor2: Option<SensorParams>,
+    /// The DAQ's analog-to-digital converter.
+    pub adc: AdcParams,
+    /// The EM tracker that records the ground-truth angle.
+    pub tracker: TrackerParams,
+    /// Timing of each protocol.
+    pub protocols: ProtocolParams,
+}
+
+impl Default for Scenario {
+    fn default() -> Self {
+        Self {
+            protocol: None,
+            duration_s: None,
+            seed: 0,
+            sample_hz: 500.0,
+            supply_v: 5.0,
+            plant: PlantParams::default(),
+            sensor1: SensorParams::default(),
+            sensor2: None,
+            adc: AdcParams::default(),
+            tracker: TrackerParams::default(),
+            protocols: ProtocolParams::default(),
+        }
+    }
+}
+
+/// Stroke → angle (`[plant]`): a linear gain plus three switchable effects.
+///
+/// | key | default | source |
+/// |---|---|---|
+/// | `gain_deg_per_mm` | 35.49 | the paper's Joint D, `m_t` (Section IV-C) |
+/// | `backlash` | off, `width_mm = 0.05` | illustrative: ~1.8° of dead band at Joint D's gain |
+/// | `relaxation` | off, `fraction = 0.05`, `tau_s = 20` | illustrative: the paper shows the decay (Section IV-A3) but no numbers |
+/// | `notch_limit` | off | the angle stops where the notches close (`Joint::closing_angle_rad`) |
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PlantParams {
+    /// Angle per millimetre of tendon stroke (°/mm).
+    pub gain_deg_per_mm: f64,
+    /// Tendon backlash: a dead band at every reversal.
+    pub backlash: Backlash,
+    /// Viscoelastic relaxation of tube and tendon under a held stroke.
+    pub relaxation: Relaxation,
+    /// Notch-closing limit.
+    pub notch_limit: NotchLimit,
+}
+
+impl Default for PlantParams {
+    fn default() -> Self {
+        Self {
+            gain_deg_per_mm: 35.49,
+            backlash: Backlash::default(),
+            relaxation: Relaxation::default(),
+            notch_limit: NotchLimit::default(),
+        }
+    }
+}
+
+/// Tendon backlash (`[plant.backlash]`): the effective stroke is a play operator of the stroke
+/// with total dead band `width_mm`, so the angle lags by `width_mm` at every reversal.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Backlash {
+    /// Switch.
+    pub enabled: bool,
+    /// Total dead band (mm), twice the play radius.
+    pub width_mm: f64,
+}
+
+impl Default for Backlash {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            width_mm: 0.05,
+        }
+    }
+}
+
+/// Viscoelastic relaxation (`[plant.relaxation]`), a standard linear solid: under a held stroke
+/// the angle decays by `fraction` of its elastic value with time constant `tau_s`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Relaxation {
+    /// Switch.
+    pub enabled: bool,
+    /// Share of the elastic angle lost once fully relaxed, in `[0, 1)`.
+    pub fraction: f64,
+    /// Time constant (s).
+    pub tau_s: f64,
+}
+
+impl Default for Relaxation {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            fraction: 0.05,
+            tau_s: 20.0,
+        }
+    }
+}
+
+/// Notch-closing limit (`[plant.notch_limit]`): the angle stops at `Joint::closing_angle_rad`
+/// (for UAN only in the closing direction, positive angles; for BSN both ways).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct NotchLimit {
+    /// Switch.
+    pub enabled: bool,
+}
+
+/// The resistance model of a sensor.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SensorModelKind {
+    /// Eq. 5: `R = R0·(1 + GF·ε)`.
+    #[default]
+    Linear,
+    /// The paper's generalized Prandtl-Ishlinskii model (Eqs. 7-10), `[sensorN.pi]`.
+    Pi,
+    /// The continuous generalized PI variant (envelopes inside the plays),
+    /// `[sensorN.continuous_pi]`; no default.
+    ContinuousPi,
+}
+
+/// One sensor (`[sensor1]`, `[sensor2]`).
+///
+/// | key | default UAN | default BSN sensor 1 / sensor 2 | source |
+/// |---|---|---|---|
+/// | `model` | `linear` | `linear` | |
+/// | `gauge_factor` | 15.3 | 1.28 / 0.680 | Table III (Joint A); Table V (Joint C tension / compression) |
+/// | `r0_ohm` | 215e3 | 74.0e3 / 88.9e3 | same |
+/// | `divider_ohm` | 99.6e3 | 99.6e3 / 102.5e3 | Section II-B, System Assembly |
+/// | `pi` | Joint A | Joint C / none | Table III's points, see `pi_default` (no default for sensor 2: the paper fits it only linearly) |
+/// | `continuous_pi` | none | none | |
+/// | `saturation` | off, `strain = 0.02` | same | the paper's conclusion: saturation below 2 % |
+/// | `drift` | off, 0 Ω/s, 20 Ω/√s | 0 Ω/s, 0.7 Ω/√s | the spread of R0 over 3000 s (Section IV-A2): 1.10 kΩ (A), 0.038 kΩ (C) |
+/// | `rate` | off, 0.1 per decade, 1e-3 /s, 1 s | same | illustrative (the paper found no correlation) |
+/// | `creep` | off, 0.03, 30 s | same | illustrative (Section IV-A3: the resistance barely changed during holds) |
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SensorParams {
+    /// `linear`, `pi` or `continuous_pi`.
+    pub model: SensorModelKind,
+    /// Gauge factor of the linear model.
+    pub gauge_factor: Option<f64>,
+    /// Unstrained resistance `R0` of the linear model (Ω).
+    pub r0_ohm: Option<f64>,
+    /// The divider's fixed resistor `R_k` (Ω).
+    pub divider_ohm: Option<f64>,
+    /// Generalized PI parameters, used when `model = "pi"`: the estimator crate's `PiConfig`,
+    /// the same table as `[sensor.model.pi]` in an estimator config.
+    pub pi: Option<PiConfig>,
+    /// Continuous PI parameters, used when `model = "continuous_pi"`: the estimator crate's
+    /// `ContinuousPiConfig`.
+    pub continuous_pi: Option<ContinuousPiConfig>,
+    /// Soft saturation of the strain the sensor feels.
+    pub saturation: Saturation,
+    /// Baseline drift of the resistance.
+    pub drift: Drift,
+    /// Strain-rate-dependent sensitivity.
+    pub rate: RateDependence,
+    /// Creep of the resistance under held strain.
+    pub creep: Creep,
+}
+
+impl Default for SensorParams {
+    fn default() -> Self {
+        Self {
+            model: SensorModelKind::Linear,
+            gauge_factor: None,
+            r0_ohm: None,
+            divider_ohm: None,
+            pi: None,
+            continuous_pi: None,
+            saturation: Saturation::default(),
+            drift: Drift::default(),
+            rate: RateDependence::default(),
+            creep: Creep::default(),
+        }
+    }
+}
+
+/// Soft saturation (`[sensorN.saturation]`): the sensor feels `ε_s·tanh(ε/ε_s)`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Saturation {
+    /// Switch.
+    pub enabled: bool,
+    /// Saturation strain `ε_s` (fraction).
+    pub strain: f64,
+}
+
+impl Default for Saturation {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            strain: 0.02,
+        }
+    }
+}
+
+/// Baseline drift (`[sensorN.drift]`): `R += rate·t + W(t)`, `W` a random walk with
+/// `σ_W(t) = random_walk_ohm_per_sqrt_s·√t`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Drift {
+    /// Switch.
+    pub enabled: bool,
+    /// Linear drift (Ω/s).
+    pub rate_ohm_per_s: f64,
+    /// Random-walk intensity (Ω/√s); `None` means the style's default.
+    pub random_walk_ohm_per_sqrt_s: Option<f64>,
+}
+
+impl Default for Drift {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            rate_ohm_per_s: 0.0,
+            random_walk_ohm_per_sqrt_s: None,
+        }
+    }
+}
+
+/// Rate dependence (`[sensorN.rate]`): the resistance change is scaled by
+/// `1 + per_decade·log10(1 + |ε̇|/reference_rate_per_s)`, with `|ε̇|` smoothed by a first-order
+/// low-pass of time constant `smoothing_s`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RateDependence {
+    /// Switch.
+    pub enabled: bool,
+    /// Relative sensitivity change per decade of strain rate.
+    pub per_decade: f64,
+    /// Strain rate at which the gain is `1 + per_decade·log10(2)` (1/s).
+    pub reference_rate_per_s: f64,
+    /// Smoothing of the strain rate (s).
+    pub smoothing_s: f64,
+}
+
+impl Default for RateDependence {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            per_decade: 0.1,
+            reference_rate_per_s: 1e-3,
+            smoothing_s: 1.0,
+        }
+    }
+}
+
+/// Sensor creep (`[sensorN.creep]`): the resistance change grows by `fraction` of itself with
+/// time constant `tau_s` while the strain is held.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Creep {
+    /// Switch.
+    pub enabled: bool,
+    /// Relative growth of the resistance change once settled.
+    pub fraction: f64,
+    /// Time constant (s).
+    pub tau_s: f64,
+}
+
+impl Default for Creep {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            fraction: 0.03,
+            tau_s: 30.0,
+        }
+    }
+}
+
+/// The DAQ's ADC (`[adc]`): Gaussian noise `noise_v` (RMS) on the voltage, then quantization to
+/// `bits` over `[min_v, max_v]` (readings beyond the range clip to it).
+///
+/// | key | default | source |
+/// |---|---|---|
+/// | `enabled` | true | |
+/// | `bits` | 16 | a National Instruments DAQ (the paper's) |
+/// | `min_v`, `max_v` | −10, 10 | its ±10 V range: 0.305 mV per code |
+/// | `noise_v` | 0.005 | illustrative: the paper calls the noise "high" and filters over 500 samples |
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AdcParams {
+    /// Switch: off records the exact divider voltage.
+    pub enabled: bool,
+    /// Resolution (bits), 1 to 32.
+    pub bits: u32,
+    /// Lower end of the input range (V).
+    pub min_v: f64,
+    /// Upper end of the input range (V).
+    pub max_v: f64,
+    /// RMS voltage noise before quantization (V).
+    pub noise_v: f64,
+}
+
+impl Default for AdcParams {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            bits: 16,
+            min_v: -10.0,
+            max_v: 10.0,
+            noise_v: 0.005,
+        }
+    }
+}
+
+/// The EM tracker (`[tracker]`): the recorded angle is the true angle plus Gaussian noise.
+///
+/// | key | default | source |
+/// |---|---|---|
+/// | `enabled` | true | |
+/// | `noise_deg` | 0.3 | NDI Aurora's specified orientation accuracy, 0.30° RMS |
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TrackerParams {
+    /// Switch: off records the true angle.
+    pub enabled: bool,
+    /// RMS angle noise (°).
+    pub noise_deg: f64,
+}
+
+impl Default for TrackerParams {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            noise_deg: 0.3,
+        }
+    }
+}
+
+/// Defaults that depend on which sensor of which style, from the paper's Tables III-V.
+struct SensorDefaults {
+    gauge_factor: f64,
+    r0_ohm: f64,
+    divider_ohm: f64,
+    random_walk_ohm_per_sqrt_s: f64,
+}
+
+fn sensor_defaults(style: NotchStyle, index: usize) -> SensorDefaults {
+    match (style, index) {
+        (NotchStyle::Uan, _) => SensorDefaults {
+            gauge_factor: 15.3,
+            r0_ohm: 215e3,
+            divider_ohm: 99.6e3,
+            // 1.10 kΩ over 3000 s: 1100/√3000.
+            random_walk_ohm_per_sqrt_s: 20.0,
+        },
+        (NotchStyle::Bsn, 1) => SensorDefaults {
+            gauge_factor: 1.28,
+            r0_ohm: 74.0e3,
+            divider_ohm: 99.6e3,
+            // 0.038 kΩ over 3000 s: 38/√3000.
+            random_walk_ohm_per_sqrt_s: 0.7,
+        },
+        (NotchStyle::Bsn, _) => SensorDefaults {
+            gauge_factor: 0.680,
+            r0_ohm: 88.9e3,
+            divider_ohm: 102.5e3,
+            random_walk_ohm_per_sqrt_s: 0.7,
+        },
+    }
+}
+
+impl Scenario {
+    /// Reads a scenario file (nothing is resolved yet).
+    ///
+    /// # Errors
+    /// [`ScenarioError::Read`] or [`ScenarioError::Parse`] naming the file and key.
+    pub fn load(path: &std::path::Path) -> Result<Self, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        toml::from_str(&text).map_err(|e| ScenarioError::Parse {
+            path: path.to_path_buf(),
+            message: e.to_string().trim_end().to_string(),
+        })
+    }
+
+    /// Fills every default that depends on the design (the sensors' by notch style, the
+    /// protocol amplitude from the geometry) and checks every number.
+    ///
+    /// # Errors
+    /// [`ScenarioError`] naming the key, the value and the limit.
+    pub fn resolve(mut self, design: &Design) -> Result<Self, ScenarioError> {
+        let style = design.joint.style();
+        if self.seed > i64::MAX as u64 {
+            return Err(ScenarioError::SeedTooLarge {
+                seed: self.seed,
+                max: i64::MAX as u64,
+            });
+        }
+        resolve_sensor(&mut self.sensor1, style, 1)?;
+        match (style, self.sensor2.as_mut()) {
+            (NotchStyle::Uan, Some(_)) => {
+                return Err(ScenarioError::SecondSensorOnUan {
+                    design: design.file.name.clone(),
+                })
+            }
+            (NotchStyle::Uan, None) => {}
+            (NotchStyle::Bsn, Some(s)) => resolve_sensor(s, style, 2)?,
+            (NotchStyle::Bsn, None) => {
+                let mut s = SensorParams::default();
+                resolve_sensor(&mut s, style, 2)?;
+                self.sensor2 = Some(s);
+            }
+        }
+        self.validate()?;
+        // The stroke that reaches the peak strain at the nominal gain, from the geometry.
+        let peak_angle_deg = design
+            .joint
+            .angle_at_strain(self.protocols.peak_strain)
+            .to_degrees();
+        self.protocols
+            .amplitude_mm
+            .get_or_insert(peak_angle_deg / self.plant.gain_deg_per_mm);
+        Ok(self)
+    }
+
+    /// The sensors, in order (one for UAN, two for BSN once resolved).
+    pub fn sensors(&self) -> impl Iterator<Item = &SensorParams> {
+        std::iter::once(&self.sensor1).chain(self.sensor2.as_ref())
+    }
+
+    fn validate(&self) -> Result<(), ScenarioError> {
+        let mut c = Checker::default();
+        if let Some(d) = self.duration_s {
+            c.positive("duration_s", d);
+            c.at_most("duration_s", d, 1e6, "at most 1e6 s");
+        }
+        c.positive("sample_hz", self.sample_hz);
+        c.at_most("sample_hz", self.sample_hz, 1e6, "at most 1e6 Hz");
+        c.positive("supply_v", self.supply_v);
+        let p = &self.plant;
+        c.positive("plant.gain_deg_per_mm", p.gain_deg_per_mm);
+        c.positive("plant.backlash.width_mm", p.backlash.width_mm);
+        c.fraction("plant.relaxation.fraction", p.relaxation.fraction);
+        c.positive("plant.relaxation.tau_s", p.relaxation.tau_s);
+        for (i, s) in self.sensors().enumerate() {
+            let k = |name: &str| format!("sensor{}.{name}", i + 1);
+            c.finite(&k("gauge_factor"), s.gauge_factor.unwrap_or(f64::NAN));
+            c.positive(&k("r0_ohm"), s.r0_ohm.unwrap_or(f64::NAN));
+            c.positive(&k("divider_ohm"), s.divider_ohm.unwrap_or(f64::NAN));
+            c.positive(&k("saturation.strain"), s.saturation.strain);
+            c.finite(&k("drift.rate_ohm_per_s"), s.drift.rate_ohm_per_s);
+            c.non_negative(
+                &k("drift.random_walk_ohm_per_sqrt_s"),
+                s.drift.random_walk_ohm_per_sqrt_s.unwrap_or(f64::NAN),
+            );
+            c.finite(&k("rate.per_decade"), s.rate.per_decade);
+            c.positive(&k("rate.reference_rate_per_s"), s.rate.reference_rate_per_s);
+            c.positive(&k("rate.smoothing_s"), s.rate.smoothing_s);
+            c.finite(&k("creep.fraction"), s.creep.fraction);
+            c.positive(&k("creep.tau_s"), s.creep.tau_s);
+        }
+        for (i, s) in self.sensors().enumerate() {
+            let table = |name: &str| format!("sensor{}.{name}", i + 1);
+            if let Some(Err(reason)) = s.pi.as_ref().map(PiConfig::validate) {
+                return Err(ScenarioError::Model {
+                    table: table("pi"),
+                    reason,
+                });
+            }
+            if let Some(Err(reason)) = s.continuous_pi.as_ref().map(ContinuousPiConfig::validate) {
+                return Err(ScenarioError::Model {
+                    table: table("continuous_pi"),
+                    reason,
+                });
+            }
+        }
+        let a = &self.adc;
+        if !(1..=32).contains(&a.bits) {
+            c.fail("adc.bits".into(), f64::from(a.bits), "1 to 32");
+        }
+        c.finite("adc.min_v", a.min_v);
+        if !(a.max_v > a.min_v && a.max_v.is_finite()) {
+            c.fail("adc.max_v".into(), a.max_v, "finite and above adc.min_v");
+        }
+        c.non_negative("adc.noise_v", a.noise_v);
+        c.non_negative("tracker.noise_deg", self.tracker.noise_deg);
+        self.protocols
+            .check(&mut |key, value, limit| c.fail(format!("protocols.{key}"), value, limit));
+        c.finish()
+    }
+}
+
+fn resolve_sensor(
+    s: &mut SensorParams,
+    style: NotchStyle,
+    index: usize,
+) -> Result<(), ScenarioError> {
+    let d = sensor_defaults(style, index);
+    s.gauge_factor.get_or_insert(d.gauge_factor);
+    s.r0_ohm.get_or_insert(d.r0_ohm);
+    s.divider_ohm.get_or_insert(d.divider_ohm);
+    s.drift
+        .random_walk_ohm_per_sqrt_s
+        .get_or_insert(d.random_walk_ohm_per_sqrt_s);
+    match s.model {
+        SensorModelKind::Linear => {}
+        SensorModelKind::Pi if s.pi.is_some() => {}
+        SensorModelKind::Pi => match (style, index) {
+            (NotchStyle::Uan, _) => s.pi = Some(JOINT_A_PI.to_config()),
+            (NotchStyle::Bsn, 1) => s.pi = Some(JOINT_C_PI.to_config()),
+            _ => {
+                return Err(ScenarioError::MissingModel {
+                    sensor: index,
+                    model: "pi",
+                    why: "the paper fits the compression sensor only linearly",
+                })
+            }
+        },
+        SensorModelKind::ContinuousPi if s.continuous_pi.is_some() => {}
+        SensorModelKind::ContinuousPi => {
+            return Err(ScenarioError::MissingModel {
+                sensor: index,
+                model: "continuous_pi",
+                why: "the paper has no continuous PI fit to default to",
+            })
+        }
+    }
+    Ok(())
+}
+
+/// Collects the first out-of-range value.
+#[derive(Default)]
+struct Checker {
+    first: Option<ScenarioError>,
+}
+
+impl Checker {
+    fn fail(&mut self, key: String, value: f64, limit: &'static str) {
+        if self.first.is_none() {
+            self.first = Some(ScenarioError::OutOfRange { key, value, limit });
+        }
+    }
+    fn finite(&mut self, key: &str, v: f64) {
+        if !v.is_finite() {
+            self.fail(key.into(), v, "must be a finite number");
+        }
+    }
+    fn positive(&mut self, key: &str, v: f64) {
+        if !(v.is_finite() && v > 0.0) {
+            self.fail(key.into(), v, "must be finite and greater than 0");
+        }
+    }
+    fn non_negative(&mut self, key: &str, v: f64) {
+        if !(v.is_finite() && v >= 0.0) {
+            self.fail(key.into(), v, "must be finite and at least 0");
+        }
+    }
+    fn fraction(&mut self, key: &str, v: f64) {
+        if !(0.0..1.0).contains(&v) {
+            self.fail(key.into(), v, "must lie in [0, 1)");
+        }
+    }
+    fn at_most(&mut self, key: &str, v: f64, max: f64, limit: &'static str) {
+        if v > max {
+            self.fail(key.into(), v, limit);
+        }
+    }
+    fn finish(self) -> Result<(), ScenarioError> {
+        self.first.map_or(Ok(()), Err)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::test_design;
+
+    #[test]
+    fn empty_file_resolves_to_documented_defaults() {
+        let s: Scenario = toml::from_str("").unwrap();
+        let uan = s.clone().resolve(&test_design(NotchStyle::Uan)).unwrap();
+        assert_eq!(uan.sample_hz, 500.0);
+        assert_eq!(uan.plant.gain_deg_per_mm, 35.49);
+        assert_eq!(uan.sensor1.gauge_factor, Some(15.3));
+        assert_eq!(uan.sensor1.r0_ohm, Some(215e3));
+        assert_eq!(uan.sensor1.divider_ohm, Some(99.6e3));
+        assert!(uan.sensor2.is_none());
+        let bsn = s.resolve(&test_design(NotchStyle::Bsn)).unwrap();
+        let s2 = bsn.sensor2.as_ref().unwrap();
+        assert_eq!(bsn.sensor1.gauge_factor, Some(1.28));
+        assert_eq!(s2.gauge_factor, Some(0.680));
+        assert_eq!(s2.r0_ohm, Some(88.9e3));
+        assert_eq!(s2.divider_ohm, Some(102.5e3));
+    }
+
+    #[test]
+    fn resolved_scenario_round_trips_through_toml() {
+        let s: Scenario = toml::from_str("seed = 9\n[sensor1]\nmodel = \"pi\"\n").unwrap();
+        let r = s.resolve(&test_design(NotchStyle::Bsn)).unwrap();
+        let text = toml::to_string(&r).unwrap();
+        let back: Scenario = toml::from_str(&text).unwrap();
+        assert_eq!(back, r);
+        assert_eq!(
+            back.clone().resolve(&test_design(NotchStyle::Bsn)).unwrap(),
+            r
+        );
+    }
+
+    #[test]
+    fn refuses_unknown_keys_and_bad_values() {
+        let err = toml::from_str::<Scenario>("[plant.relaxation]\ntau = 3\n").unwrap_err();
+        assert!(err.to_string().contains("tau"), "{err}");
+        let table = [
+            ("sample_hz = 0.0", "sample_hz"),
+            (
+                "[plant.relaxation]\nfraction = 1.5",
+                "plant.relaxation.fraction",
+            ),
+            ("[sensor1]\nr0_ohm = -5.0", "sensor1.r0_ohm"),
+            ("[adc]\nbits = 40", "adc.bits"),
+            ("[adc]\nmax_v = -20.0", "adc.max_v"),
+            ("[tracker]\nnoise_deg = -1.0", "tracker.noise_deg"),
+        ];
+        for (text, key) in table {
+            let s: Scenario = toml::from_str(text).unwrap();
+            let err = s
+                .resolve(&test_design(NotchStyle::Uan))
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains(key), "{text}: {err}");
+        }
+    }
+
+    #[test]
+    fn pi_defaults_and_missing_models() {
+        let s: Scenario = toml::from_str("[sensor1]\nmodel = \"pi\"\n").unwrap();
+        let r = s.resolve(&test_design(NotchStyle::Uan)).unwrap();
+        assert_eq!(r.sensor1.pi, Some(JOINT_A_PI.to_config()));
+        let s: Scenario = toml::from_str("[sensor2]\nmodel = \"pi\"\n").unwrap();
+        let err = s
+            .resolve(&test_design(NotchStyle::Bsn))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("[sensor2.pi] is missing"), "{err}");
+        let s: Scenario = toml::from_str("[sensor1]\nmodel = \"continuous_pi\"\n").unwrap();
+        let err = s
+            .resolve(&test_design(NotchStyle::Uan))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("[sensor1.continuous_pi] is missing"), "{err}");
+        let text = "[sensor1]\nmodel = \"pi\"\n[sensor1.pi]\nweights = [0.0]\nradii = [0.0]\nloading_tanh = [1.0, 1.0, 0.0, 0.0]\nunloading_tanh = [1.0, 1.0, 0.0, 0.0]\ncenter_strain = 0.0\ncenter_ohm = 1e5\nmin_ohm = 9e4\nmax_ohm = 1.1e5\n";
+        let s: Scenario = toml::from_str(text).unwrap();
+        let err = s
+            .resolve(&test_design(NotchStyle::Uan))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("[sensor1.pi]"), "{err}");
+    }
+
+    #[test]
+    fn second_sensor_on_uan_is_refused() {
+        let s: Scenario = toml::from_str("[sensor2]\ngauge_factor = 1.0\n").unwrap();
+        let err = s
+            .resolve(&test_design(NotchStyle::Uan))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("sensor2") && err.contains("Joint A"), "{err}");
+    }
+}

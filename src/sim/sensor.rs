@@ -1,0 +1,320 @@
+//! The sensor: strain → resistance.
+//!
+//! The strain the sensor feels is `ε` for sensor 1 and `−ε` for sensor 2 of a BSN joint (it lies
+//! at `−y_s`). Then, in order:
+//!
+//! 1. **Saturation** (switchable): the sensor feels `ε_s·tanh(ε/ε_s)`.
+//! 2. **Model**: linear, Eq. 5, `R = R0·(1 + GF·ε)`; or the generalized PI model (Eqs. 7-10)
+//!    or its continuous variant, run forward by the estimator crate (`GeneralizedPi`,
+//!    `ContinuousPi`): the very code whose inverse the estimator uses.
+//! 3. **Rate dependence** (switchable): the change `ΔR = R − R_ref` (`R_ref`: the model at zero
+//!    strain) is scaled by `1 + k·log10(1 + r̄/r_ref)`, `r̄` being `|dε/dt|` through a first-order
+//!    low-pass.
+//! 4. **Creep** (switchable): `c ← c + (φ·ΔR − c)·(1 − e^(−Δt/τ))` is added, so a held strain's
+//!    resistance change grows by `φ` with time constant `τ`.
+//! 5. **Baseline drift** (switchable): `rate·t + W(t)` is added, `W` a Gaussian random walk with
+//!    `W(t + Δt) = W(t) + σ·√Δt·N(0, 1)`.
+
+use dlw_estimator::{ContinuousPi, GeneralizedPi};
+
+use super::rng::Stream;
+use super::scenario::{ScenarioError, SensorModelKind, SensorParams};
+
+/// One sensor's strain → resistance model, stepped once per sample.
+#[derive(Debug, Clone)]
+pub struct Sensor {
+    sign: f64,
+    model: Model,
+    reference_ohm: f64,
+    saturation_strain: Option<f64>,
+    rate: Option<Rate>,
+    creep: Option<Creep>,
+    drift: Option<Drift>,
+}
+
+#[derive(Debug, Clone)]
+enum Model {
+    Linear { r0_ohm: f64, gauge_factor: f64 },
+    Pi(Box<GeneralizedPi>),
+    ContinuousPi(Box<ContinuousPi>),
+}
+
+#[derive(Debug, Clone)]
+struct Rate {
+    per_decade: f64,
+    reference_per_s: f64,
+    alpha: f64,
+    inv_dt: f64,
+    previous_strain: Option<f64>,
+    smoothed_per_s: f64,
+}
+
+#[derive(Debug, Clone)]
+struct Creep {
+    fraction: f64,
+    alpha: f64,
+    ohm: f64,
+}
+
+#[derive(Debug, Clone)]
+struct Drift {
+    rate_ohm_per_sample: f64,
+    step_ohm: f64,
+    walk_ohm: f64,
+    linear_ohm: f64,
+    rng: Stream,
+}
+
+impl Sensor {
+    /// Sensor `index` (1 or 2) from resolved parameters, sampled every `dt_s` seconds; `rng`
+    /// feeds its drift. Sensor 2 reads `−ε`.
+    ///
+    /// Parameters are taken as validated by [`super::Scenario::resolve`], which fills every
+    /// `None` this reads.
+    ///
+    /// # Errors
+    /// The PI parameters the estimator crate refuses, or a PI model without parameters (both
+    /// caught by `resolve` already).
+    pub fn new(
+        params: &SensorParams,
+        index: usize,
+        dt_s: f64,
+        rng: Stream,
+    ) -> Result<Self, ScenarioError> {
+        let missing = |model| ScenarioError::MissingModel {
+            sensor: index,
+            model,
+            why: "the scenario was not resolved",
+        };
+        let refused = |name: &str| {
+            let table = format!("sensor{index}.{name}");
+            move |reason| ScenarioError::Model { table, reason }
+        };
+        let model = match params.model {
+            SensorModelKind::Linear => Model::Linear {
+                r0_ohm: params.r0_ohm.unwrap_or(f64::NAN),
+                gauge_factor: params.gauge_factor.unwrap_or(f64::NAN),
+            },
+            SensorModelKind::Pi => {
+                let config = params.pi.as_ref().ok_or_else(|| missing("pi"))?;
+                Model::Pi(Box::new(GeneralizedPi::new(config).map_err(refused("pi"))?))
+            }
+            SensorModelKind::ContinuousPi => {
+                let config = params
+                    .continuous_pi
+                    .as_ref()
+                    .ok_or_else(|| missing("continuous_pi"))?;
+                Model::ContinuousPi(Box::new(
+                    ContinuousPi::new(config).map_err(refused("continuous_pi"))?,
+                ))
+            }
+        };
+        let reference_ohm = model.clone().step(0.0);
+        let alpha = |tau_s: f64| 1.0 - (-dt_s / tau_s).exp();
+        Ok(Self {
+            sign: if index == 2 { -1.0 } else { 1.0 },
+            model,
+            reference_ohm,
+            saturation_strain: params
+                .saturation
+                .enabled
+                .then_some(params.saturation.strain),
+            rate: params.rate.enabled.then(|| Rate {
+                per_decade: params.rate.per_decade,
+                reference_per_s: params.rate.reference_rate_per_s,
+                alpha: alpha(params.rate.smoothing_s),
+                inv_dt: 1.0 / dt_s,
+                previous_strain: None,
+                smoothed_per_s: 0.0,
+            }),
+            creep: params.creep.enabled.then(|| Creep {
+                fraction: params.creep.fraction,
+                alpha: alpha(params.creep.tau_s),
+                ohm: 0.0,
+            }),
+            drift: params.drift.enabled.then(|| Drift {
+                rate_ohm_per_sample: params.drift.rate_ohm_per_s * dt_s,
+                step_ohm: params.drift.random_walk_ohm_per_sqrt_s.unwrap_or(0.0) * dt_s.sqrt(),
+                walk_ohm: 0.0,
+                linear_ohm: 0.0,
+                rng,
+            }),
+        })
+    }
+
+    /// Resistance (Ω) at joint strain `strain` (sensor 1's sign convention). May be zero or
+    /// negative if the scenario drives a model beyond where it is physical; the caller checks.
+    #[inline]
+    pub fn step(&mut self, strain: f64) -> f64 {
+        let mut felt = self.sign * strain;
+        if let Some(s) = self.saturation_strain {
+            felt = s * (felt / s).tanh();
+        }
+        let mut change = self.model.step(felt) - self.reference_ohm;
+        if let Some(r) = &mut self.rate {
+            let rate = r
+                .previous_strain
+                .map_or(0.0, |p| (felt - p).abs() * r.inv_dt);
+            r.previous_strain = Some(felt);
+            r.smoothed_per_s += (rate - r.smoothed_per_s) * r.alpha;
+            change *= 1.0 + r.per_decade * (1.0 + r.smoothed_per_s / r.reference_per_s).log10();
+        }
+        let mut ohm = self.reference_ohm + change;
+        if let Some(c) = &mut self.creep {
+            c.ohm += (c.fraction * change - c.ohm) * c.alpha;
+            ohm += c.ohm;
+        }
+        if let Some(d) = &mut self.drift {
+            ohm += d.linear_ohm + d.walk_ohm;
+            d.linear_ohm += d.rate_ohm_per_sample;
+            d.walk_ohm += d.step_ohm * d.rng.normal();
+        }
+        ohm
+    }
+}
+
+impl Model {
+    #[inline]
+    fn step(&mut self, strain: f64) -> f64 {
+        match self {
+            Self::Linear {
+                r0_ohm,
+                gauge_factor,
+            } => *r0_ohm * (1.0 + *gauge_factor * strain),
+            Self::Pi(m) => m.step(strain),
+            Self::ContinuousPi(m) => m.step(strain),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::scenario::Scenario;
+    use approx::assert_relative_eq;
+    use dlw_geometry::NotchStyle;
+
+    const DT: f64 = 0.002;
+
+    fn params(
+        style: NotchStyle,
+        edit: impl FnOnce(&mut SensorParams),
+    ) -> (SensorParams, Option<SensorParams>) {
+        let s = Scenario::default()
+            .resolve(&crate::sim::test_design(style))
+            .unwrap();
+        let (mut a, b) = (s.sensor1, s.sensor2);
+        edit(&mut a);
+        (a, b)
+    }
+
+    fn sensor(p: &SensorParams, index: usize) -> Sensor {
+        Sensor::new(p, index, DT, Stream::new(1, 4)).unwrap()
+    }
+
+    #[test]
+    fn linear_is_eq5_and_sensor_two_reads_minus_strain() {
+        let (a, b) = params(NotchStyle::Bsn, |_| {});
+        let mut s1 = sensor(&a, 1);
+        let mut s2 = sensor(&b.unwrap(), 2);
+        assert_relative_eq!(
+            s1.step(0.01),
+            74.0e3 * (1.0 + 1.28 * 0.01),
+            max_relative = 1e-14
+        );
+        assert_relative_eq!(
+            s2.step(0.01),
+            88.9e3 * (1.0 - 0.680 * 0.01),
+            max_relative = 1e-14
+        );
+    }
+
+    #[test]
+    fn pi_model_is_the_estimator_crates_forward() {
+        let (a, _) = params(NotchStyle::Uan, |p| {
+            p.model = SensorModelKind::Pi;
+            p.pi = Some(crate::sim::JOINT_A_PI.to_config());
+        });
+        let mut s = sensor(&a, 1);
+        let mut reference = GeneralizedPi::new(a.pi.as_ref().unwrap()).unwrap();
+        for e in [0.0, 0.004, 0.012, 0.006, 0.001, 0.009] {
+            assert_relative_eq!(s.step(e), reference.step(e), max_relative = 1e-14);
+        }
+    }
+
+    #[test]
+    fn saturation_flattens_large_strain() {
+        let (a, _) = params(NotchStyle::Uan, |p| p.saturation.enabled = true);
+        let mut s = sensor(&a, 1);
+        let r = s.step(0.02);
+        assert_relative_eq!(
+            r,
+            215e3 * (1.0 + 15.3 * 0.02 * 1f64.tanh()),
+            max_relative = 1e-12
+        );
+    }
+
+    #[test]
+    fn creep_grows_a_held_change_by_its_fraction() {
+        let (a, _) = params(NotchStyle::Uan, |p| {
+            p.creep.enabled = true;
+            p.creep.fraction = 0.1;
+            p.creep.tau_s = 1.0;
+        });
+        let mut s = sensor(&a, 1);
+        let mut r = 0.0;
+        for _ in 0..20_000 {
+            r = s.step(0.01);
+        }
+        let change = 215e3 * 15.3 * 0.01;
+        assert_relative_eq!(r, 215e3 + 1.1 * change, max_relative = 1e-9);
+    }
+
+    #[test]
+    fn rate_dependence_raises_sensitivity_when_fast() {
+        let (a, _) = params(NotchStyle::Uan, |p| {
+            p.rate.enabled = true;
+            p.rate.per_decade = 0.1;
+        });
+        // Ramp to 1 % at 1e-3/s (10 s) and at 1e-2/s (1 s): the fast one reads higher.
+        let ramp = |rate: f64| {
+            let mut s = sensor(&a, 1);
+            let n = (0.01 / rate / DT) as usize;
+            (0..=n)
+                .map(|i| s.step(rate * DT * i as f64))
+                .last()
+                .unwrap()
+        };
+        let (slow, fast) = (ramp(1e-3), ramp(1e-2));
+        let change = 215e3 * 15.3 * 0.01;
+        // Smoothed rate ≈ the ramp's rate once past the 1 s low-pass.
+        assert_relative_eq!(
+            slow,
+            215e3 + change * (1.0 + 0.1 * 2f64.log10()),
+            max_relative = 1e-3
+        );
+        assert!(fast > slow + 0.05 * change, "{fast} vs {slow}");
+    }
+
+    #[test]
+    fn drift_random_walk_has_the_configured_spread() {
+        let (a, _) = params(NotchStyle::Uan, |p| {
+            p.drift.enabled = true;
+            p.drift.rate_ohm_per_s = 1.0;
+        });
+        // σ = 20 Ω/√s: after 100 s the walk's spread is 200 Ω; the mean drift is +100 Ω.
+        let runs = 200;
+        let n = 50_000;
+        let ends: Vec<f64> = (0..runs)
+            .map(|k| {
+                let mut s = Sensor::new(&a, 1, DT, Stream::new(k, 4)).unwrap();
+                (0..=n).map(|_| s.step(0.0)).last().unwrap() - 215e3
+            })
+            .collect();
+        let mean = ends.iter().sum::<f64>() / runs as f64;
+        let sd = (ends.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / runs as f64).sqrt();
+        // Standard errors with 200 runs: 14 Ω on the mean, 10 Ω on the spread.
+        assert!((mean - 100.0).abs() < 50.0, "{mean}");
+        assert!((sd - 200.0).abs() < 40.0, "{sd}");
+    }
+}
