@@ -3,7 +3,7 @@
 //! `θ = gain·s` (the paper's Joint D: `m_t = 35.49 °/mm`), with three switchable effects applied
 //! in this order:
 //!
-//! 1. **Tendon backlash**: the stroke passes a play operator of radius `width_mm/2` (Eq. 7's
+//! 1. **Tendon backlash**: the stroke passes a play operator of radius `width_mm/2` (Eq. 8's
 //!    operator, the estimator crate's `PlayOperator`, started at 0), so the joint does not move for the first `width_mm` of stroke
 //!    after each reversal.
 //! 2. **Viscoelastic relaxation**, a standard linear solid: the elastic angle `θₑ = gain·s` loses

@@ -242,10 +242,10 @@ pub struct NotchLimit {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SensorModelKind {
-    /// Eq. 5: `R = R0·(1 + GF·ε)`.
+    /// Eq. 6: `R = R0·(1 + GF·ε)`.
     #[default]
     Linear,
-    /// The paper's generalized Prandtl-Ishlinskii model (Eqs. 7-10), `[sensorN.pi]`.
+    /// The paper's generalized Prandtl-Ishlinskii model (Eqs. 8-11), `[sensorN.pi]`.
     Pi,
     /// The continuous generalized PI variant (envelopes inside the plays),
     /// `[sensorN.continuous_pi]`; no default.

@@ -4,7 +4,7 @@
 //! at `−y_s`). Then, in order:
 //!
 //! 1. **Saturation** (switchable): the sensor feels `ε_s·tanh(ε/ε_s)`.
-//! 2. **Model**: linear, Eq. 5, `R = R0·(1 + GF·ε)`; or the generalized PI model (Eqs. 7-10)
+//! 2. **Model**: linear, Eq. 6, `R = R0·(1 + GF·ε)`; or the generalized PI model (Eqs. 8-11)
 //!    or its continuous variant, run forward by the estimator crate (`GeneralizedPi`,
 //!    `ContinuousPi`): the very code whose inverse the estimator uses.
 //! 3. **Rate dependence** (switchable): the change `ΔR = R − R_ref` (`R_ref`: the model at zero
