@@ -16,25 +16,6 @@ use crate::machine::MachineProfile;
 #[derive(Debug, Clone, Copy, Default)]
 pub struct AeroBasic;
 
-impl AeroBasic {
-    fn words(&self, profile: &MachineProfile, w: &AxisWords) -> String {
-        let mut s = String::new();
-        let rot = self.rotary_decimals(profile);
-        for (letter, value, decimals) in [
-            (profile.axes.linear, w.x, 4),
-            (profile.axes.rotary, w.a, rot),
-            (profile.axes.focus, w.z, 4),
-        ] {
-            if let Some(v) = value {
-                s.push(' ');
-                s.push(letter);
-                s.push_str(&fixed(v, decimals));
-            }
-        }
-        s
-    }
-}
-
 impl Post for AeroBasic {
     fn name(&self) -> &'static str {
         "aerobasic"
@@ -73,7 +54,7 @@ impl Post for AeroBasic {
     }
 
     fn rapid(&self, profile: &MachineProfile, words: &AxisWords) -> String {
-        format!("G0{}", self.words(profile, words))
+        format!("G0{}", self.axis_words(profile, words))
     }
 
     fn feed(&self, profile: &MachineProfile, mv: &FeedMove) -> String {
@@ -82,7 +63,7 @@ impl Post for AeroBasic {
         } else {
             mv.da_units / mv.seconds
         };
-        format!("G1{} F{}", self.words(profile, &mv.words), fixed(f, 6))
+        format!("G1{} F{}", self.axis_words(profile, &mv.words), fixed(f, 6))
     }
 
     fn loop_begin(&self, _id: u32, _count: u32) -> Option<Vec<String>> {

@@ -14,25 +14,6 @@ use crate::machine::MachineProfile;
 #[derive(Debug, Clone, Copy, Default)]
 pub struct LinuxCnc;
 
-impl LinuxCnc {
-    fn words(&self, profile: &MachineProfile, w: &AxisWords) -> String {
-        let mut s = String::new();
-        let rot = self.rotary_decimals(profile);
-        for (letter, value, decimals) in [
-            (profile.axes.linear, w.x, 4),
-            (profile.axes.rotary, w.a, rot),
-            (profile.axes.focus, w.z, 4),
-        ] {
-            if let Some(v) = value {
-                s.push(' ');
-                s.push(letter);
-                s.push_str(&fixed(v, decimals));
-            }
-        }
-        s
-    }
-}
-
 impl Post for LinuxCnc {
     fn name(&self) -> &'static str {
         "linuxcnc"
@@ -68,7 +49,7 @@ impl Post for LinuxCnc {
     }
 
     fn rapid(&self, profile: &MachineProfile, words: &AxisWords) -> String {
-        format!("G0{}", self.words(profile, words))
+        format!("G0{}", self.axis_words(profile, words))
     }
 
     fn feed(&self, profile: &MachineProfile, mv: &FeedMove) -> String {
@@ -76,7 +57,7 @@ impl Post for LinuxCnc {
         let decimals = if f >= 10.0 { 4 } else { 6 };
         format!(
             "G1{} F{}",
-            self.words(profile, &mv.words),
+            self.axis_words(profile, &mv.words),
             fixed(f, decimals)
         )
     }

@@ -70,6 +70,24 @@ pub trait Post {
             crate::machine::RotaryUnits::Rev => 9,
         }
     }
+    /// The axis words of a move, e.g. ` X1.0000 A90.000000`, in the profile's axis letters;
+    /// axes that do not move are left out.
+    fn axis_words(&self, profile: &MachineProfile, w: &AxisWords) -> String {
+        let (linear, rotary) = (self.linear_decimals(), self.rotary_decimals(profile));
+        let mut s = String::new();
+        for (letter, value, decimals) in [
+            (profile.axes.linear, w.x, linear),
+            (profile.axes.rotary, w.a, rotary),
+            (profile.axes.focus, w.z, linear),
+        ] {
+            if let Some(v) = value {
+                s.push(' ');
+                s.push(letter);
+                s.push_str(&fixed(v, decimals));
+            }
+        }
+        s
+    }
     /// One comment line (the text has no line breaks).
     fn comment(&self, text: &str) -> String;
     /// Lines before the first move: units, absolute positioning, feed mode.

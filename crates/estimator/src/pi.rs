@@ -68,16 +68,12 @@ impl PiOperator {
     #[inline]
     pub fn step(&mut self, input: f64) -> f64 {
         let n = self.len;
-        let mut sum = 0.0;
-        for ((state, &radius), &weight) in self.states[..n]
-            .iter_mut()
-            .zip(&self.radii[..n])
-            .zip(&self.weights[..n])
-        {
-            *state = play(input, radius, *state);
-            sum += weight * *state;
-        }
-        sum
+        weighted_plays(
+            &mut self.states[..n],
+            &self.radii[..n],
+            &self.weights[..n],
+            input,
+        )
     }
 
     /// Returns every play to `M₀`.
@@ -173,16 +169,12 @@ impl InversePiOperator {
     #[inline]
     pub fn step(&mut self, output: f64) -> f64 {
         let n = self.len;
-        let mut sum = 0.0;
-        for ((state, &radius), &weight) in self.states[..n]
-            .iter_mut()
-            .zip(&self.radii[..n])
-            .zip(&self.weights[..n])
-        {
-            *state = play(output, radius, *state);
-            sum += weight * *state;
-        }
-        sum
+        weighted_plays(
+            &mut self.states[..n],
+            &self.radii[..n],
+            &self.weights[..n],
+            output,
+        )
     }
 
     /// Returns to the state matching the forward operator's `M₀`.
@@ -234,6 +226,18 @@ pub(crate) fn validate(weights: &[f64], radii: &[f64]) -> Result<(), EstimatorEr
         }
     }
     Ok(())
+}
+
+/// `Σᵢ wᵢ·Γ_rᵢ(x)`: advances every play by one sample and sums them, weighted. The forward
+/// operator and its inverse are both this sum, with their own weights and radii.
+#[inline]
+fn weighted_plays(states: &mut [f64], radii: &[f64], weights: &[f64], x: f64) -> f64 {
+    let mut sum = 0.0;
+    for ((state, &radius), &weight) in states.iter_mut().zip(radii).zip(weights) {
+        *state = play(x, radius, *state);
+        sum += weight * *state;
+    }
+    sum
 }
 
 #[cfg(test)]
