@@ -17,5 +17,7 @@ if ! command -v rs274 >/dev/null 2>&1; then
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends linuxcnc-uspace >/dev/null
 fi
 
+# The runtime crates must build without std (no_std, libm only).
+cargo build --quiet -p dlw-geometry -p dlw-estimator --no-default-features
 cargo test --workspace --all-targets "$@"
 cargo test --workspace --doc
