@@ -6,8 +6,7 @@
 //! - [`design`]: design files (the paper's Table I plus fabrication tables), read and validated;
 //! - [`layout`]: the unrolled joint (notches, sensor traces, leads, pads, parting line) in the
 //!   drawing frame;
-//! - [`drawing`]: drawings of the joint: DXF for designers (written and read back), SVG for
-//!   people;
+//! - [`drawing`]: drawings of the joint: DXF for designers (written and read back), SVG for people;
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file.
 //!

@@ -1,11 +1,12 @@
-//! `dlw draw DESIGN [--dxf F]`.
+//! `dlw draw DESIGN [--dxf F] [--svg F] [--section F]`.
 
 use std::path::PathBuf;
 
 use anyhow::Context;
 use dlw::design::DesignFile;
 use dlw::drawing::layout_to_dxf;
-use dlw::output::write_atomic;
+use dlw::drawing::svg::{layout_svg, section_svg};
+use dlw::output::write_all_atomic;
 use dlw::rules;
 
 /// Arguments of `dlw draw`.
@@ -16,25 +17,40 @@ pub struct Args {
     /// Write the unrolled layout as an AutoCAD DXF (mm) for designers.
     #[arg(long, value_name = "FILE")]
     dxf: Option<PathBuf>,
+    /// Write the unrolled layout as an SVG sheet, with dimensions and a scale bar.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    /// Write the cross-section through a notch (the paper's Fig. 3) as an SVG sheet.
+    #[arg(long, value_name = "FILE")]
+    section: Option<PathBuf>,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    if args.dxf.is_none() {
-        anyhow::bail!("nothing to draw: give --dxf FILE");
+    if args.dxf.is_none() && args.svg.is_none() && args.section.is_none() {
+        anyhow::bail!("nothing to draw: give --dxf, --svg and/or --section FILE");
     }
     let checked = rules::check_file(DesignFile::read(&args.design)?)?;
     for w in &checked.warnings {
         eprintln!("warning: {w}");
     }
-    // Plan every output before writing any, so a failure leaves no file behind.
-    let clearance_mm = checked.design.file.fabrication.clearance_mm();
+    // Make every drawing before writing any, so a failure leaves no file behind.
+    let (design, layout) = (&checked.design, &checked.layout);
     let mut outputs: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     if let Some(path) = args.dxf {
-        let bytes = layout_to_dxf(&checked.layout, clearance_mm).context("drawing the DXF")?;
+        let clearance_mm = design.file.fabrication.clearance_mm();
+        let bytes = layout_to_dxf(layout, clearance_mm).context("drawing the DXF")?;
         outputs.push((path, bytes));
     }
-    for (path, bytes) in outputs {
-        write_atomic(&path, &bytes)?;
+    if let Some(path) = args.svg {
+        let svg = layout_svg(layout, design).context("drawing the layout SVG")?;
+        outputs.push((path, svg.into_bytes()));
+    }
+    if let Some(path) = args.section {
+        let svg = section_svg(design).context("drawing the section SVG")?;
+        outputs.push((path, svg.into_bytes()));
+    }
+    write_all_atomic(&outputs)?;
+    for (path, _) in &outputs {
         println!("wrote {}", path.display());
     }
     Ok(())

@@ -20,7 +20,7 @@ pub struct Cli {
 enum Command {
     /// Print a design's geometry and design-rule warnings.
     Inspect(inspect::Args),
-    /// Draw a design: the unrolled layout as DXF.
+    /// Draw a design: the unrolled layout as DXF and SVG, the cross-section as SVG.
     Draw(draw::Args),
     /// Read a DXF drawing in dlw's convention back and summarize it, with the design rules.
     ImportDxf(import_dxf::Args),

@@ -105,6 +105,13 @@ pub struct ImportedDxf {
     pub untagged: usize,
 }
 
+/// A notch polygon as read, with its tag (notch index, piece) if it had one.
+type NotchPiece = (Option<(i16, i16)>, Polygon<f64>);
+/// The pieces of one notch (numbered), under its tag's notch index if it had one.
+type NotchGroup = (Option<i16>, Vec<(i16, Polygon<f64>)>);
+/// A tagged trace: its sensor and its numbered pieces.
+type TaggedTrace = (usize, Vec<(i16, LineString<f64>)>);
+
 /// Layout numbers from the title's XDATA.
 struct Numbers {
     name: String,
@@ -141,7 +148,7 @@ pub fn layout_from_dxf(bytes: &[u8]) -> Result<ImportedDxf, DxfImportError> {
     }
     let mut layer_counts = BTreeMap::new();
     let mut numbers = None;
-    let mut notch_pieces: Vec<(Option<(i16, i16)>, Polygon<f64>)> = Vec::new();
+    let mut notch_pieces: Vec<NotchPiece> = Vec::new();
     let mut traces: Vec<TracePiece> = Vec::new();
     let mut parting: Vec<(Option<i16>, LineString<f64>)> = Vec::new();
     for entity in drawing.entities() {
@@ -426,10 +433,10 @@ fn is_spiral(points: &[Coord]) -> bool {
 }
 
 /// Notch pieces grouped into notches, with level and side from their geometry.
-fn notches(pieces: Vec<(Option<(i16, i16)>, Polygon<f64>)>, numbers: &Numbers) -> Vec<Notch> {
+fn notches(pieces: Vec<NotchPiece>, numbers: &Numbers) -> Vec<Notch> {
     let outer_radius_mm = numbers.outer_radius_mm;
     // Group tagged pieces by notch index (pieces in tag order); untagged pieces stand alone.
-    let mut groups: Vec<(Option<i16>, Vec<(i16, Polygon<f64>)>)> = Vec::new();
+    let mut groups: Vec<NotchGroup> = Vec::new();
     for (tag, poly) in pieces {
         match tag {
             Some((index, piece)) => match groups.iter_mut().find(|(i, _)| *i == Some(index)) {
@@ -490,11 +497,7 @@ fn notches(pieces: Vec<(Option<(i16, i16)>, Polygon<f64>)>, numbers: &Numbers) -
 /// Joins untagged notch pieces that are the two halves of one notch split at the seam: the
 /// same `x` range, one ending on the window's top edge and one starting on the seam. The top
 /// piece comes first, as the layout writes them.
-fn merge_seam_halves(
-    groups: &mut Vec<(Option<i16>, Vec<(i16, Polygon<f64>)>)>,
-    seam_mm: f64,
-    c_mm: f64,
-) {
+fn merge_seam_halves(groups: &mut Vec<NotchGroup>, seam_mm: f64, c_mm: f64) {
     const TOL_MM: f64 = 1e-6;
     let bounds = |p: &Polygon<f64>| p.bounding_rect();
     let mut i = 0;
@@ -532,7 +535,7 @@ fn merge_seam_halves(
 /// The traces of one kind: tagged ones by list index (pieces by piece number), then untagged
 /// ones, each its own trace.
 fn group_traces(pieces: &[TracePiece], kind: &str, bsn: bool, outer_radius_mm: f64) -> Vec<Trace> {
-    let mut tagged: BTreeMap<i16, (usize, Vec<(i16, LineString<f64>)>)> = BTreeMap::new();
+    let mut tagged: BTreeMap<i16, TaggedTrace> = BTreeMap::new();
     let mut untagged = Vec::new();
     for p in pieces.iter().filter(|p| p.kind == kind) {
         match p.tag {

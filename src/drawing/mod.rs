@@ -1,11 +1,12 @@
-//! Drawings of a layout: DXF for designers (written and read back), SVG for people.
+//! Drawings of a joint: DXF for designers (written and read back) and SVG for people.
 //!
-//! Every drawing uses the layout's frame (`docs/frames.md`): `x` along the tube from the distal
-//! end, `s` arc length on the outer surface, both in mm. In a DXF, `X = x` and `Y = s`.
+//! Every drawing of the layout uses its frame (`docs/frames.md`): `x` along the tube from the
+//! distal end, `s` arc length on the outer surface, both in mm. In a DXF, `X = x` and `Y = s`.
 
 mod dxf_convention;
 mod dxf_export;
 mod dxf_import;
+
 /// SVG drawings for people: the unrolled layout and the cross-section through a notch.
 pub mod svg;
 

@@ -16,7 +16,31 @@ pub enum LayoutError {
     /// A square-spiral pad needs at least one turn.
     #[error("pad_turns = 0 must be at least 1")]
     NoPadTurns,
+    /// A pad is wider than the tube is round.
+    #[error("a pad of pad_turns = {turns} at pad_pitch_mm = {pitch_mm} is {size_mm} mm wide, more than the circumference {circumference_mm:.4} mm")]
+    PadTooLarge {
+        /// Spiral turns.
+        turns: u32,
+        /// Spiral pitch (mm).
+        pitch_mm: f64,
+        /// Pad size `2·turns·pitch` (mm).
+        size_mm: f64,
+        /// Circumference (mm).
+        circumference_mm: f64,
+    },
+    /// More notches than a layout holds.
+    #[error("notch_count = {count} is more than {max}")]
+    TooManyNotches {
+        /// N.
+        count: u32,
+        /// The limit.
+        max: u32,
+    },
 }
+
+/// Most notch levels a layout holds: far more than a tube on a rotary stage carries, and
+/// within what a DXF can number (16-bit XDATA integers).
+pub const MAX_NOTCH_COUNT: u32 = 10_000;
 
 /// Checks that a fabrication length is finite and positive.
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, LayoutError> {

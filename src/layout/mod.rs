@@ -31,7 +31,7 @@ mod stations;
 use geo::{LineString, Polygon};
 
 /// Why a design could not be laid out.
-pub use error::LayoutError;
+pub use error::{LayoutError, MAX_NOTCH_COUNT};
 /// Where each feature sits along the tube: the layout's plan in `x`.
 pub use stations::Stations;
 

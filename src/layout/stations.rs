@@ -1,6 +1,6 @@
 use crate::design::Design;
 
-use super::error::{positive, LayoutError};
+use super::error::{positive, LayoutError, MAX_NOTCH_COUNT};
 
 /// Where each feature sits along the tube (`x`, mm from the distal end), the layout's plan.
 ///
@@ -38,7 +38,8 @@ impl Stations {
     /// The plan for a design.
     ///
     /// # Errors
-    /// [`LayoutError`] when a fabrication length is not positive or the pads have no turns.
+    /// [`LayoutError`] when a fabrication length is not positive, the pads have no turns or
+    /// are wider than the tube is round, or there are more than [`MAX_NOTCH_COUNT`] notches.
     pub fn from_design(design: &Design) -> Result<Self, LayoutError> {
         let fab = &design.file.fabrication;
         let joint = &design.joint;
@@ -50,6 +51,21 @@ impl Stations {
             return Err(LayoutError::NoPadTurns);
         }
         let pad_size_mm = 2.0 * f64::from(fab.pad_turns) * pitch_mm;
+        let circumference_mm = joint.section().circumference_mm();
+        if pad_size_mm >= circumference_mm {
+            return Err(LayoutError::PadTooLarge {
+                turns: fab.pad_turns,
+                pitch_mm,
+                size_mm: pad_size_mm,
+                circumference_mm,
+            });
+        }
+        if joint.notch_count() > MAX_NOTCH_COUNT {
+            return Err(LayoutError::TooManyNotches {
+                count: joint.notch_count(),
+                max: MAX_NOTCH_COUNT,
+            });
+        }
         let notched_end_x_mm = margin_mm + joint.notched_length_mm();
         let arm_end_x_mm = notched_end_x_mm + margin_mm / 2.0;
         let pad_x_mm = arm_end_x_mm + lead_mm;

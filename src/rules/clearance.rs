@@ -52,6 +52,7 @@ pub(crate) fn check(layout: &Layout, clearance_mm: f64, out: &mut Vec<Violation>
                     x_mm: hit.at.x,
                     s_mm: layout.seam_s_mm + (hit.at.y - layout.seam_s_mm).rem_euclid(c_mm),
                     gap_mm,
+                    crossing: hit.distance_mm <= 0.0,
                     other: hit.other,
                     required_mm: clearance_mm,
                 });

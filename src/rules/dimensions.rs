@@ -1,11 +1,12 @@
 //! Rules on plain dimensions: positive lengths, counts of at least one, cuts wider than the kerf.
 
 use crate::design::DesignFile;
+use crate::layout::MAX_NOTCH_COUNT;
 
 use super::Violation;
 
-/// Every length, strain limit and optional clearance is a positive, finite number; `N ≥ 1` and
-/// at least one pad turn; the notch width `h` and spacing `c` are larger than the kerf.
+/// Every length, strain limit and optional clearance is a positive, finite number;
+/// `1 ≤ N ≤ MAX_NOTCH_COUNT` and at least one pad turn; the notch width `h` and spacing `c` are larger than the kerf.
 pub(crate) fn check(file: &DesignFile, out: &mut Vec<Violation>) {
     let fab = &file.fabrication;
     let mat = &file.materials;
@@ -36,6 +37,13 @@ pub(crate) fn check(file: &DesignFile, out: &mut Vec<Violation>) {
     if file.notch_count == 0 {
         out.push(Violation::Zero {
             name: "notch_count",
+        });
+    }
+    if file.notch_count > MAX_NOTCH_COUNT {
+        out.push(Violation::TooMany {
+            name: "notch_count",
+            value: file.notch_count,
+            max: MAX_NOTCH_COUNT,
         });
     }
     if fab.pad_turns == 0 {

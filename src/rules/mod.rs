@@ -7,10 +7,10 @@
 //!
 //! | rule | family (file) |
 //! |---|---|
-//! | lengths, strain limits and clearance positive and finite; `N ≥ 1`; at least one pad turn; `h` and `c` larger than the kerf | `dimensions` |
+//! | lengths, strain limits and clearance positive and finite; `1 ≤ N ≤ 10000`; at least one pad turn; `h` and `c` larger than the kerf | `dimensions` |
 //! | `r_i < r_o`; `s_n < 2π·r_o` (UAN) or `s_n < π·r_o` (BSN pair must not overlap); sensor arms on the backbone; what else the geometry crate refuses | `section` |
 //! | `L = N·h + (N−1)·c` to [`LENGTH_TOLERANCE_MM`] | `length` |
-//! | `pad_pitch_mm ≥ trace_width_mm` | `pads` |
+//! | `pad_pitch_mm ≥ trace_width_mm`; the pads fit round the tube | `pads` |
 //! | every arm, lead and pad keeps the clearance from every cut and every other trace (see `clearance`) | `clearance` |
 //! | warning: sensor strain at the notch-closing angle past the saturation strain; backbone strain past its limit | `strain` |
 //!
@@ -100,6 +100,7 @@ pub fn check_parameters(file: &DesignFile) -> Vec<Violation> {
     section::check(file, &mut out);
     length::check(file, &mut out);
     pads::check(file, &mut out);
+    pads::check_size(file, &mut out);
     if out.is_empty() {
         section::check_geometry(file, &mut out);
     }

@@ -98,18 +98,25 @@ fn arms_closer_than_the_clearance_short_the_sensor() {
 }
 
 #[test]
-fn bsn_pads_that_do_not_fit_collide() {
-    // Joint C shrunk: the four pads cannot fit round a 0.6 mm tube.
+fn bsn_pads_that_do_not_fit_are_refused_before_layout() {
+    // Joint C shrunk: four 0.8 mm pads cannot fit round a 0.6 mm tube.
     let path = format!("{}/designs/joint-c.toml", env!("CARGO_MANIFEST_DIR"));
     let mut f = DesignFile::read(path.as_ref()).unwrap();
     f.outer_radius_mm = 0.6;
     f.inner_radius_mm = 0.45;
     f.notch_arc_mm = 1.2;
     f.sensor_arc_mm = 1.6;
+    let m = messages(f.clone());
+    assert_eq!(m.len(), 1, "{m:?}");
+    assert!(m[0].contains("so each may be at most 0.6425 mm"), "{m:?}");
+    // With room for the pads but a small gap, the clearance rule sees the pads of the two
+    // sensors 0.1 mm apart, centre line to centre line of their outer turns.
+    let mut f = DesignFile::read(path.as_ref()).unwrap();
+    f.fabrication.pad_gap_mm = 0.1;
     let m = messages(f);
     assert!(
         m.iter()
-            .any(|m| m.contains("sensor 1 pad") && m.contains("sensor 2 pad")),
+            .any(|m| m.contains("sensor 1 pad") && m.contains("is 0.050 mm from sensor 2 pad")),
         "{m:?}"
     );
 }

@@ -60,6 +60,32 @@ pub enum Violation {
         /// Key as written in the design file.
         name: &'static str,
     },
+    /// A count is above its limit.
+    #[error("{name} = {value} must be at most {max}")]
+    TooMany {
+        /// Key as written in the design file.
+        name: &'static str,
+        /// The value given.
+        value: u32,
+        /// The limit.
+        max: u32,
+    },
+    /// The pads are too big to fit round the tube.
+    #[error("pads of pad_turns = {turns} at pad_pitch_mm = {pitch_mm} are {size_mm:.4} mm wide (2·turns·pitch); {count} of them with pad_gap_mm between must fit round the circumference 2π·r_o = {circumference_mm:.4} mm, so each may be at most {max_mm:.4} mm")]
+    PadSize {
+        /// Spiral turns.
+        turns: u32,
+        /// Spiral pitch (mm).
+        pitch_mm: f64,
+        /// Pad size (mm).
+        size_mm: f64,
+        /// Pads round the tube.
+        count: u32,
+        /// Circumference (mm).
+        circumference_mm: f64,
+        /// Largest pad that fits (mm).
+        max_mm: f64,
+    },
     /// A notch or the rib between two notches is no wider than the laser's kerf.
     #[error("{name} = {value_mm} must be larger than the kerf kerf_mm = {kerf_mm}")]
     NarrowerThanKerf {
@@ -93,7 +119,7 @@ pub enum Violation {
         width_mm: f64,
     },
     /// A written trace comes closer than the clearance to a cut or to another trace.
-    #[error("{}", clearance_message(what, *x_mm, *s_mm, *gap_mm, other, *required_mm))]
+    #[error("{}", clearance_message(what, *x_mm, *s_mm, *gap_mm, *crossing, other, *required_mm))]
     Clearance {
         /// The trace, e.g. `sensor 1 arm`.
         what: String,
@@ -101,8 +127,10 @@ pub enum Violation {
         x_mm: f64,
         /// Arc-length position of its closest point, in the drawing's window (mm).
         s_mm: f64,
-        /// Edge-to-edge gap (mm); negative when they overlap.
+        /// Edge-to-edge gap (mm); negative when the written lines overlap.
         gap_mm: f64,
+        /// The centre line touches or crosses the other feature, so the gap says nothing more.
+        crossing: bool,
         /// The other feature, e.g. `notch 4`.
         other: String,
         /// The clearance in force (mm).
@@ -119,8 +147,18 @@ pub enum Violation {
     Other(String),
 }
 
-fn clearance_message(what: &str, x: f64, s: f64, gap: f64, other: &str, required: f64) -> String {
-    if gap < 0.0 {
+fn clearance_message(
+    what: &str,
+    x: f64,
+    s: f64,
+    gap: f64,
+    crossing: bool,
+    other: &str,
+    required: f64,
+) -> String {
+    if crossing {
+        format!("{what} at x = {x:.2} mm, s = {s:.2} mm touches or crosses {other} (clearance {required:.3} mm required)")
+    } else if gap < 0.0 {
         format!(
             "{what} at x = {x:.2} mm, s = {s:.2} mm overlaps {other} by {:.3} mm (clearance {required:.3} mm required)",
             -gap
