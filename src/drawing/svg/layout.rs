@@ -580,9 +580,9 @@ fn draw_axes(sheet: &mut Sheet, layout: &Layout, x_min: f64, x_max: f64) -> f64 
         ((x_min + x_max) / 2.0, x_title_y + sheet.paper(5.0)),
         &format!(
             "s = r_{{o}}·φ: arc length on the outer surface from +y (φ = 0). \
-             The top and bottom edges are the seam, s = {} mm (φ = {:.1}°).",
+             The top and bottom edges are the seam, s = {} mm (φ = {}°).",
             fixed(s0, 2),
-            seam_deg
+            fixed(seam_deg, 1)
         ),
         TextStyle::new(SMALL_MM, palette::DIMENSION).anchor(Anchor::Middle),
     );

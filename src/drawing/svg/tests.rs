@@ -321,6 +321,14 @@ fn check_section(stem: &str) {
     let svg = section_svg(&d).unwrap();
     assert_clean(&svg);
     let doc = parse(&svg);
+    // Prints to scale on A4 landscape, the whole section inside the viewBox.
+    let [x, y, w, h] = view_box(&doc);
+    let scale = mm_attr(&doc, "width") / w;
+    assert!((mm_attr(&doc, "height") / h - scale).abs() < 1e-3);
+    assert!(mm_attr(&doc, "width") <= super::options::PAGE_MM.0);
+    assert!(mm_attr(&doc, "height") <= super::options::PAGE_MM.1);
+    let ro = s.outer_radius_mm();
+    assert!(x < -ro && x + w > ro && y < -ro && y + h > ro, "{stem}");
     let bsn = s.style() == dlw_geometry::NotchStyle::Bsn;
     let sides = if bsn { 2 } else { 1 };
     assert_eq!(with_class(&doc, "material").len(), sides);
@@ -393,6 +401,7 @@ fn joint_a_section_marks_the_planes_and_delta_y() {
     check_section("joint-a");
     let doc_svg = section_svg(&design("joint-a")).unwrap();
     let doc = parse(&doc_svg);
+    assert!(has_text(&doc, "scale 50:1"), "{:?}", texts(&doc));
     assert!(has_text(&doc, "ȳ = 0.936 mm"));
     assert!(has_text(&doc, "Δy = ys − ȳ = 0.288 mm"));
 }
