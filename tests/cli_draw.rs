@@ -1,17 +1,12 @@
 //! `dlw inspect` and `dlw draw` on the shipped designs and on designs outside the paper, through
 //! the real binary.
 
+mod common;
+use common::dlw;
+
 mod common_designs;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn dlw(args: &[&std::ffi::OsStr]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 fn designs(dir: &Path) -> Vec<PathBuf> {
     let mut all = common_designs::shipped();

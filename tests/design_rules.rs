@@ -1,8 +1,11 @@
 //! Every design rule refuses a bad design through the real binary: non-zero exit, the rule's
 //! message (parameter, value, limit), and no output file.
 
+mod common;
+use common::dlw as run;
+
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 const JOINT_A: &str = include_str!("../designs/joint-a.toml");
 const JOINT_C: &str = include_str!("../designs/joint-c.toml");
@@ -118,13 +121,6 @@ const RULES: &[(&str, Edit, &[&str])] = &[
     ("clearance: set explicitly", Edit::Fabrication("clearance_mm = 0.9"),
         &["sensor 1 arm at x = ", "is 0.866 mm from notch 1 (clearance 0.900 mm required)"]),
 ];
-
-fn run(args: &[&std::ffi::OsStr]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 fn refused(out: &Output, rule: &str, fragments: &[&str]) {
     let stderr = String::from_utf8_lossy(&out.stderr);

@@ -1,26 +1,13 @@
 //! `dlw estimator-config` through the binary: TOML or JSON by extension, the design's geometry,
 //! and clear refusals that write nothing.
 
+mod common;
+use common::{dlw, shipped_design as design};
+
 use std::path::Path;
-use std::process::{Command, Output};
 
 use dlw::design::Design;
 use dlw_estimator::{EstimatorConfig, JointConfig, ModelConfig};
-
-fn dlw(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args(args)
-        .output()
-        .expect("the dlw binary runs")
-}
-
-fn design(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("designs")
-        .join(name)
-        .display()
-        .to_string()
-}
 
 #[test]
 fn toml_and_json_carry_the_same_config_from_the_design() {

@@ -1,17 +1,12 @@
 //! `dlw program` and `dlw build` through the binary: what they write, and that bad input gets a
 //! clear error, a non-zero exit and no file.
 
+mod common;
+use common::dlw;
+
 mod common_designs;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn dlw(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args(args)
-        .output()
-        .expect("the dlw binary runs")
-}
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()

@@ -1,15 +1,10 @@
 //! Bad recordings given to `dlw estimate`: each fails with a message naming the line and the
 //! value, a non-zero exit, and no estimates file.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
+use common::dlw;
 
-fn dlw(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args(args)
-        .output()
-        .expect("the dlw binary runs")
-}
+use std::path::Path;
 
 const RIG: &str = "sample_hz = 500.0\nsupply_v = 5.0\ndivider_ohm = [99600.0]\n";
 const HEADER: &str = "time_s,stroke_mm,angle_deg,v1_V";

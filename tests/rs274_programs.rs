@@ -9,13 +9,15 @@
 //!
 //! The checks and their tolerances are in `canon/checks.rs`.
 
+mod common;
+use common::dlw;
+
 mod canon;
 mod common_designs;
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use canon::checks::{check, expected};
 use canon::{parse, run_rs274};
@@ -39,13 +41,6 @@ kerf_mm = 0.025
 distal_margin_mm = 1.4
 lead_length_mm = 1.5
 "#;
-
-fn dlw(args: &[&std::ffi::OsStr]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args(args)
-        .output()
-        .expect("the dlw binary runs")
-}
 
 /// Writes a program for `design` through the binary; returns its path.
 fn program(design: &Path, dir: &Path, extra: &[&str]) -> PathBuf {

@@ -2,6 +2,9 @@
 //! ADC and tracker noise, the nominal linear config recovers the angle to within the noise; with
 //! a sensor effect switched on, the same config is measurably worse.
 
+mod common;
+use common::shipped_design as design_path;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -18,14 +21,6 @@ fn dlw(args: &[&str]) -> Output {
         String::from_utf8_lossy(&o.stderr)
     );
     o
-}
-
-fn design_path(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("designs")
-        .join(name)
-        .display()
-        .to_string()
 }
 
 /// The noise of a test scenario (written into its scenario file).

@@ -1,23 +1,11 @@
 //! `dlw simulate` through the binary: every protocol writes a recording folder in the bench
 //! format, runs are deterministic per seed, and failures leave nothing behind.
 
+mod common;
+use common::{dlw, shipped_design as design};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn dlw(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args(args)
-        .output()
-        .expect("the dlw binary runs")
-}
-
-fn design(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("designs")
-        .join(name)
-        .display()
-        .to_string()
-}
+use std::process::Output;
 
 fn simulate(design_file: &str, protocol: &str, out: &Path, extra: &[&str]) -> Output {
     let out = out.display().to_string();

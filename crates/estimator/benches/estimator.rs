@@ -16,23 +16,9 @@ use dlw_geometry::NotchStyle;
 
 const BLOCK: usize = 1000;
 
-fn joint(style: NotchStyle) -> JointConfig {
-    let (outer_radius_mm, inner_radius_mm, notch_arc_mm, sensor_arc_mm) = match style {
-        NotchStyle::Uan => (1.24, 0.875, 5.61, 0.4),
-        NotchStyle::Bsn => (0.8, 0.61, 1.65, 2.13),
-    };
-    JointConfig {
-        style,
-        outer_radius_mm,
-        inner_radius_mm,
-        notch_arc_mm,
-        notch_width_mm: 0.5,
-        notch_spacing_mm: 0.5,
-        notch_count: 10,
-        joint_length_mm: 9.5,
-        sensor_arc_mm,
-    }
-}
+#[path = "../tests/common/table_one.rs"]
+mod table_one;
+use table_one::joint;
 
 /// Joint A's PI model from the paper's initial guesses, N = 10.
 fn pi_n10() -> PiConfig {

@@ -244,19 +244,7 @@ pub fn nominal_divider() -> Divider {
 mod tests {
     use super::*;
 
-    pub(crate) fn joint_a() -> JointConfig {
-        JointConfig {
-            style: NotchStyle::Uan,
-            outer_radius_mm: 1.24,
-            inner_radius_mm: 0.875,
-            notch_arc_mm: 5.61,
-            notch_width_mm: 0.5,
-            notch_spacing_mm: 0.5,
-            notch_count: 10,
-            joint_length_mm: 9.5,
-            sensor_arc_mm: 0.4,
-        }
-    }
+    use crate::table_one::joint_a;
 
     #[test]
     fn joint_round_trips_through_geometry() {

@@ -271,36 +271,12 @@ impl Estimator {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::config::{nominal_divider, JointConfig};
+    use crate::config::nominal_divider;
     use crate::FilterConfig;
     use approx::assert_relative_eq;
-    use dlw_geometry::NotchStyle;
     use std::boxed::Box;
 
-    fn joint_a() -> JointConfig {
-        JointConfig {
-            style: NotchStyle::Uan,
-            outer_radius_mm: 1.24,
-            inner_radius_mm: 0.875,
-            notch_arc_mm: 5.61,
-            notch_width_mm: 0.5,
-            notch_spacing_mm: 0.5,
-            notch_count: 10,
-            joint_length_mm: 9.5,
-            sensor_arc_mm: 0.4,
-        }
-    }
-
-    fn joint_c() -> JointConfig {
-        JointConfig {
-            style: NotchStyle::Bsn,
-            outer_radius_mm: 0.8,
-            inner_radius_mm: 0.61,
-            notch_arc_mm: 1.65,
-            sensor_arc_mm: 2.13,
-            ..joint_a()
-        }
-    }
+    use crate::table_one::{joint_a, joint_c};
 
     /// Joint A at 26° with Table II's linear model, through the divider and back.
     #[test]

@@ -87,6 +87,9 @@ mod moving_average;
 mod pi;
 mod pi_model;
 mod play;
+#[cfg(test)]
+#[path = "../tests/common/table_one.rs"]
+mod table_one;
 mod tanh_input;
 
 /// Fixed-capacity coefficient lists (`MAX_PLAYS` = 16 play operators).

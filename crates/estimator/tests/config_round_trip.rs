@@ -5,32 +5,11 @@ use dlw_estimator::{
     nominal_divider, Coeffs, ContinuousPiConfig, Estimator, EstimatorConfig, FilterConfig,
     JointConfig, ModelConfig, PiConfig, SensorConfig, MAX_PLAYS,
 };
-use dlw_geometry::{Divider, NotchStyle};
+use dlw_geometry::Divider;
 
-fn joint_a() -> JointConfig {
-    JointConfig {
-        style: NotchStyle::Uan,
-        outer_radius_mm: 1.24,
-        inner_radius_mm: 0.875,
-        notch_arc_mm: 5.61,
-        notch_width_mm: 0.5,
-        notch_spacing_mm: 0.5,
-        notch_count: 10,
-        joint_length_mm: 9.5,
-        sensor_arc_mm: 0.4,
-    }
-}
-
-fn joint_c() -> JointConfig {
-    JointConfig {
-        style: NotchStyle::Bsn,
-        outer_radius_mm: 0.8,
-        inner_radius_mm: 0.61,
-        notch_arc_mm: 1.65,
-        sensor_arc_mm: 2.13,
-        ..joint_a()
-    }
-}
+#[path = "common/table_one.rs"]
+mod table_one;
+use table_one::{joint_a, joint_c};
 
 fn pi() -> PiConfig {
     PiConfig {

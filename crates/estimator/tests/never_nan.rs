@@ -8,32 +8,9 @@ use dlw_estimator::{
 use dlw_geometry::NotchStyle;
 use proptest::prelude::*;
 
-fn joint(style: NotchStyle) -> JointConfig {
-    match style {
-        NotchStyle::Uan => JointConfig {
-            style,
-            outer_radius_mm: 1.24,
-            inner_radius_mm: 0.875,
-            notch_arc_mm: 5.61,
-            notch_width_mm: 0.5,
-            notch_spacing_mm: 0.5,
-            notch_count: 10,
-            joint_length_mm: 9.5,
-            sensor_arc_mm: 0.4,
-        },
-        NotchStyle::Bsn => JointConfig {
-            style,
-            outer_radius_mm: 0.8,
-            inner_radius_mm: 0.61,
-            notch_arc_mm: 1.65,
-            notch_width_mm: 0.5,
-            notch_spacing_mm: 0.5,
-            notch_count: 10,
-            joint_length_mm: 9.5,
-            sensor_arc_mm: 2.13,
-        },
-    }
-}
+#[path = "common/table_one.rs"]
+mod table_one;
+use table_one::joint;
 
 fn pi() -> ModelConfig {
     let radii: Vec<f64> = (0..10).map(|i| f64::from(i) * 2.5e3).collect();
