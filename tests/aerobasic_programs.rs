@@ -9,7 +9,8 @@
 //! precision (A with 6 decimals).
 
 mod canon;
-mod common_designs;
+mod common;
+use common::designs as common_designs;
 
 use std::path::Path;
 use std::process::Command;

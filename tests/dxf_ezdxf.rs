@@ -3,7 +3,8 @@
 //!
 //! Needs `python3` with `ezdxf` (installed by `scripts/test.sh`); without them these tests fail.
 
-mod common_designs;
+mod common;
+use common::designs as common_designs;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -1,6 +1,7 @@
 //! DXF round trip: export, import, same layout to 1e-9 mm; and the import's refusals.
 
-mod common_designs;
+mod common;
+use common::designs as common_designs;
 
 use dlw::design::{Design, DesignFile};
 use dlw::drawing::{layout_from_dxf, layout_to_dxf, DxfImportError};

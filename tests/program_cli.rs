@@ -4,7 +4,7 @@
 mod common;
 use common::dlw;
 
-mod common_designs;
+use common::designs as common_designs;
 
 use std::path::{Path, PathBuf};
 

@@ -13,7 +13,7 @@ mod common;
 use common::dlw;
 
 mod canon;
-mod common_designs;
+use common::designs as common_designs;
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;

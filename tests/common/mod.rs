@@ -2,6 +2,8 @@
 //! finding the shipped designs.
 #![allow(dead_code)]
 
+pub mod designs;
+
 use std::ffi::OsStr;
 use std::path::Path;
 use std::process::{Command, Output};

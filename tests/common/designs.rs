@@ -1,4 +1,4 @@
-//! Designs beyond the paper's Table I, shared by the integration tests (`mod common_designs;`).
+//! Designs beyond the paper's Table I, shared by the integration tests (`common::designs`).
 #![allow(dead_code)]
 
 /// A BSN joint with other radii, arcs and notch pattern than Joint C.
