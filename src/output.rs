@@ -44,17 +44,69 @@ pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError>
     Ok(())
 }
 
+/// Writes `files` (names relative to `dir`) as the folder `dir`, so that either the whole new
+/// folder appears or nothing changes: the files are written into a temporary folder beside
+/// `dir`, which then takes `dir`'s place. An existing `dir` is replaced; whether it may be is
+/// the caller's decision, made before calling.
+///
+/// # Errors
+/// [`OutputError::Io`] naming the path; `dir` is then as it was.
+pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
+    let io = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| OutputError::Io { path, source }
+    };
+    let parent = folder_of(dir);
+    let staging = tempfile::Builder::new()
+        .prefix(".dlw-staging-")
+        .tempdir_in(parent)
+        .map_err(io(dir))?;
+    for (name, bytes) in files {
+        write_atomic(&staging.path().join(name), bytes)?;
+    }
+    // Temporary folders are created private (0700); an output folder is an ordinary one.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755))
+            .map_err(io(dir))?;
+    }
+    if std::fs::symlink_metadata(dir).is_err() {
+        std::fs::rename(staging.path(), dir).map_err(io(dir))?;
+        let _ = staging.keep();
+        return Ok(());
+    }
+    // rename cannot replace a non-empty folder: move the old one aside first, and back if the
+    // new one cannot take its place.
+    let old = tempfile::Builder::new()
+        .prefix(".dlw-replaced-")
+        .tempdir_in(parent)
+        .map_err(io(dir))?;
+    let aside = old.path().join("old");
+    std::fs::rename(dir, &aside).map_err(io(dir))?;
+    if let Err(source) = std::fs::rename(staging.path(), dir) {
+        let _ = std::fs::rename(&aside, dir);
+        return Err(io(dir)(source));
+    }
+    let _ = staging.keep();
+    Ok(())
+}
+
+/// The folder a path lives in (`.` for a bare file name).
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
 /// Writes `bytes` completely to a temporary file beside `path`.
 fn stage(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, OutputError> {
     let io = |source| OutputError::Io {
         path: path.to_path_buf(),
         source,
     };
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
+    let mut tmp = tempfile::NamedTempFile::new_in(folder_of(path)).map_err(io)?;
     tmp.write_all(bytes).map_err(io)?;
     tmp.flush().map_err(io)?;
     // Temporary files are created private (0600); an output file is an ordinary document.
@@ -109,5 +161,22 @@ mod tests {
         assert!(format!("{:#}", err.unwrap_err()).contains("no/such/d"));
         assert!(!c.exists());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+    }
+
+    #[test]
+    fn folders_appear_whole_and_replace_the_old_one() {
+        let root = tempfile::tempdir().unwrap();
+        let dir = root.path().join("job");
+        let files = |text: &str| vec![("a.txt".to_string(), text.as_bytes().to_vec())];
+        write_folder_atomic(&dir, &files("one")).unwrap();
+        std::fs::write(dir.join("stale.txt"), b"x").unwrap();
+        write_folder_atomic(&dir, &files("two")).unwrap();
+        assert_eq!(std::fs::read(dir.join("a.txt")).unwrap(), b"two");
+        assert!(!dir.join("stale.txt").exists());
+        // A file that cannot be written leaves the old folder as it was, and no staging behind.
+        let bad = vec![("no/such/sub/b.txt".to_string(), b"x".to_vec())];
+        assert!(write_folder_atomic(&dir, &bad).is_err());
+        assert_eq!(std::fs::read(dir.join("a.txt")).unwrap(), b"two");
+        assert_eq!(std::fs::read_dir(root.path()).unwrap().count(), 1);
     }
 }

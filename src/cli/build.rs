@@ -9,6 +9,7 @@ use anyhow::{bail, Context};
 use dlw::drawing::layout_to_dxf;
 use dlw::drawing::svg::{layout_svg, section_svg};
 use dlw::job::program_file_name;
+use dlw::output::write_folder_atomic;
 
 use super::program::{job, resolve_inputs};
 
@@ -90,41 +91,6 @@ fn write_folder(dir: &Path, files: &[(String, Vec<u8>)]) -> anyhow::Result<()> {
     }
     std::fs::create_dir_all(&parent)
         .with_context(|| format!("cannot create {}", parent.display()))?;
-    let tmp = tempfile::Builder::new()
-        .prefix(".dlw-build-")
-        .tempdir_in(&parent)
-        .with_context(|| format!("cannot create a folder in {}", parent.display()))?;
-    for (name, bytes) in files {
-        let path = tmp.path().join(name);
-        std::fs::write(&path, bytes).with_context(|| format!("cannot write {}", path.display()))?;
-    }
-    // A temporary folder is private (0700); the build folder is an ordinary one.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(tmp.path(), std::fs::Permissions::from_mode(0o755))
-            .with_context(|| format!("cannot set permissions on {}", tmp.path().display()))?;
-    }
-    let staged = tmp.keep();
-    if dir.exists() {
-        let old = tempfile::Builder::new()
-            .prefix(".dlw-old-")
-            .tempdir_in(&parent)
-            .with_context(|| format!("cannot create a folder in {}", parent.display()))?
-            .keep();
-        std::fs::rename(dir, old.join("old"))
-            .with_context(|| format!("cannot move {} aside", dir.display()))?;
-        if let Err(e) = std::fs::rename(&staged, dir) {
-            // Put the old folder back so nothing is lost.
-            let _ = std::fs::rename(old.join("old"), dir);
-            let _ = std::fs::remove_dir_all(&staged);
-            return Err(e)
-                .with_context(|| format!("cannot move the new build into {}", dir.display()));
-        }
-        let _ = std::fs::remove_dir_all(&old);
-    } else if let Err(e) = std::fs::rename(&staged, dir) {
-        let _ = std::fs::remove_dir_all(&staged);
-        return Err(e).with_context(|| format!("cannot create {}", dir.display()));
-    }
+    write_folder_atomic(dir, files)?;
     Ok(())
 }

@@ -21,7 +21,7 @@ use serde::{Deserialize, Serialize};
 use super::scenario::Scenario;
 use crate::design::DesignFile;
 use crate::fixed::push_fixed;
-use crate::output::{write_atomic, OutputError};
+use crate::output::{write_folder_atomic, OutputError};
 
 /// The data file's name inside a recording.
 pub const DATA_FILE: &str = "data.csv";
@@ -158,16 +158,6 @@ pub enum RecordingError {
     /// A file or folder could not be written.
     #[error(transparent)]
     Output(#[from] OutputError),
-    /// A folder operation failed.
-    #[error("cannot {action} {path}")]
-    Io {
-        /// What was being done.
-        action: &'static str,
-        /// The folder.
-        path: PathBuf,
-        /// What the operating system said.
-        source: std::io::Error,
-    },
 }
 
 /// `rig.toml`: how the bench was set up.
@@ -319,14 +309,6 @@ impl Recording {
     /// # Errors
     /// [`RecordingError::Exists`], or an I/O error naming the path; `dest` is then untouched.
     pub fn write(&self, dest: &Path, replace: bool) -> Result<(), RecordingError> {
-        let io = |action, path: &Path| {
-            let path = path.to_path_buf();
-            move |source| RecordingError::Io {
-                action,
-                path,
-                source,
-            }
-        };
         let occupied = match std::fs::read_dir(dest) {
             Ok(mut entries) => entries.next().is_some(),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
@@ -338,51 +320,14 @@ impl Recording {
                 path: dest.to_path_buf(),
             });
         }
-        let parent = match dest.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        let staging = tempfile::Builder::new()
-            .prefix(".dlw-recording-")
-            .tempdir_in(parent)
-            .map_err(io("create a folder in", parent))?;
         let rig = toml::to_string(&self.rig).map_err(|e| RecordingError::RigWrite {
             message: e.to_string(),
         })?;
-        write_atomic(&staging.path().join(RIG_FILE), rig.as_bytes())?;
-        write_atomic(&staging.path().join(DATA_FILE), &self.csv_bytes())?;
-        // The staging folder and write_atomic's temporary files are private (0700, 0600);
-        // a recording is for sharing.
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            let set = |path: &Path, mode| {
-                std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode))
-                    .map_err(io("set permissions of", path))
-            };
-            set(&staging.path().join(RIG_FILE), 0o644)?;
-            set(&staging.path().join(DATA_FILE), 0o644)?;
-            set(staging.path(), 0o755)?;
-        }
-        if occupied {
-            // Move the old folder aside first: rename cannot replace a non-empty folder.
-            let old = tempfile::Builder::new()
-                .prefix(".dlw-replaced-")
-                .tempdir_in(parent)
-                .map_err(io("create a folder in", parent))?;
-            let aside = old.path().join("old");
-            std::fs::rename(dest, &aside).map_err(io("move aside", dest))?;
-            if let Err(source) = std::fs::rename(staging.path(), dest) {
-                // Put the old recording back; the staging folder is removed on drop.
-                let _ = std::fs::rename(&aside, dest);
-                return Err(io("rename into", dest)(source));
-            }
-            let _ = staging.keep();
-            drop(old);
-        } else {
-            std::fs::rename(staging.path(), dest).map_err(io("rename into", dest))?;
-            let _ = staging.keep();
-        }
+        let files = [
+            (RIG_FILE.to_string(), rig.into_bytes()),
+            (DATA_FILE.to_string(), self.csv_bytes()),
+        ];
+        write_folder_atomic(dest, &files)?;
         Ok(())
     }
 
