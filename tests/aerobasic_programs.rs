@@ -11,9 +11,9 @@
 mod canon;
 mod common;
 use common::designs as common_designs;
+use common::dlw;
 
 use std::path::Path;
-use std::process::Command;
 
 use canon::checks::{check, expected};
 use canon::{Canon, CanonMove, Pose};
@@ -122,26 +122,28 @@ fn parse_aerobasic(text: &str) -> Canon {
     c
 }
 
-fn run(design: &Path, what: &str) {
+/// Writes the AeroBasic program for `design` through the binary and returns its text.
+fn aerobasic_program(design: &Path, what: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("job.pgm");
-    let o = Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args([
-            "program",
-            design.to_str().unwrap(),
-            "--machine",
-            "aerotech-aerobasic",
-            "-o",
-            out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
+    let o = dlw(&[
+        "program".as_ref(),
+        design.as_os_str(),
+        "--machine".as_ref(),
+        "aerotech-aerobasic".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
     assert!(
         o.status.success(),
         "{what}: {}",
         String::from_utf8_lossy(&o.stderr)
     );
-    let moves = parse_aerobasic(&std::fs::read_to_string(&out).unwrap());
+    std::fs::read_to_string(&out).unwrap()
+}
+
+fn run(design: &Path, what: &str) {
+    let moves = parse_aerobasic(&aerobasic_program(design, what));
     let mut e = expected(design, Some("aerotech-aerobasic"));
     e.a_print_deg = 0.5e-6;
     e.inverse_time = false;
@@ -170,22 +172,8 @@ fn designs_outside_the_paper_pass_the_checks() {
 
 #[test]
 fn the_parser_and_checks_catch_broken_programs() {
-    let dir = tempfile::tempdir().unwrap();
     let design = &common_designs::shipped()[2];
-    let out = dir.path().join("job.pgm");
-    let o = Command::new(env!("CARGO_BIN_EXE_dlw"))
-        .args([
-            "program",
-            design.to_str().unwrap(),
-            "--machine",
-            "aerotech-aerobasic",
-            "-o",
-            out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(o.status.success());
-    let good = std::fs::read_to_string(&out).unwrap();
+    let good = aerobasic_program(design, "broken-program baseline");
     let mut e = expected(design, Some("aerotech-aerobasic"));
     e.a_print_deg = 0.5e-6;
     e.inverse_time = false;
