@@ -33,6 +33,7 @@ pub mod output;
 pub mod post;
 pub mod process;
 pub mod replay;
+pub mod report;
 pub mod rules;
 pub mod sim;
 pub mod toolpath;
