@@ -28,11 +28,13 @@ pub use config_file::{config_text, load_config, ConfigFileError, ConfigFormat};
 pub enum ReplayError {
     /// The config needs more sensors than the recording has.
     #[error(
-        "the config reads {config} sensors but the recording has {recording} voltage column(s)"
+        "the config reads {config} sensor(s), up to voltage column v{column}_V, but the recording has {recording} voltage column(s)"
     )]
     SensorCount {
         /// Sensors in the config.
         config: u32,
+        /// The highest voltage column the config reads (1-based).
+        column: usize,
         /// Voltage columns in the recording.
         recording: usize,
     },
@@ -84,20 +86,25 @@ pub fn replay(config: &EstimatorConfig, recording: &Recording) -> Result<Replay,
     let samples = &recording.samples;
     let channels = samples.volts.len();
     let two = config.second_sensor.is_some();
-    if config.sensor_count() as usize > channels {
+    // A one-sensor config reads the column of its plane (v2_V for a sensor on −y_s).
+    let first_column = config.first_plane().column() as usize;
+    let needed = if two { 2 } else { first_column };
+    if needed > channels {
         return Err(ReplayError::SensorCount {
             config: config.sensor_count(),
+            column: needed,
             recording: channels,
         });
     }
     let mut warnings = Vec::new();
     if !two && channels > 1 {
         warnings.push(format!(
-            "the recording has {channels} voltage columns; the config reads only v1_V"
+            "the recording has {channels} voltage columns; the config reads only v{first_column}_V"
         ));
     }
     let sensors = std::iter::once(&config.sensor).chain(config.second_sensor.as_ref());
-    for (i, s) in sensors.enumerate() {
+    for (place, s) in sensors.enumerate() {
+        let i = if two { place } else { first_column - 1 };
         let rig_ohm = rig.divider_ohm[i];
         if !close(s.divider_ohm, rig_ohm) {
             warnings.push(format!(
@@ -127,7 +134,7 @@ pub fn replay(config: &EstimatorConfig, recording: &Recording) -> Result<Replay,
         let e = if two {
             estimator.step2(samples.volts[0][i], samples.volts[1][i])
         } else {
-            estimator.step(samples.volts[0][i])
+            estimator.step(samples.volts[first_column - 1][i])
         };
         let err = e.angle_deg - samples.angle_deg[i];
         sum_sq += err * err;

@@ -108,7 +108,42 @@ impl ModelConfig {
     }
 }
 
-/// One sensor: its divider and its model.
+/// The plane a sensor lies in, which fixes the sign of its strain (Eq. 3) and, in a bench
+/// recording, its voltage column.
+///
+/// In files: `plus_ys` (sensor 1, stretched by a positive angle, recorded as `v1_V`) or
+/// `minus_ys` (sensor 2 of a BSN joint, compressed by a positive angle: its strain is `−ε`,
+/// recorded as `v2_V`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum SensorPlane {
+    /// Plane `+y_s`: strain `+ε`.
+    #[default]
+    PlusYs,
+    /// Plane `−y_s`: strain `−ε`.
+    MinusYs,
+}
+
+impl SensorPlane {
+    /// `+1` for `+y_s`, `−1` for `−y_s`: the sensor's strain is `sign·ε`.
+    pub fn sign(self) -> f64 {
+        match self {
+            Self::PlusYs => 1.0,
+            Self::MinusYs => -1.0,
+        }
+    }
+
+    /// The 1-based voltage column a bench recording keeps this sensor in (`v1_V`, `v2_V`).
+    pub fn column(self) -> u32 {
+        match self {
+            Self::PlusYs => 1,
+            Self::MinusYs => 2,
+        }
+    }
+}
+
+/// One sensor: its divider, its model and the plane it reads.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
@@ -117,6 +152,14 @@ pub struct SensorConfig {
     pub divider_ohm: f64,
     /// Divider supply `V+` (V).
     pub supply_v: f64,
+    /// The plane the sensor lies in. Unset, it follows the sensor's place: `plus_ys` for
+    /// `sensor`, `minus_ys` for `second_sensor`. A one-sensor config for a BSN joint's
+    /// compression sensor says `minus_ys`: it reads `v2_V` and its strain is `−ε`.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub plane: Option<SensorPlane>,
     /// Resistance to strain.
     pub model: ModelConfig,
 }
@@ -127,6 +170,7 @@ impl SensorConfig {
         Self {
             divider_ohm: divider.fixed_ohm,
             supply_v: divider.supply_v,
+            plane: None,
             model,
         }
     }
@@ -137,6 +181,12 @@ impl SensorConfig {
     /// Either value not finite or not positive.
     pub fn divider(&self) -> Result<Divider, EstimatorError> {
         Ok(Divider::new(self.divider_ohm, self.supply_v)?)
+    }
+
+    /// The same sensor on another plane.
+    pub fn on_plane(mut self, plane: SensorPlane) -> Self {
+        self.plane = Some(plane);
+        self
     }
 
     /// Checks the divider and the model.
@@ -204,6 +254,11 @@ impl EstimatorConfig {
         Ok(config)
     }
 
+    /// The plane `sensor` reads: its own `plane`, or `plus_ys`.
+    pub fn first_plane(&self) -> SensorPlane {
+        self.sensor.plane.unwrap_or(SensorPlane::PlusYs)
+    }
+
     /// Number of sensors configured (1 or 2).
     pub fn sensor_count(&self) -> u32 {
         1 + u32::from(self.second_sensor.is_some())
@@ -218,6 +273,12 @@ impl EstimatorConfig {
         self.sensor.validate()?;
         if let Some(second) = &self.second_sensor {
             second.validate()?;
+            let planes = (self.sensor.plane, second.plane);
+            let plus = matches!(planes.0, None | Some(SensorPlane::PlusYs));
+            let minus = matches!(planes.1, None | Some(SensorPlane::MinusYs));
+            if !(plus && minus) {
+                return Err(EstimatorError::SensorPlanes);
+            }
         }
         let carries = joint.style().sensor_count();
         if self.sensor_count() > carries {

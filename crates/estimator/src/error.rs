@@ -117,6 +117,8 @@ pub enum EstimatorError {
         /// Sensors the joint's notch style carries.
         joint_carries: u32,
     },
+    /// A two-sensor config whose sensors are not on `+y_s` (first) and `−y_s` (second).
+    SensorPlanes,
 }
 
 impl fmt::Display for EstimatorError {
@@ -164,6 +166,10 @@ impl fmt::Display for EstimatorError {
             Self::TooManySensors { configured, joint_carries } => write!(
                 f,
                 "{configured} sensors are configured but the joint carries at most {joint_carries}"
+            ),
+            Self::SensorPlanes => write!(
+                f,
+                "a two-sensor config needs sensor on plane plus_ys and second_sensor on minus_ys"
             ),
         }
     }

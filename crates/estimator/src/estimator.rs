@@ -116,6 +116,7 @@ pub struct Estimator {
     angle_per_strain: f64,
     /// `dθ/d(ε₁ − ε₂)` of Eq. 7 (BSN only).
     angle_per_strain_difference: f64,
+    first_sign: f64,
     first: Channel,
     second: Option<Channel>,
     output_filter: Filter,
@@ -140,6 +141,7 @@ impl Estimator {
             // answers at unit strain.
             angle_per_strain: joint.angle_from_strain(1.0),
             angle_per_strain_difference: joint.two_sensor_angle(1.0, 0.0).unwrap_or(0.0),
+            first_sign: config.first_plane().sign(),
             first,
             second,
             output_filter: Filter::new(&config.output_filter)?,
@@ -185,7 +187,8 @@ impl Estimator {
             Err(flags) => return self.hold(flags),
         };
         let (strain, flags) = self.first.strain(ohm);
-        let angle = strain * self.angle_per_strain;
+        // A sensor on −y_s reads −ε (Eq. 3 with −Δy).
+        let angle = strain * self.first_sign * self.angle_per_strain;
         self.finish(angle, [strain, 0.0], [ohm, 0.0], flags)
     }
 

@@ -96,8 +96,8 @@ mod tanh_input;
 pub use coeffs::{Coeffs, MAX_PLAYS};
 /// Estimator configuration: joint geometry, sensors, models and filters.
 pub use config::{
-    nominal_divider, EstimatorConfig, JointConfig, ModelConfig, SensorConfig, DEFAULT_DIVIDER_OHM,
-    DEFAULT_SUPPLY_V,
+    nominal_divider, EstimatorConfig, JointConfig, ModelConfig, SensorConfig, SensorPlane,
+    DEFAULT_DIVIDER_OHM, DEFAULT_SUPPLY_V,
 };
 /// The continuous generalized PI model (envelopes inside the plays) and its numerical inverse.
 pub use continuous_pi::{
