@@ -25,6 +25,7 @@
 
 pub mod design;
 pub mod drawing;
+pub mod fit;
 pub mod fixed;
 pub mod job;
 pub mod layout;

@@ -1,0 +1,173 @@
+//! What a fit sees of a recording: one sensor's own strain and resistance per sample, after
+//! the prefilter and the decimation.
+
+use dlw_estimator::{Filter, FilterConfig, SensorPlane};
+use dlw_geometry::{Divider, Joint};
+
+use super::FitError;
+use crate::sim::Recording;
+
+/// Smallest span of the recorded angle a fit accepts (°): below it the strain is noise.
+pub const MIN_ANGLE_SPAN_DEG: f64 = 1.0;
+
+/// A voltage within this fraction of the supply from either rail counts as at the rail: the
+/// divider there resolves no resistance (a saturated ADC or an open or shorted sensor).
+pub const RAIL_FRACTION: f64 = 1e-3;
+
+/// The prefilter applied to strain and resistance alike before fitting, and then by the
+/// runtime estimator to the resistance (the config's `input_filter`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Prefilter {
+    /// No filter.
+    None,
+    /// Causal moving average of this many samples.
+    MovingAverage(u32),
+}
+
+impl Prefilter {
+    /// The runtime estimator's filter that does the same.
+    pub fn filter_config(self) -> FilterConfig {
+        match self {
+            Self::None => FilterConfig::None,
+            Self::MovingAverage(samples) => FilterConfig::MovingAverage { samples },
+        }
+    }
+
+    /// Keep every `k`-th sample after this filter: half its window, so that the decimated
+    /// series still has two samples per averaging window and aliases nothing the filter
+    /// passes (a moving average of `N` has its first null at `f_s/N`).
+    pub fn decimation(self) -> usize {
+        match self {
+            Self::None => 1,
+            Self::MovingAverage(n) => (n as usize / 2).max(1),
+        }
+    }
+}
+
+impl std::str::FromStr for Prefilter {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s == "none" {
+            return Ok(Self::None);
+        }
+        let n = s
+            .strip_prefix("ma:")
+            .ok_or_else(|| format!("prefilter '{s}' must be 'none' or 'ma:N'"))?;
+        let n: u32 = n
+            .parse()
+            .map_err(|_| format!("prefilter '{s}': N must be a whole number of samples"))?;
+        let max = dlw_estimator::MAX_MOVING_AVERAGE;
+        if n == 0 || n as usize > max {
+            return Err(format!(
+                "prefilter ma:{n} must average 1 to {max} samples (the runtime's limit)"
+            ));
+        }
+        Ok(Self::MovingAverage(n))
+    }
+}
+
+/// One sensor's observations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Observations {
+    /// Sample times (s).
+    pub time_s: Vec<f64>,
+    /// The sensor's own strain (fraction): `+ε` on `+y_s`, `−ε` on `−y_s` (Eq. 3).
+    pub strain: Vec<f64>,
+    /// The sensor's resistance (Ω, Eq. 4).
+    pub ohm: Vec<f64>,
+    /// Smallest and largest resistance seen after the prefilter (Ω): the range the runtime
+    /// clamps to.
+    pub ohm_range: (f64, f64),
+    /// Samples between kept samples (1 = every sample).
+    pub decimation: usize,
+}
+
+impl Observations {
+    /// Number of samples kept.
+    pub fn len(&self) -> usize {
+        self.strain.len()
+    }
+
+    /// `true` when no sample was kept.
+    pub fn is_empty(&self) -> bool {
+        self.strain.is_empty()
+    }
+}
+
+/// Reads the sensor on `plane` from `recording`: strain from the tracker angle through the
+/// joint's geometry (Eq. 3), resistance from the voltage through the rig's divider (Eq. 4),
+/// both through `prefilter` and then decimated by `decimation` (`None`: the prefilter's own).
+///
+/// # Errors
+/// [`FitError::NoColumn`], [`FitError::NoMotion`], [`FitError::Rail`].
+pub fn observe(
+    recording: &Recording,
+    joint: &Joint,
+    plane: SensorPlane,
+    prefilter: Prefilter,
+    decimation: Option<usize>,
+) -> Result<Observations, FitError> {
+    let column = plane.column() as usize;
+    let s = &recording.samples;
+    let rig = &recording.rig;
+    let volts = s.volts.get(column - 1).ok_or(FitError::NoColumn {
+        column,
+        columns: s.volts.len(),
+    })?;
+    let (lo, hi) = s
+        .angle_deg
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &a| {
+            (lo.min(a), hi.max(a))
+        });
+    if !(hi - lo >= MIN_ANGLE_SPAN_DEG) {
+        return Err(FitError::NoMotion {
+            span_deg: (hi - lo).max(0.0),
+            min_deg: MIN_ANGLE_SPAN_DEG,
+        });
+    }
+    let margin = RAIL_FRACTION * rig.supply_v;
+    let at_rail: Vec<usize> = (0..volts.len())
+        .filter(|&i| volts[i] <= margin || volts[i] >= rig.supply_v - margin)
+        .collect();
+    if let Some(&first) = at_rail.first() {
+        return Err(FitError::Rail {
+            column,
+            count: at_rail.len(),
+            time_s: s.time_s[first],
+            volts: volts[first],
+            margin_v: margin,
+        });
+    }
+    let divider = Divider {
+        fixed_ohm: rig.divider_ohm[column - 1],
+        supply_v: rig.supply_v,
+    };
+    let mut strain_filter = Filter::new(&prefilter.filter_config()).map_err(FitError::Model)?;
+    let mut ohm_filter = strain_filter.clone();
+    let step = decimation.unwrap_or_else(|| prefilter.decimation()).max(1);
+    // The filters' warm-up: the first window is an average over fewer samples, which the
+    // runtime also sees; it is kept.
+    let n = volts.len();
+    let mut out = Observations {
+        time_s: Vec::with_capacity(n / step + 1),
+        strain: Vec::with_capacity(n / step + 1),
+        ohm: Vec::with_capacity(n / step + 1),
+        ohm_range: (f64::INFINITY, f64::NEG_INFINITY),
+        decimation: step,
+    };
+    let sign = plane.sign();
+    for i in 0..n {
+        let strain = sign * joint.strain(s.angle_deg[i].to_radians());
+        let ohm = divider.resistance(volts[i]).unwrap_or(f64::NAN);
+        let (strain, ohm) = (strain_filter.step(strain), ohm_filter.step(ohm));
+        out.ohm_range = (out.ohm_range.0.min(ohm), out.ohm_range.1.max(ohm));
+        if i % step == 0 {
+            out.time_s.push(s.time_s[i]);
+            out.strain.push(strain);
+            out.ohm.push(ohm);
+        }
+    }
+    Ok(out)
+}
