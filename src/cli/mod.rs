@@ -7,6 +7,7 @@ mod build;
 mod draw;
 mod estimate;
 mod estimator_config;
+mod fit;
 mod import_dxf;
 mod inspect;
 mod program;
@@ -39,6 +40,8 @@ enum Command {
     EstimatorConfig(estimator_config::Args),
     /// Run the runtime estimator over a recording and report its error.
     Estimate(estimate::Args),
+    /// Fit linear and PI sensor models to a recording and write an estimator config.
+    Fit(fit::Args),
 }
 
 /// Runs the parsed command.
@@ -52,5 +55,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Simulate(args) => simulate::run(args),
         Command::EstimatorConfig(args) => estimator_config::run(args),
         Command::Estimate(args) => estimate::run(args),
+        Command::Fit(args) => fit::run(args),
     }
 }

@@ -14,6 +14,11 @@ pub const MIN_ANGLE_SPAN_DEG: f64 = 1.0;
 /// divider there resolves no resistance (a saturated ADC or an open or shorted sensor).
 pub const RAIL_FRACTION: f64 = 1e-3;
 
+/// A fit keeps at most about this many samples: the optimizer's cost grows with them while
+/// the information in a slowly driven, prefiltered recording does not (`docs/fit.md` shows a
+/// fit on every sample is no better).
+pub const MAX_FIT_SAMPLES: usize = 8000;
+
 /// The prefilter applied to strain and resistance alike before fitting, and then by the
 /// runtime estimator to the resistance (the config's `input_filter`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -97,7 +102,8 @@ impl Observations {
 
 /// Reads the sensor on `plane` from `recording`: strain from the tracker angle through the
 /// joint's geometry (Eq. 3), resistance from the voltage through the rig's divider (Eq. 4),
-/// both through `prefilter` and then decimated by `decimation` (`None`: the prefilter's own).
+/// both through `prefilter` and then decimated by `decimation` (`None`: the prefilter's own,
+/// or more to keep at most [`MAX_FIT_SAMPLES`]).
 ///
 /// # Errors
 /// [`FitError::NoColumn`], [`FitError::NoMotion`], [`FitError::Rail`].
@@ -146,7 +152,13 @@ pub fn observe(
     };
     let mut strain_filter = Filter::new(&prefilter.filter_config()).map_err(FitError::Model)?;
     let mut ohm_filter = strain_filter.clone();
-    let step = decimation.unwrap_or_else(|| prefilter.decimation()).max(1);
+    let step = decimation
+        .unwrap_or_else(|| {
+            prefilter
+                .decimation()
+                .max(volts.len().div_ceil(MAX_FIT_SAMPLES))
+        })
+        .max(1);
     // The filters' warm-up: the first window is an average over fewer samples, which the
     // runtime also sees; it is kept.
     let n = volts.len();

@@ -39,15 +39,17 @@ pub use characteristic::{characteristic, Characteristic};
 /// Loading and unloading phases and cycles of the strain.
 pub use cycles::{cycles, phases, Cycle, Phase};
 /// A sensor's strain and resistance as a fit sees them.
-pub use data::{observe, Observations, Prefilter, MIN_ANGLE_SPAN_DEG, RAIL_FRACTION};
+pub use data::{
+    observe, Observations, Prefilter, MAX_FIT_SAMPLES, MIN_ANGLE_SPAN_DEG, RAIL_FRACTION,
+};
 /// The linear model by least squares.
 pub use linear::{fit_linear, LinearFit, MIN_R2};
 /// PI fits by Levenberg-Marquardt.
-pub use pi::{fit_plays, PlayFit, Problem, SLOPE_RESTARTS};
+pub use pi::{fit_plays, PlayFit, Problem, FTOL, GTOL, SLOPE_RESTARTS, XTOL};
 /// The play models with their Jacobian.
 pub use plays::{PlayKind, PlayModel, Unpacked, BRANCH_PARAMS, PARTIAL_SUM_MARGIN};
 /// The fit report page.
-pub use report::report_page;
+pub use report::{report_page, Validation};
 
 use crate::sim::Recording;
 

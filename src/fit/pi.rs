@@ -26,6 +26,13 @@ use super::FitError;
 /// Multipliers `k` of the initial slope `a₂ = k·m_c/a₁` tried, the paper's first.
 pub const SLOPE_RESTARTS: [f64; 3] = [0.5, 1.0, 2.0];
 
+/// The optimizer stops when a step reduces the sum of squares by less than this fraction…
+pub const FTOL: f64 = 1e-9;
+/// …or moves the parameters by less than this fraction of their size…
+pub const XTOL: f64 = 1e-9;
+/// …or the residuals are this close to orthogonal to the Jacobian's columns.
+pub const GTOL: f64 = 1e-12;
+
 /// A fitted play model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlayFit {
@@ -43,6 +50,15 @@ pub struct PlayFit {
     pub restarts: Vec<(f64, f64, bool)>,
     /// Residual evaluations over all restarts.
     pub evaluations: usize,
+}
+
+impl PlayFit {
+    /// The fitted model's resistance over `strain` (Ω), from relaxed plays.
+    pub fn predict(&self, strain: &[f64]) -> Vec<f64> {
+        let mut ohm = vec![0.0; strain.len()];
+        self.model.evaluate(&self.theta, strain, &mut ohm, None);
+        ohm
+    }
 }
 
 /// Fits a PI model of `kind` with `order` plays to `(strain, ohm)`.
@@ -76,7 +92,10 @@ pub fn fit_plays(
         };
         let problem = Problem::new(&model, strain, ohm, theta0);
         let (problem, report) = LevenbergMarquardt::new()
-            .with_patience(200)
+            .with_ftol(FTOL)
+            .with_xtol(XTOL)
+            .with_gtol(GTOL)
+            .with_patience(100)
             .minimize(problem);
         evaluations += report.number_of_evaluations;
         let converged = report.termination.was_successful()

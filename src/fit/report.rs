@@ -1,2 +1,217 @@
-//! placeholder
-pub fn report_page() {}
+//! The fit's report page: resistance against strain per cycle with the fitted models drawn
+//! over it (the paper's Fig. 4(d-f)), residuals over time, and the fitted parameters.
+
+use crate::report::{Chart, Legend, Page, Series, Table, PALETTE};
+
+use super::{model_name, SensorFit};
+
+/// A validation result: a model's angle RMSE on another recording.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Validation {
+    /// `linear`, `pi`, `continuous-pi`.
+    pub model: super::ModelKind,
+    /// RMSE of the runtime estimate against the recorded angle (°).
+    pub rmse_deg: Option<f64>,
+    /// Why there is none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// The report of `fits` (one per sensor) of the recording called `name`.
+pub fn report_page(name: &str, fits: &[SensorFit], validation: &[Validation]) -> Page {
+    let mut page = Page::new(format!("Sensor fit: {name}"));
+    page.text(
+        "Resistance from the divider voltage (Eq. 4), strain from the tracker angle (Eq. 3), both \
+         through the same prefilter. Each model is fitted to every sensor; the table ranks them \
+         by the resistance residual and the Bayesian information criterion (lower is better), \
+         and, when a second recording was given, by the runtime estimator's angle RMSE on it.",
+    );
+    let mut models = Table::new([
+        "sensor",
+        "model",
+        "RMSE (Ω)",
+        "parameters",
+        "BIC",
+        "validation RMSE (°)",
+    ]);
+    for fit in fits {
+        for s in &fit.summaries {
+            let v = validation
+                .iter()
+                .find(|v| v.model == s.model)
+                .map_or("–".to_owned(), |v| {
+                    v.rmse_deg.map_or_else(
+                        || v.error.clone().unwrap_or_default(),
+                        |r| format!("{r:.3}"),
+                    )
+                });
+            models.row([
+                sensor_name(fit),
+                model_name(s.model).to_owned(),
+                s.skipped
+                    .clone()
+                    .unwrap_or_else(|| format!("{:.1}", s.rmse_ohm)),
+                s.parameters.to_string(),
+                if s.bic.is_finite() {
+                    format!("{:.1}", s.bic)
+                } else {
+                    "–".into()
+                },
+                v,
+            ]);
+        }
+    }
+    page.heading("Model choice");
+    page.table(models);
+    for fit in fits {
+        sensor_section(&mut page, fit);
+    }
+    page
+}
+
+fn sensor_name(fit: &SensorFit) -> String {
+    format!("v{}_V", fit.plane.column())
+}
+
+fn sensor_section(page: &mut Page, fit: &SensorFit) {
+    let name = sensor_name(fit);
+    let obs = &fit.observations;
+    page.heading(format!("Sensor {name}"));
+    let strain_pct: Vec<f64> = obs.strain.iter().map(|e| e * 100.0).collect();
+    let kohm: Vec<f64> = obs.ohm.iter().map(|r| r / 1e3).collect();
+    let mut loops = Chart::new(
+        format!("Resistance against strain, {name}"),
+        "strain (%)",
+        "resistance (kΩ)",
+    );
+    loops.size = (900, 560);
+    loops.legend = Legend::LowerRight;
+    let count = fit.cycles.len();
+    for (i, c) in fit.cycles.iter().enumerate() {
+        let r = c.range();
+        // Past eight cycles the legend names only the first and the last.
+        let label = if count <= 8 || i == 0 || i + 1 == count {
+            format!("cycle {}", i + 1)
+        } else {
+            String::new()
+        };
+        loops.push(Series::line(
+            label,
+            Series::zip(&strain_pct[r.clone()], &kohm[r]),
+            PALETTE[i % PALETTE.len()],
+        ));
+    }
+    let (lo, hi) = obs
+        .strain
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &e| {
+            (a.min(e), b.max(e))
+        });
+    let black = (20, 20, 20);
+    loops.push(Series::reference(
+        "linear fit",
+        [lo, hi]
+            .iter()
+            .map(|&e| (e * 100.0, fit.linear.resistance(e) / 1e3))
+            .collect(),
+        black,
+    ));
+    let mut residuals = Chart::new(
+        format!("Residual R_model − R over time, {name}"),
+        "time (s)",
+        "residual (kΩ)",
+    );
+    let linear_res: Vec<f64> = obs
+        .strain
+        .iter()
+        .zip(&obs.ohm)
+        .map(|(e, r)| (fit.linear.resistance(*e) - r) / 1e3)
+        .collect();
+    residuals.push(Series::line(
+        "linear",
+        Series::zip(&obs.time_s, &linear_res),
+        PALETTE[7],
+    ));
+    let mut params = Table::new(["parameter", "value"]);
+    params.row([
+        "linear GF".to_owned(),
+        format!("{:.4}", fit.linear.gauge_factor),
+    ]);
+    params.row([
+        "linear R₀ (kΩ)".to_owned(),
+        format!("{:.3}", fit.linear.r0_ohm / 1e3),
+    ]);
+    params.row(["linear r²".to_owned(), format!("{:.4}", fit.linear.r2)]);
+    if let Some(c) = &fit.characteristic {
+        params.row(["R_c (kΩ)".to_owned(), format!("{:.3}", c.center_ohm / 1e3)]);
+        params.row([
+            "ε_c (%)".to_owned(),
+            format!("{:.4}", c.center_strain * 100.0),
+        ]);
+        params.row([
+            "m_c (kΩ)".to_owned(),
+            format!("{:.1}", c.center_slope_ohm / 1e3),
+        ]);
+        params.row(["R_peak (kΩ)".to_owned(), format!("{:.3}", c.peak_ohm / 1e3)]);
+        params.row([
+            "ε_peak (%)".to_owned(),
+            format!("{:.4}", c.peak_strain * 100.0),
+        ]);
+    }
+    for (label, result, color) in [
+        ("PI", &fit.pi, (148, 0, 211)),
+        ("continuous PI", &fit.continuous_pi, (214, 39, 40)),
+    ] {
+        let Ok(pi) = result else { continue };
+        let model = pi.predict(&obs.strain);
+        loops.push(Series::reference(
+            format!("{label} fit"),
+            model
+                .iter()
+                .zip(&strain_pct)
+                .map(|(r, e)| (*e, r / 1e3))
+                .collect(),
+            color,
+        ));
+        let res: Vec<f64> = model
+            .iter()
+            .zip(&obs.ohm)
+            .map(|(m, r)| (m - r) / 1e3)
+            .collect();
+        residuals.push(Series::line(label, Series::zip(&obs.time_s, &res), color));
+        let v = &pi.values;
+        params.row([format!("{label} a₁…a₄"), fmt_all(&v.loading)]);
+        params.row([format!("{label} a₅…a₈"), fmt_all(&v.unloading)]);
+        params.row([format!("{label} weights Pᵢ"), fmt_all(&v.weights)]);
+        params.row([format!("{label} radii ρᵢ"), fmt_all(&pi.model.radii)]);
+        params.row([
+            format!("{label} restarts (k: RMSE Ω)"),
+            pi.restarts
+                .iter()
+                .map(|(k, r, ok)| {
+                    format!("{k}: {r:.1}{}", if *ok { "" } else { " (not converged)" })
+                })
+                .collect::<Vec<_>>()
+                .join(", "),
+        ]);
+    }
+    page.figure(
+        format!("loops-v{}", fit.plane.column()),
+        loops,
+        "Each loading/unloading cycle in its own colour; the fitted models drawn over the data \
+         (cf. the paper's Fig. 4(d-f)).",
+    );
+    page.figure(
+        format!("residuals-v{}", fit.plane.column()),
+        residuals,
+        "Model minus measured resistance over the recording.",
+    );
+    page.table(params);
+}
+
+fn fmt_all(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| format!("{x:.4e}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}

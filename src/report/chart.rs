@@ -43,7 +43,7 @@ pub enum ChartError {
 pub enum SeriesStyle {
     /// A polyline through the points in order.
     Line,
-    /// A dashed-looking thin line (drawn lighter), for references such as fits and truth.
+    /// A model or reference drawn over data (fits, truth).
     Reference,
     /// Unconnected dots of the given radius (px).
     Dots(u32),
@@ -83,7 +83,7 @@ impl Series {
         }
     }
 
-    /// A thin reference line.
+    /// A model or reference line.
     pub fn reference(
         label: impl Into<String>,
         points: Vec<(f64, f64)>,
@@ -118,6 +118,22 @@ pub struct Chart {
     pub size: (u32, u32),
     /// Fixed y range; otherwise from the data with a 5 % margin.
     pub y_range: Option<(f64, f64)>,
+    /// Where the legend goes.
+    pub legend: Legend,
+}
+
+/// The corner the legend is drawn in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Legend {
+    /// Top left (the default).
+    #[default]
+    UpperLeft,
+    /// Top right.
+    UpperRight,
+    /// Bottom right.
+    LowerRight,
+    /// Bottom left.
+    LowerLeft,
 }
 
 impl Chart {
@@ -134,6 +150,7 @@ impl Chart {
             series: Vec::new(),
             size: (900, 420),
             y_range: None,
+            legend: Legend::UpperLeft,
         }
     }
 
@@ -224,7 +241,7 @@ impl Chart {
                 SeriesStyle::Reference => chart
                     .draw_series(LineSeries::new(
                         points.iter().copied(),
-                        color.mix(0.9).stroke_width(1),
+                        color.stroke_width(2),
                     ))
                     .map_err(|e| err(&e))?,
                 SeriesStyle::Dots(r) => chart
@@ -245,7 +262,12 @@ impl Chart {
         if labelled {
             chart
                 .configure_series_labels()
-                .position(SeriesLabelPosition::UpperLeft)
+                .position(match self.legend {
+                    Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+                    Legend::UpperRight => SeriesLabelPosition::UpperRight,
+                    Legend::LowerRight => SeriesLabelPosition::LowerRight,
+                    Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+                })
                 .border_style(RGBColor(160, 160, 160))
                 .background_style(WHITE.mix(0.85))
                 .label_font(("sans-serif", 13))

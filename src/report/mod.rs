@@ -13,6 +13,8 @@ mod chart;
 mod page;
 
 /// Charts: line and scatter series on x-y axes, rendered to SVG by `plotters`.
-pub use chart::{thin, Chart, ChartError, Series, SeriesStyle, MAX_POINTS_PER_SERIES, PALETTE};
+pub use chart::{
+    thin, Chart, ChartError, Legend, Series, SeriesStyle, MAX_POINTS_PER_SERIES, PALETTE,
+};
 /// HTML pages of headings, text, tables and figures.
 pub use page::{Block, Page, ReportError, Table};
