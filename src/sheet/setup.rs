@@ -1,9 +1,8 @@
 //! The operator's setup sheet (Markdown): stock and mandrel, fixturing, zeroing against the
 //! drawing's frame, the parameter sets and times, and the steps after the laser.
 
-use super::estimate::{estimate, format_duration};
-use super::plan::{Feature, OperationKind, Plan, TraceKind};
 use crate::machine::{format_number, MachineProfile};
+use crate::toolpath::{estimate, format_duration, Feature, OperationKind, Plan, TraceKind};
 
 /// Steel rod diameters the sheet picks a mandrel from (mm): common ground-rod and gauge-wire
 /// sizes, including the paper's 1.2 mm and 1.5 mm.

@@ -1,0 +1,9 @@
+//! The operator's setup sheet (Markdown): an emitter like the post-processors ([`crate::post`]),
+//! it turns a dialect-free [`crate::toolpath::Plan`] and the machine profile into the page the
+//! operator follows: stock and mandrel, fixturing, zeroing against the drawing's frame, the
+//! parameter sets and times, and the steps after the laser.
+
+mod setup;
+
+/// The operator's setup sheet and the mandrel it picks.
+pub use setup::{mandrel_mm, setup_sheet, SheetContext, MANDREL_CLEARANCE_MM, MANDREL_SIZES_MM};
