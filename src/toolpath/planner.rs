@@ -142,6 +142,7 @@ pub fn plan(
         kerf_mm: layout.kerf_mm,
         trace_width_mm: layout.trace_width_mm,
         joint_length_mm: x_line,
+        bending_length_mm: design.file.joint_length_mm,
         surface_z_mm: profile.surface_z_mm(r_o),
         home,
         operations,
