@@ -18,7 +18,9 @@ pub enum OutputError {
         source: std::io::Error,
     },
     /// The temporary folder a whole output folder is written in could not be made beside it.
-    #[error("cannot make a temporary {what} folder in {parent} (the folder that holds {dir}): {reason}")]
+    #[error(
+        "cannot make a temporary {what} folder in {parent} (the folder that holds {dir}): {reason}"
+    )]
     Staging {
         /// `staging` (the new folder being written) or `set-aside` (where the old one goes).
         what: &'static str,

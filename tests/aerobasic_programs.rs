@@ -77,9 +77,11 @@ fn parse_aerobasic(text: &str) -> Canon {
                 before_move: c.moves.len(),
             }),
             _ if code.starts_with("DWELL ") => c.waits.push(canon::Wait {
-                kind: canon::WaitKind::Dwell(code["DWELL ".len()..].parse().unwrap_or_else(
-                    |_| panic!("line {}: bad dwell time: {raw}", n + 1),
-                )),
+                kind: canon::WaitKind::Dwell(
+                    code["DWELL ".len()..]
+                        .parse()
+                        .unwrap_or_else(|_| panic!("line {}: bad dwell time: {raw}", n + 1)),
+                ),
                 spindle_on: beam,
                 spindle_speed: globals[0],
                 aux: [globals[1], globals[2]],
@@ -199,7 +201,9 @@ fn settle_between_sets() {
     let design = &common_designs::shipped()[2];
     let text = aerobasic_program(design, "settle");
     assert_eq!(
-        text.lines().filter(|l| l.starts_with("DWELL 5.000")).count(),
+        text.lines()
+            .filter(|l| l.starts_with("DWELL 5.000"))
+            .count(),
         1
     );
     let dir = tempfile::tempdir().unwrap();

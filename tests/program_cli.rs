@@ -246,11 +246,17 @@ fn staging_failure_names_the_parent_folder() {
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.contains(&format!("cannot make a temporary staging folder in {}", file.display()))
-            && err.contains("Not a directory"),
+        err.contains(&format!(
+            "cannot make a temporary staging folder in {}",
+            file.display()
+        )) && err.contains("Not a directory"),
         "{err}"
     );
-    assert_eq!(err.matches("Not a directory").count(), 1, "said once: {err}");
+    assert_eq!(
+        err.matches("Not a directory").count(),
+        1,
+        "said once: {err}"
+    );
 }
 
 #[test]

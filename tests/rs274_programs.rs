@@ -321,7 +321,9 @@ fn settle_between_sets_in_every_mode() {
         ("none", "mode = \"none\"", ""),
     ];
     for (name, table, word) in cases {
-        let at = reference.find("[settle]").expect("the profile has a [settle] table");
+        let at = reference
+            .find("[settle]")
+            .expect("the profile has a [settle] table");
         let text = format!("{}[settle]\n{table}\n", &reference[..at]);
         std::fs::write(dir.path().join(format!("machines/{name}.toml")), text).unwrap();
         let file = program(&design, dir.path(), &["--machine", name]);

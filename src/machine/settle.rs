@@ -116,6 +116,7 @@ mod tests {
             pulse_width_fs: fs,
             repetitions: 1,
             z_step_mm: None,
+            min_wall_mm: crate::process::DEFAULT_MIN_WALL_MM,
         }
     }
 

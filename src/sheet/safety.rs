@@ -24,7 +24,10 @@ pub fn safety_lines(plan: &Plan) -> Vec<String> {
         .iter()
         .max_by(|a, b| a.power_mw.total_cmp(&b.power_mw))
         .copied();
-    let mut l = vec!["## Laser safety (read before switching the source on)".to_string(), String::new()];
+    let mut l = vec![
+        "## Laser safety (read before switching the source on)".to_string(),
+        String::new(),
+    ];
     l.push(format!(
         "The station's femtosecond source is a **class 4 laser** (IEC 60825-1) at {wl}, near infrared and invisible: the direct beam, its reflections (the steel mandrel shows through every notch) and diffuse reflections can all injure eyes and skin."
     ));
@@ -59,11 +62,14 @@ mod tests {
         )))
         .unwrap();
         let checked = crate::rules::check_file(design).unwrap();
-        let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/designs/joint-c.toml"));
+        let path =
+            std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/designs/joint-c.toml"));
         let sets = crate::process::ProcessLibrary::beside(path)
             .resolve(&checked.design.file.process)
             .unwrap();
-        let profile = crate::machine::MachineLibrary::beside(path).find(None).unwrap();
+        let profile = crate::machine::MachineLibrary::beside(path)
+            .find(None)
+            .unwrap();
         let plan = crate::toolpath::plan(
             &checked.design,
             &checked.layout,

@@ -58,6 +58,9 @@ pub use seam::{chain_lines, join_outline, short_way_mm, SeamError};
 /// Why the planner refused a job.
 #[derive(Debug, thiserror::Error)]
 pub enum ToolpathError {
+    /// The design breaks a rule that needs the process sets (the wall thickness).
+    #[error(transparent)]
+    Rules(#[from] crate::rules::RulesError),
     /// The layout is not usable as it stands.
     #[error("layout: {0}")]
     Layout(String),

@@ -56,6 +56,14 @@ pub fn plan(
     profile: &MachineProfile,
     options: &PlanOptions,
 ) -> Result<Plan, ToolpathError> {
+    let violations = crate::rules::check_wall(&design.file, sets);
+    if !violations.is_empty() {
+        return Err(crate::rules::RulesError {
+            name: design.file.name.clone(),
+            violations,
+        }
+        .into());
+    }
     let r_o = layout.outer_radius_mm;
     let c = layout.circumference_mm;
     if !(r_o.is_finite() && r_o > 0.0 && (c - TAU * r_o).abs() <= 1e-6 * c.max(1.0)) {
