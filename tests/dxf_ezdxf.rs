@@ -110,7 +110,12 @@ fn the_tube_layer_and_the_split_note() {
             design.display()
         );
         let text = String::from_utf8(std::fs::read(&dxf).unwrap()).unwrap();
-        assert_eq!(text.contains("cross the seam"), split, "{}", design.display());
+        assert_eq!(
+            text.contains("cross the seam"),
+            split,
+            "{}",
+            design.display()
+        );
         let wrong = tube_expectation(&layout).replace(
             &format!("\"split\": {split}"),
             &format!("\"split\": {}", !split),

@@ -175,7 +175,11 @@ pub(crate) fn split_note(layout: &Layout) -> Option<String> {
     let list = if names.len() == layout.notches.len() {
         format!("all {} notches", names.len())
     } else {
-        format!("notch{} {}", if names.len() == 1 { "" } else { "es" }, names.join(", "))
+        format!(
+            "notch{} {}",
+            if names.len() == 1 { "" } else { "es" },
+            names.join(", ")
+        )
     };
     Some(format!(
         "NOTE: {list} cross the seam (s = {:.4} mm) and are drawn split in two: the piece at the bottom edge and the piece at the top edge of the same x are ONE notch on the tube (layer TUBE shows the seam).",
