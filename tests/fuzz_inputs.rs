@@ -11,10 +11,11 @@
 //! and splice in tokens that matter to each format (huge and non-finite numbers, DXF group
 //! codes and vertex counts, CSV headers, TOML brackets).
 //!
-//! `DLW_FUZZ_CASES` sets the cases per batch (default 64 random + 64 mutated per target),
-//! `DLW_FUZZ_SECONDS` keeps running fresh batches until that much time has passed, and
-//! `DLW_FUZZ_SEED` (hex) replays a batch; the seed of every batch is printed. For example, ten
-//! minutes of the DXF target:
+//! `DLW_FUZZ_CASES` sets the cases per batch (default 128 per target, random bytes and mutated
+//! seeds alike), `DLW_FUZZ_SECONDS` keeps running fresh batches from random seeds until that
+//! much time has passed, and `DLW_FUZZ_SEED` (hex) replays a batch; the seed of every batch is
+//! printed. Without either, one batch runs from a fixed seed, so `cargo test` is reproducible
+//! and explores the same inputs every time. For example, ten minutes of the DXF target:
 //!
 //! ```sh
 //! DLW_FUZZ_SECONDS=600 cargo test --release --test fuzz_inputs dxf -- --nocapture
@@ -254,18 +255,26 @@ fn fuzz_within(
         assert!(r.is_ok(), "{name}: a shipped seed panics: {r:?}");
     }
     let cases = env_u64("DLW_FUZZ_CASES").unwrap_or(64) as u32;
+    // The fixed seed of a plain `cargo test` run.
+    const CI_SEED: u64 = 0x00d1_f00d_5eed;
     let budget = env_u64("DLW_FUZZ_SECONDS").map(Duration::from_secs);
     let fixed_seed = env_u64("DLW_FUZZ_SEED");
     let start = Instant::now();
     let stats = std::cell::RefCell::new(Stats::default());
     let strategy = prop_oneof![vec(any::<u8>(), 0..4096), mutated(seeds)];
     for batch in 0u64.. {
-        let seed = fixed_seed.unwrap_or_else(|| {
-            let t = std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map_or(0, |d| d.as_nanos() as u64);
-            t ^ batch.wrapping_mul(0x9e37_79b9_7f4a_7c15)
-        });
+        let seed = fixed_seed
+            .or(if budget.is_none() {
+                Some(CI_SEED)
+            } else {
+                None
+            })
+            .unwrap_or_else(|| {
+                let t = std::time::SystemTime::now()
+                    .duration_since(std::time::UNIX_EPOCH)
+                    .map_or(0, |d| d.as_nanos() as u64);
+                t ^ batch.wrapping_mul(0x9e37_79b9_7f4a_7c15)
+            });
         let mut key = [0u8; 32];
         key[..8].copy_from_slice(&seed.to_le_bytes());
         // Shrinking is capped so a failure is reported in seconds; the batch seed replays it.
@@ -426,4 +435,21 @@ fn the_harness_catches_panics_and_hoarding() {
         hoards.is_err(),
         "a target that allocates past the limit fails the run"
     );
+}
+
+/// Found by these tests and by `cargo fuzz run dxf_import` (docs/fuzzing.md): the `dxf` crate
+/// (0.6.2) panics in its header reader on a date out of chrono's range, so `dlw import-dxf`
+/// panics (exit 101) on this 100-byte file instead of refusing it. The fix belongs in
+/// `src/drawing/dxf_import.rs` (catch the panic around `dxf::Drawing::load` and report a broken
+/// file), which is outside this change; un-ignore this test with it.
+#[test]
+#[ignore = "dxf 0.6.2 panics on an out-of-range header date; fix in src/drawing/dxf_import.rs"]
+fn a_header_date_out_of_range_is_refused_not_a_panic() {
+    for value in ["1e308", "1e10"] {
+        let dxf = format!(
+            "  0\r\nSECTION\r\n  2\r\nHEADER\r\n  9\r\n$TDCREATE\r\n 40\r\n{value}\r\n  0\r\nENDSEC\r\n  0\r\nEOF\r\n"
+        );
+        let (r, _, _) = measure(|| entry::dxf_import(dxf.as_bytes()));
+        assert_eq!(r, Ok(false), "$TDCREATE = {value}");
+    }
 }
