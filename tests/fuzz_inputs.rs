@@ -310,7 +310,7 @@ fn fuzz_within(
             panic!("{name}: batch seed {seed:016x} (DLW_FUZZ_SEED={seed:x} replays it): {e}");
         }
         eprintln!("{name}: batch {batch} seed {seed:016x} ok");
-        if fixed_seed.is_some() || budget.is_none_or(|b| start.elapsed() >= b) {
+        if fixed_seed.is_some() || !budget.is_some_and(|b| start.elapsed() < b) {
             break;
         }
     }
