@@ -79,13 +79,15 @@ pub fn layout_to_dxf(layout: &Layout, clearance_mm: f64) -> Result<Vec<u8>, DxfE
         // about 0.6 of its height per character).
         let overrun = SEAM_OVERRUN_MM;
         let label = TEXT_MM * (1.0 + 0.6 * 80.0);
+        // The split note starts at x = 0 and may run past the seam labels.
+        let note = split_note(layout).map_or(0.0, |n| TEXT_MM * 0.6 * n.chars().count() as f64);
         drawing.header.minimum_drawing_extents = Point::new(
             (0.0_f64.min(ext.min().x)) - overrun,
             scale_bar_s_mm(layout) - TEXT_MM,
             0.0,
         );
         drawing.header.maximum_drawing_extents = Point::new(
-            ext.max().x.max(layout.length_mm) + overrun + label,
+            (ext.max().x.max(layout.length_mm) + overrun + label).max(note),
             ext.max().y.max(layout.seam_s_mm + layout.circumference_mm),
             0.0,
         );
