@@ -21,3 +21,18 @@ fi
 cargo build --quiet -p dlw-geometry -p dlw-estimator --no-default-features
 cargo test --workspace --all-targets "$@"
 cargo test --workspace --doc
+
+# Opt-in: a short libFuzzer run of each cargo-fuzz target (docs/fuzzing.md). Needs a nightly
+# toolchain and cargo-fuzz, which this script does not install (rustup downloads them from
+# outside crates.io); tests/fuzz_inputs.rs runs the same entry points on stable every time.
+if [ "${DLW_FUZZ_CI:-0}" != "0" ]; then
+  if cargo +nightly fuzz --version >/dev/null 2>&1; then
+    fuzz/make-seeds.sh >/dev/null
+    for t in dxf_import design_file recording; do
+      (cd fuzz && cargo +nightly fuzz run "$t" "corpus/$t" -- \
+        -max_total_time="${DLW_FUZZ_CI_SECONDS:-30}" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=256)
+    done
+  else
+    echo "DLW_FUZZ_CI set but no nightly toolchain with cargo-fuzz: skipping the libFuzzer runs" >&2
+  fi
+fi

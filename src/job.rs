@@ -21,7 +21,8 @@ use crate::layout::Layout;
 use crate::machine::MachineProfile;
 use crate::post::{post_for, write_program, PostError};
 use crate::process::ProcessSets;
-use crate::toolpath::{plan, setup_sheet, Plan, PlanOptions, SheetContext, ToolpathError};
+use crate::sheet::{setup_sheet, SheetContext};
+use crate::toolpath::{plan, Plan, PlanOptions, ToolpathError};
 
 /// Everything one `dlw program` writes.
 #[derive(Debug, Clone)]

@@ -10,7 +10,8 @@
 //!   people;
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
 //! - [`process`], [`machine`]: laser parameter sets (Table II) and machine profiles;
-//! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting) and the setup sheet;
+//! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting);
+//! - [`sheet`]: the operator's setup sheet, an emitter like the posts;
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
 //! - [`job`]: a design made into a program and a setup sheet for one machine;
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
@@ -36,5 +37,6 @@ pub mod process;
 pub mod replay;
 pub mod report;
 pub mod rules;
+pub mod sheet;
 pub mod sim;
 pub mod toolpath;

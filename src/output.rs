@@ -17,6 +17,21 @@ pub enum OutputError {
         /// What the operating system said.
         source: std::io::Error,
     },
+    /// The temporary folder a whole output folder is written in could not be made beside it.
+    #[error(
+        "cannot make a temporary {what} folder in {parent} (the folder that holds {dir}): {reason}"
+    )]
+    Staging {
+        /// `staging` (the new folder being written) or `set-aside` (where the old one goes).
+        what: &'static str,
+        /// The folder it was to be made in.
+        parent: PathBuf,
+        /// The output folder.
+        dir: PathBuf,
+        /// What the operating system said: why. Part of the message, not a `source`, so an
+        /// error chain does not print it twice.
+        reason: std::io::Error,
+    },
 }
 
 /// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
@@ -50,17 +65,27 @@ pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError>
 /// the caller's decision, made before calling.
 ///
 /// # Errors
-/// [`OutputError::Io`] naming the path; `dir` is then as it was.
+/// [`OutputError::Staging`] naming the parent folder and why the temporary folder could not be
+/// made in it (it does not exist, is not a folder, cannot be written); [`OutputError::Io`]
+/// naming the path for anything else. `dir` is then as it was.
 pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
     let io = |path: &Path| {
         let path = path.to_path_buf();
         move |source| OutputError::Io { path, source }
     };
     let parent = folder_of(dir);
+    let staging_err = |what: &'static str| {
+        move |reason| OutputError::Staging {
+            what,
+            parent: parent.to_path_buf(),
+            dir: dir.to_path_buf(),
+            reason,
+        }
+    };
     let staging = tempfile::Builder::new()
         .prefix(".dlw-staging-")
         .tempdir_in(parent)
-        .map_err(io(dir))?;
+        .map_err(staging_err("staging"))?;
     for (name, bytes) in files {
         write_atomic(&staging.path().join(name), bytes)?;
     }
@@ -81,7 +106,7 @@ pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<()
     let old = tempfile::Builder::new()
         .prefix(".dlw-replaced-")
         .tempdir_in(parent)
-        .map_err(io(dir))?;
+        .map_err(staging_err("set-aside"))?;
     let aside = old.path().join("old");
     std::fs::rename(dir, &aside).map_err(io(dir))?;
     if let Err(source) = std::fs::rename(staging.path(), dir) {
@@ -178,5 +203,31 @@ mod tests {
         assert!(write_folder_atomic(&dir, &bad).is_err());
         assert_eq!(std::fs::read(dir.join("a.txt")).unwrap(), b"two");
         assert_eq!(std::fs::read_dir(root.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn staging_errors_name_the_parent_and_why() {
+        let root = tempfile::tempdir().unwrap();
+        let files = vec![("a.txt".to_string(), b"x".to_vec())];
+        // The parent is a file: no folder can be made in it.
+        let file = root.path().join("plain");
+        std::fs::write(&file, b"x").unwrap();
+        let err = write_folder_atomic(&file.join("job"), &files).unwrap_err();
+        let text = err.to_string();
+        assert!(matches!(err, OutputError::Staging { .. }), "{err:?}");
+        assert!(
+            text.contains(&format!("in {} ", file.display())) && text.contains("Not a directory"),
+            "{text}"
+        );
+        // The parent does not exist.
+        let missing = root.path().join("no/such");
+        let text = write_folder_atomic(&missing.join("job"), &files)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            text.contains(&format!("in {} ", missing.display()))
+                && text.contains("No such file or directory"),
+            "{text}"
+        );
     }
 }

@@ -2,7 +2,7 @@
 //!
 //! No AeroBasic interpreter or controller is available here, so this parses the program's own
 //! syntax — `G0`/`G1` with `X A Z F` words, `G71 G76 G90`, the profile's `$DO[0].X` beam gate
-//! and `$GLOBAL[n]` laser settings, `//` comments — refusing any line it does not know, and
+//! and `$GLOBAL[n]` laser settings, the settle (`DWELL s`, `M1`, `M0`), `//` comments — refusing any line it does not know, and
 //! runs the same physical checks as the LinuxCNC tests on the parsed moves (`canon/checks.rs`).
 //! Feeds follow RS-274 semantics in units per second (`G76`): `F` is the X speed on a move with
 //! X motion, the rotary speed on a pure rotation. Coordinates are read at the program's full
@@ -64,6 +64,30 @@ fn parse_aerobasic(text: &str) -> Canon {
                 beam = false;
                 segment = None;
             }
+            "M0" | "M1" => c.waits.push(canon::Wait {
+                kind: if code == "M0" {
+                    canon::WaitKind::Stop
+                } else {
+                    canon::WaitKind::OptionalStop
+                },
+                spindle_on: beam,
+                spindle_speed: globals[0],
+                aux: [globals[1], globals[2]],
+                operation: operation.clone(),
+                before_move: c.moves.len(),
+            }),
+            _ if code.starts_with("DWELL ") => c.waits.push(canon::Wait {
+                kind: canon::WaitKind::Dwell(
+                    code["DWELL ".len()..]
+                        .parse()
+                        .unwrap_or_else(|_| panic!("line {}: bad dwell time: {raw}", n + 1)),
+                ),
+                spindle_on: beam,
+                spindle_speed: globals[0],
+                aux: [globals[1], globals[2]],
+                operation: operation.clone(),
+                before_move: c.moves.len(),
+            }),
             _ if code.starts_with("$GLOBAL[") => {
                 let (k, v) = code.split_once("] = ").unwrap();
                 globals[k["$GLOBAL[".len()..].parse::<usize>().unwrap()] = v.parse().unwrap();
@@ -168,6 +192,47 @@ fn designs_outside_the_paper_pass_the_checks() {
         std::fs::write(&path, text).unwrap();
         run(&path, &format!("outside-{i}"));
     }
+}
+
+/// The settle in AeroBasic: `DWELL` by default, `M1` for an optional stop, each after the
+/// notch set's `$GLOBAL` values and before the first notch move.
+#[test]
+fn settle_between_sets() {
+    let design = &common_designs::shipped()[2];
+    let text = aerobasic_program(design, "settle");
+    assert_eq!(
+        text.lines()
+            .filter(|l| l.starts_with("DWELL 5.000"))
+            .count(),
+        1
+    );
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("machines")).unwrap();
+    let copy = dir.path().join("joint-c.toml");
+    std::fs::copy(design, &copy).unwrap();
+    let profile = include_str!("../designs/machines/aerotech-aerobasic.toml")
+        .replace("mode = \"dwell\"", "mode = \"optional-stop\"");
+    std::fs::write(dir.path().join("machines/m1.toml"), profile).unwrap();
+    let out = dir.path().join("job.pgm");
+    let o = dlw(&[
+        "program".as_ref(),
+        copy.as_os_str(),
+        "--machine".as_ref(),
+        "m1".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&out).unwrap();
+    let canon = parse_aerobasic(&text);
+    assert_eq!(
+        canon.waits.iter().map(|w| w.kind).collect::<Vec<_>>(),
+        [canon::WaitKind::OptionalStop]
+    );
+    let mut e = expected(&copy, Some("m1"));
+    e.a_print_deg = 0.5e-6;
+    e.inverse_time = false;
+    check(&canon, &e, "optional stop");
 }
 
 #[test]

@@ -60,6 +60,8 @@ const RULES: &[(&str, Edit, &[&str])] = &[
         &["notch_count = 0 must be at least 1"]),
     ("N at most 10000", Edit::A(&[("notch_count = 10", "notch_count = 4000000000")]),
         &["notch_count = 4000000000 must be at most 10000"]),
+    ("N ≤ 10000, written as a float", Edit::A(&[("notch_count = 10", "notch_count = 1e9")]),
+        &["notch_count = 1000000000 must be at most 10000"]),
     ("pads fit round the tube", Edit::Fabrication("pad_turns = 4000000000"),
         &["pads of pad_turns = 4000000000 at pad_pitch_mm = 0.1 are 800000000.0000 mm wide (2·turns·pitch)", "so each may be at most 3.5956 mm"]),
     ("outer radius positive", Edit::A(&[("outer_radius_mm = 1.24", "outer_radius_mm = -1.24")]),
@@ -239,5 +241,109 @@ fn import_dxf_refuses_bad_drawings_with_one_message() {
     assert!(
         stderr.starts_with("dlw: error: reading ") && stderr.contains("not a readable DXF"),
         "{stderr}"
+    );
+}
+
+/// `notch_count` as a float gets the integer's message and limit, also where a `u32` cannot
+/// hold it (then the parser refuses it, with the same words).
+#[test]
+fn notch_counts_written_as_floats_name_the_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = dir.path().join("n.toml");
+    for (count, want) in [
+        ("1e9", "notch_count = 1000000000 must be at most 10000"),
+        ("100000", "notch_count = 100000 must be at most 10000"),
+        ("1e12", "notch_count = 1000000000000 must be at most 10000"),
+        (
+            "1000000000000",
+            "notch_count = 1000000000000 must be at most 10000",
+        ),
+        (
+            "2.5",
+            "notch_count = 2.5 must be a whole number from 1 to 10000",
+        ),
+        ("-1", "notch_count = -1 must be at least 1"),
+    ] {
+        std::fs::write(
+            &design,
+            JOINT_A.replace("notch_count = 10", &format!("notch_count = {count}")),
+        )
+        .unwrap();
+        let out = run(&["inspect".as_ref(), design.as_os_str()]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{count}: accepted");
+        assert!(stderr.contains(want), "{count}: {stderr}");
+    }
+}
+
+/// A wall thinner than the notch set's `min_wall_mm` is refused by `dlw program` and
+/// `dlw build`, naming the wall, the radii and the set's minimum; nothing is written. A set made
+/// for thin walls (its own `min_wall_mm`) is accepted.
+#[test]
+fn thin_walls_are_refused_for_cutting() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = dir.path().join("thin.toml");
+    std::fs::write(
+        &design,
+        JOINT_C.replace("inner_radius_mm = 0.610", "inner_radius_mm = 0.780"),
+    )
+    .unwrap();
+    let program = dir.path().join("thin.ngc");
+    let build = dir.path().join("build");
+    for args in [
+        vec![
+            "program".as_ref(),
+            design.as_os_str(),
+            "-o".as_ref(),
+            program.as_os_str(),
+        ],
+        vec![
+            "build".as_ref(),
+            design.as_os_str(),
+            "-o".as_ref(),
+            build.as_os_str(),
+        ],
+    ] {
+        let out = run(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "accepted: {stderr}");
+        assert!(
+            stderr.contains(
+                "tube wall r_o − r_i = 0.0200 mm (outer_radius_mm = 0.8, inner_radius_mm = 0.78) is thinner than min_wall_mm = 0.1 mm of process set \"notches\""
+            ),
+            "{stderr}"
+        );
+    }
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "wrote nothing"
+    );
+    // A set that declares it cuts 0.02 mm walls.
+    std::fs::create_dir(dir.path().join("process")).unwrap();
+    std::fs::write(
+        dir.path().join("process/thin-wall.toml"),
+        format!(
+            "{}\nmin_wall_mm = 0.02\n",
+            include_str!("../designs/process/notches.toml")
+        ),
+    )
+    .unwrap();
+    let text = std::fs::read_to_string(&design).unwrap();
+    std::fs::write(
+        &design,
+        format!("{text}\n[process]\nnotches = \"thin-wall\"\n"),
+    )
+    .unwrap();
+    let out = run(&[
+        "program".as_ref(),
+        design.as_os_str(),
+        "-o".as_ref(),
+        program.as_os_str(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
     );
 }

@@ -64,8 +64,11 @@ fn expectation(layout: &Layout, file: &DesignFile) -> String {
         dlw_geometry::NotchStyle::Bsn => 2.0,
     };
     let area = f64::from(file.notch_count) * file.notch_width_mm * file.notch_arc_mm * sides;
+    // Title, frame, scale, scale bar, its label; and the note when the seam splits notches.
+    // TUBE: the outline, two seam lines, two seam labels.
+    let annotation = 5 + usize::from(layout.notches.iter().any(|n| n.outline.len() > 1));
     format!(
-        r#"{{"layers": {{"NOTCHES": {notches}, "SENSOR": {}, "LEADS_PADS": {}, "PARTING": {}, "ANNOTATION": 5}}, "notch_area_mm2": {area}}}"#,
+        r#"{{"layers": {{"NOTCHES": {notches}, "SENSOR": {}, "LEADS_PADS": {}, "PARTING": {}, "ANNOTATION": {annotation}, "TUBE": 5}}, "notch_area_mm2": {area}}}"#,
         pieces(&layout.sensors),
         pieces(&layout.leads) + pieces(&layout.pads),
         layout.parting.len()
@@ -77,6 +80,53 @@ fn audit(design: &Path) {
     let (dxf, layout, file) = draw(design, dir.path());
     let out = python(&["audit", dxf.to_str().unwrap(), &expectation(&layout, &file)]);
     assert_ok(&out, &format!("ezdxf audit of {}", design.display()));
+    let out = python(&["tube", dxf.to_str().unwrap(), &tube_expectation(&layout)]);
+    assert_ok(&out, &format!("ezdxf TUBE layer of {}", design.display()));
+}
+
+/// The tube outline and seam the `TUBE` layer must show, and whether the split note is due.
+fn tube_expectation(layout: &Layout) -> String {
+    format!(
+        r#"{{"seam": {}, "circumference": {}, "length": {}, "split": {}}}"#,
+        layout.seam_s_mm,
+        layout.circumference_mm,
+        layout.length_mm,
+        layout.notches.iter().any(|n| n.outline.len() > 1)
+    )
+}
+
+/// Joints B and D (UAN, split at the seam) carry the note; A and C (nothing split) do not; and
+/// the check fails when the expectation is wrong, so it can fail.
+#[test]
+fn the_tube_layer_and_the_split_note() {
+    let shipped = common_designs::shipped();
+    let dir = tempfile::tempdir().unwrap();
+    for (design, split) in shipped.iter().zip([false, true, false, true]) {
+        let (dxf, layout, _) = draw(design, dir.path());
+        assert_eq!(
+            layout.notches.iter().any(|n| n.outline.len() > 1),
+            split,
+            "{}",
+            design.display()
+        );
+        let text = String::from_utf8(std::fs::read(&dxf).unwrap()).unwrap();
+        assert_eq!(
+            text.contains("cross the seam"),
+            split,
+            "{}",
+            design.display()
+        );
+        let wrong = tube_expectation(&layout).replace(
+            &format!("\"split\": {split}"),
+            &format!("\"split\": {}", !split),
+        );
+        let out = python(&["tube", dxf.to_str().unwrap(), &wrong]);
+        assert_eq!(out.status.code(), Some(1), "{}", design.display());
+    }
+    // The imported layout ignores the TUBE layer: the drawing still reads back exactly.
+    let (dxf, layout, _) = draw(&shipped[1], dir.path());
+    let back = layout_from_dxf(&std::fs::read(&dxf).unwrap()).unwrap();
+    assert!(layout.max_difference_mm(&back.layout).unwrap() <= 1e-9);
 }
 
 #[test]

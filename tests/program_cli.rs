@@ -222,6 +222,43 @@ fn refuses_loops_the_post_cannot_write() {
     );
 }
 
+/// When the temporary folder cannot be made beside the output, the message names the parent
+/// folder and why (`dlw simulate` writes straight through `output::write_folder_atomic`).
+#[test]
+fn staging_failure_names_the_parent_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("plain");
+    std::fs::write(&file, "x").unwrap();
+    let out = file.join("rec");
+    let o = dlw(&[
+        "simulate",
+        "--design",
+        s(&common_designs::shipped()[3]),
+        "--protocol",
+        "random",
+        "--duration-s",
+        "1",
+        "-o",
+        s(&out),
+        // Past the recording's own check of the destination, to the staging folder.
+        "--force",
+    ]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(&format!(
+            "cannot make a temporary staging folder in {}",
+            file.display()
+        )) && err.contains("Not a directory"),
+        "{err}"
+    );
+    assert_eq!(
+        err.matches("Not a directory").count(),
+        1,
+        "said once: {err}"
+    );
+}
+
 #[test]
 fn build_writes_everything_or_nothing() {
     let (dir, design) = workspace("");
@@ -243,20 +280,41 @@ fn build_writes_everything_or_nothing() {
             "design.ngc"
         ]
     );
-    // Again over the same folder: replaced, nothing left behind.
-    let o = dlw(&["build", s(&design), "-o", s(&out)]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let parent: Vec<_> = std::fs::read_dir(dir.path().join("out")).unwrap().collect();
-    assert_eq!(parent.len(), 1, "only the build folder is left");
-    // A folder with someone else's file is not replaced.
-    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    // Again over the same folder: refused without --force, whatever it holds (it may be
+    // another design's build), and left as it was.
+    let before = std::fs::read(out.join("design.ngc")).unwrap();
+    std::fs::write(out.join("design.ngc"), "another design's program").unwrap();
     let o = dlw(&["build", s(&design), "-o", s(&out)]);
     assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("notes.txt"));
-    assert_eq!(
-        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
-        "mine"
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("already exists and is not empty") && err.contains("--force"),
+        "{err}"
     );
+    assert_eq!(
+        std::fs::read_to_string(out.join("design.ngc")).unwrap(),
+        "another design's program"
+    );
+    // With --force: replaced whole, nothing left behind, someone else's file included.
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let o = dlw(&["build", s(&design), "-o", s(&out), "--force"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(out.join("design.ngc")).unwrap(), before);
+    assert!(!out.join("notes.txt").exists());
+    let parent: Vec<_> = std::fs::read_dir(dir.path().join("out")).unwrap().collect();
+    assert_eq!(parent.len(), 1, "only the build folder is left");
+    // An empty folder is fine without --force.
+    let empty = dir.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let o = dlw(&["build", s(&design), "-o", s(&empty)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // A file where the folder should be is never replaced, even with --force.
+    let file = dir.path().join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let o = dlw(&["build", s(&design), "-o", s(&file), "--force"]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("is not a folder"));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "x");
     // A bad design: no folder at all.
     machine(dir.path(), "slow", |t| {
         t.replace("a_speed_max_deg_s = 3600.0", "a_speed_max_deg_s = 360.0")

@@ -265,6 +265,22 @@ fn the_checks_catch_broken_programs() {
             "wrong pulse width",
             good.replacen("M68 E1 Q215", "M68 E1 Q250", 1),
         ),
+        (
+            "no settle before the notches",
+            good.lines()
+                .filter(|l| !l.starts_with("G4 P"))
+                .map(|l| format!("{l}\n"))
+                .collect::<String>(),
+        ),
+        ("the settle before the notch set is commanded", {
+            let g4 = good.lines().find(|l| l.starts_with("G4 P")).unwrap();
+            let t = good.replacen(&format!("{g4}\n"), "", 1);
+            t.replacen("S2000\n", &format!("{g4}\nS2000\n"), 1)
+        }),
+        ("a 1 s dwell where the profile says 5 s", {
+            let g4 = good.lines().find(|l| l.starts_with("G4 P")).unwrap();
+            good.replacen(g4, "G4 P1.000", 1)
+        }),
         ("parting before the notches", {
             let at = good.find("\n(operation parting").unwrap();
             let parting = &good[at..good.find("G94 (feed").unwrap()];
@@ -286,6 +302,56 @@ fn the_checks_catch_broken_programs() {
         assert_ne!(text, good, "{what}: the mutation applied");
         assert!(fails(&text, 0.0), "{what} is caught");
     }
+}
+
+/// Every `[settle]` mode of the profile goes through the interpreter: a dwell of the profile's
+/// length, an optional stop, a stop, or nothing, each after the notch set is commanded and
+/// before the first notch move, with the beam off (`canon::checks::check_settle`).
+#[test]
+fn settle_between_sets_in_every_mode() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("machines")).unwrap();
+    let design = dir.path().join("joint-c.toml");
+    std::fs::copy(&common_designs::shipped()[2], &design).unwrap();
+    let reference = include_str!("../designs/machines/linuxcnc-reference.toml");
+    let cases = [
+        ("dwell-2-5", "mode = \"dwell\"\ndwell_s = 2.5", "G4 P2.500"),
+        ("optional", "mode = \"optional-stop\"", "M1 "),
+        ("stop", "mode = \"stop\"", "M0 "),
+        ("none", "mode = \"none\"", ""),
+    ];
+    for (name, table, word) in cases {
+        let at = reference
+            .find("[settle]")
+            .expect("the profile has a [settle] table");
+        let text = format!("{}[settle]\n{table}\n", &reference[..at]);
+        std::fs::write(dir.path().join(format!("machines/{name}.toml")), text).unwrap();
+        let file = program(&design, dir.path(), &["--machine", name]);
+        let program_text = std::fs::read_to_string(&file).unwrap();
+        let waits = program_text
+            .lines()
+            .filter(|l| l.starts_with("G4") || l.starts_with("M0") || l.starts_with("M1"))
+            .collect::<Vec<_>>();
+        if word.is_empty() {
+            assert!(waits.is_empty(), "{name}: {waits:?}");
+        } else {
+            assert_eq!(waits.len(), 1, "{name}: {waits:?}");
+            assert!(waits[0].starts_with(word), "{name}: {waits:?}");
+        }
+        let canon = parse(&run_rs274(&file));
+        check(&canon, &expected(&design, Some(name)), name);
+        assert_eq!(canon.waits.len(), usize::from(!word.is_empty()), "{name}");
+    }
+    // Without a [settle] table the profile dwells the documented default.
+    let at = reference.find("\n[settle]").unwrap();
+    std::fs::write(dir.path().join("machines/bare.toml"), &reference[..at]).unwrap();
+    let file = program(&design, dir.path(), &["--machine", "bare"]);
+    let canon = parse(&run_rs274(&file));
+    assert_eq!(
+        canon.waits.iter().map(|w| w.kind).collect::<Vec<_>>(),
+        [canon::WaitKind::Dwell(dlw::machine::DEFAULT_DWELL_S)]
+    );
+    check(&canon, &expected(&design, Some("bare")), "bare");
 }
 
 /// Helical moves (X and A at once) keep the surface speed through the interpreter too.

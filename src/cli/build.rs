@@ -1,7 +1,8 @@
 //! `dlw build DESIGN -o DIR [--machine PROFILE]`: everything for one joint in one folder — the
 //! DXF drawing, the SVG sheets (layout and cross-section), the laser program and the setup
 //! sheet. The folder is written in a temporary folder beside it and renamed into place, so it
-//! never exists half-written.
+//! never exists half-written. An existing non-empty folder is refused unless `--force` (as in
+//! `dlw simulate`), so a build never silently replaces another design's files.
 
 use std::path::{Path, PathBuf};
 
@@ -18,9 +19,12 @@ use super::program::{job, resolve_inputs};
 pub struct Args {
     /// Design file (TOML).
     design: PathBuf,
-    /// Folder to write (created; an existing one may only hold files a previous build wrote).
+    /// Folder to write (must not exist or be empty, unless --force).
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
+    /// Replace an existing output folder and everything in it.
+    #[arg(long)]
+    force: bool,
     /// Machine profile: a name or a path (default: linuxcnc-reference).
     #[arg(long, value_name = "PROFILE")]
     machine: Option<String>,
@@ -57,7 +61,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (program_file, job.program.into_bytes()),
         (format!("{stem}-setup.md"), job.sheet.into_bytes()),
     ];
-    write_folder(&args.output, &files)?;
+    write_folder(&args.output, &files, args.force)?;
     for (name, _) in &files {
         println!("wrote {}", args.output.join(name).display());
     }
@@ -65,28 +69,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 }
 
 /// Writes `files` into a fresh temporary folder next to `dir`, then puts it in `dir`'s place.
-/// An existing `dir` is replaced only if every file in it is one this build writes, so a
-/// build never deletes anything else.
-fn write_folder(dir: &Path, files: &[(String, Vec<u8>)]) -> anyhow::Result<()> {
+/// An existing non-empty `dir` is replaced only with `force`; a file in its place never is.
+fn write_folder(dir: &Path, files: &[(String, Vec<u8>)], force: bool) -> anyhow::Result<()> {
     let parent = match dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    if dir.exists() {
+    if std::fs::symlink_metadata(dir).is_ok() {
         if !dir.is_dir() {
-            bail!("{} exists and is not a folder", dir.display());
+            bail!(
+                "output {} exists and is not a folder; give a folder",
+                dir.display()
+            );
         }
-        let entries =
+        let mut entries =
             std::fs::read_dir(dir).with_context(|| format!("cannot list {}", dir.display()))?;
-        for entry in entries {
-            let entry = entry.with_context(|| format!("cannot list {}", dir.display()))?;
-            let name = entry.file_name().to_string_lossy().into_owned();
-            if !files.iter().any(|(n, _)| *n == name) {
-                bail!(
-                    "{} already holds {name:?}, which this build would not write; give an empty or new folder",
-                    dir.display()
-                );
-            }
+        if entries.next().is_some() && !force {
+            bail!(
+                "output folder {} already exists and is not empty (pass --force to replace it)",
+                dir.display()
+            );
         }
     }
     std::fs::create_dir_all(&parent)

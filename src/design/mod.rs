@@ -22,6 +22,7 @@
 //!
 //! Unknown keys are refused, so a misspelt parameter never silently takes its default.
 
+mod count;
 mod fabrication;
 
 use std::path::{Path, PathBuf};
@@ -49,7 +50,9 @@ pub struct DesignFile {
     pub notch_width_mm: f64,
     /// Uncut length `c` between neighbouring notches (mm).
     pub notch_spacing_mm: f64,
-    /// Notch count `N` (per side for BSN).
+    /// Notch count `N` (per side for BSN). Read from an integer or a whole float (`1e9`), so
+    /// both get the design rule's message about the 10000 limit.
+    #[serde(deserialize_with = "count::deserialize_notch_count")]
     pub notch_count: u32,
     /// Joint length `L` (mm).
     pub joint_length_mm: f64,

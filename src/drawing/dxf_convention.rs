@@ -6,7 +6,8 @@
 //! | `SENSOR` | 5 (blue) | one open LWPOLYLINE per U-trace piece (arms and bridge) |
 //! | `LEADS_PADS` | 3 (green) | one open LWPOLYLINE per lead piece and per square-spiral pad piece |
 //! | `PARTING` | 1 (red) | the parting cut |
-//! | `ANNOTATION` | 7 (white/black) | title, frame note, scale note; the layout's numbers |
+//! | `ANNOTATION` | 7 (white/black) | title, frame note, scale note, the note on notches split at the seam; the layout's numbers |
+//! | `TUBE` | 8 (grey) | reference only, never cut: the tube's outline (one circumference, unrolled, from the distal end to the parting line), the seam at both window edges and its labels |
 //!
 //! Units are millimetres (`$INSUNITS = 4`), `X = x` and `Y = s`; the file is AutoCAD R2000
 //! (`AC1015`), the oldest version with LWPOLYLINE and layer colours, read by every current tool.
@@ -29,6 +30,14 @@
 
 /// Registered application name of `dlw`'s XDATA.
 pub const APP_ID: &str = "DLW";
+
+/// The reference layer: the tube's outline and the seam. Not a [`Layer`] of features: nothing
+/// on it is cut, and a reader of `dlw` drawings ignores it ([`Layer::from_name`] reads it as
+/// [`Layer::Annotation`]).
+pub const TUBE_LAYER: &str = "TUBE";
+
+/// ACI colour of [`TUBE_LAYER`]: 8, dark grey, behind the features.
+pub const TUBE_ACI: u8 = 8;
 
 /// A layer of the convention.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -79,8 +88,12 @@ impl Layer {
     }
 
     /// The layer called `name`, if it is one of the convention's (case-insensitive, as in
-    /// AutoCAD).
+    /// AutoCAD). The reference layer [`TUBE_LAYER`] reads as [`Layer::Annotation`]: its
+    /// entities are drawn for people and never describe a feature.
     pub fn from_name(name: &str) -> Option<Layer> {
+        if name.eq_ignore_ascii_case(TUBE_LAYER) {
+            return Some(Layer::Annotation);
+        }
         Layer::ALL
             .into_iter()
             .find(|l| l.name().eq_ignore_ascii_case(name))

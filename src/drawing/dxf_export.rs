@@ -3,8 +3,14 @@
 //! Frame: DXF `X = x` (along the tube from the distal end) and `Y = s` (arc length on the outer
 //! surface, in the window `[seam, seam + 2π·r_o]`), both in mm, `$INSUNITS = 4`. Layers, colours
 //! and the XDATA on every entity follow `dxf_convention`.
+//!
+//! Besides the features, the `TUBE` layer shows the tube itself: its outline, one circumference
+//! unrolled from the distal end to the parting line, and the seam (both window edges are the
+//! same line on the tube), labelled. When notches cross the seam, a note on `ANNOTATION` says
+//! that the pieces along the two edges are one notch each, so a UAN joint split there does not
+//! read as two rows of notches.
 
-use dxf::entities::{Entity, EntityType, LwPolyline, Text};
+use dxf::entities::{Entity, EntityType, Line, LwPolyline, Text};
 use dxf::enums::{AcadVersion, DrawingUnits, Units};
 use dxf::tables::{AppId, Layer as DxfLayer};
 use dxf::{Color, LwPolylineVertex, Point, XData, XDataItem};
@@ -13,7 +19,8 @@ use geo::Coord;
 use crate::layout::Layout;
 
 use super::dxf_convention::{
-    Layer, APP_ID, TAG_LAYOUT, TAG_LEAD, TAG_NOTCH, TAG_PAD, TAG_PARTING, TAG_SENSOR,
+    Layer, APP_ID, TAG_LAYOUT, TAG_LEAD, TAG_NOTCH, TAG_PAD, TAG_PARTING, TAG_SENSOR, TUBE_ACI,
+    TUBE_LAYER,
 };
 
 /// Why a DXF could not be written.
@@ -34,6 +41,9 @@ pub enum DxfExportError {
 
 /// Text height of the annotation (mm).
 const TEXT_MM: f64 = 0.25;
+
+/// How far the seam lines run past both ends of the tube's outline (mm).
+const SEAM_OVERRUN_MM: f64 = 4.0 * TEXT_MM;
 
 /// The layout as the bytes of an R2000 DXF, with `clearance_mm` recorded in the metadata so
 /// that `dlw import-dxf` checks the same clearance.
@@ -56,16 +66,31 @@ pub fn layout_to_dxf(layout: &Layout, clearance_mm: f64) -> Result<Vec<u8>, DxfE
             ..Default::default()
         });
     }
+    drawing.add_layer(DxfLayer {
+        name: TUBE_LAYER.to_string(),
+        color: Color::from_index(TUBE_ACI),
+        ..Default::default()
+    });
     for entity in entities(layout, clearance_mm)? {
         drawing.add_entity(entity);
     }
     if let Some(ext) = layout.extents() {
+        // The seam lines overrun both ends; their labels run on beyond the far end (text
+        // about 0.6 of its height per character).
+        let overrun = SEAM_OVERRUN_MM;
+        let label = TEXT_MM * (1.0 + 0.6 * 80.0);
+        // The split note starts at x = 0 and may run past the seam labels.
+        let note = split_note(layout).map_or(0.0, |n| TEXT_MM * 0.6 * n.chars().count() as f64);
         drawing.header.minimum_drawing_extents = Point::new(
-            0.0_f64.min(ext.min().x),
+            (0.0_f64.min(ext.min().x)) - overrun,
             scale_bar_s_mm(layout) - TEXT_MM,
             0.0,
         );
-        drawing.header.maximum_drawing_extents = Point::new(ext.max().x, ext.max().y, 0.0);
+        drawing.header.maximum_drawing_extents = Point::new(
+            (ext.max().x.max(layout.length_mm) + overrun + label).max(note),
+            ext.max().y.max(layout.seam_s_mm + layout.circumference_mm),
+            0.0,
+        );
     }
     let mut bytes = Vec::new();
     drawing
@@ -120,9 +145,89 @@ fn add_table_handles(text: &str) -> String {
     out.join("\r\n")
 }
 
-/// Where the 1 mm scale bar sits (`s`, mm): under the three lines of text below the window.
+/// Where the 1 mm scale bar sits (`s`, mm): under the lines of text below the window (three,
+/// and the note on split notches when there is one).
 fn scale_bar_s_mm(layout: &Layout) -> f64 {
-    layout.seam_s_mm - 3.0 * TEXT_MM - 3.0 * 1.6 * TEXT_MM - TEXT_MM
+    let lines = 3.0 + f64::from(u8::from(split_note(layout).is_some()));
+    layout.seam_s_mm - 3.0 * TEXT_MM - lines * 1.6 * TEXT_MM - TEXT_MM
+}
+
+/// The note for notches the seam splits, naming them (1-based levels and sides, as people
+/// count); `None` when the seam splits none.
+pub(crate) fn split_note(layout: &Layout) -> Option<String> {
+    let split: Vec<&crate::layout::Notch> = layout
+        .notches
+        .iter()
+        .filter(|n| n.outline.len() > 1)
+        .collect();
+    if split.is_empty() {
+        return None;
+    }
+    let two_sides = layout.notches.iter().any(|n| n.side == 1);
+    let names: Vec<String> = split
+        .iter()
+        .map(|n| {
+            if two_sides {
+                format!("{} (side {})", n.level + 1, n.side)
+            } else {
+                (n.level + 1).to_string()
+            }
+        })
+        .collect();
+    let list = if names.len() == layout.notches.len() {
+        format!("all {} notches", names.len())
+    } else {
+        format!(
+            "notch{} {}",
+            if names.len() == 1 { "" } else { "es" },
+            names.join(", ")
+        )
+    };
+    Some(format!(
+        "NOTE: {list} cross the seam (s = {:.4} mm) and are drawn split in two: the piece at the bottom edge and the piece at the top edge of the same x are ONE notch on the tube (layer TUBE shows the seam).",
+        layout.seam_s_mm
+    ))
+}
+
+/// The `TUBE` layer: the outline of one circumference unrolled, from the distal end to the
+/// parting line, and the seam at both edges of the window, each labelled.
+fn tube(layout: &Layout) -> Vec<Entity> {
+    let (s0, s1) = (layout.seam_s_mm, layout.seam_s_mm + layout.circumference_mm);
+    let l = layout.length_mm;
+    let on_tube = |mut e: Entity| {
+        e.common.layer = TUBE_LAYER.to_string();
+        e
+    };
+    let mut outline = LwPolyline::default();
+    outline.set_is_closed(true);
+    outline.vertices = [(0.0, s0), (l, s0), (l, s1), (0.0, s1)]
+        .iter()
+        .map(|&(x, y)| LwPolylineVertex {
+            x,
+            y,
+            ..Default::default()
+        })
+        .collect();
+    let mut out = vec![on_tube(Entity::new(EntityType::LwPolyline(outline)))];
+    // The seam runs past both ends of the outline, so it reads as its own line.
+    let overrun = SEAM_OVERRUN_MM;
+    for (s, which) in [(s0, "bottom"), (s1, "top")] {
+        out.push(on_tube(Entity::new(EntityType::Line(Line::new(
+            Point::new(-overrun, s, 0.0),
+            Point::new(l + overrun, s, 0.0),
+        )))));
+        let mut t = Text {
+            location: Point::new(l + overrun + TEXT_MM, s - TEXT_MM / 2.0, 0.0),
+            text_height: TEXT_MM,
+            value: format!(
+                "seam, s = {s:.4} mm ({which} edge; the tube is cut open here to unroll it)"
+            ),
+            ..Default::default()
+        };
+        t.second_alignment_point = t.location.clone();
+        out.push(on_tube(Entity::new(EntityType::Text(t))));
+    }
+    out
 }
 
 /// Every entity of the drawing, features first, then annotation.
@@ -166,6 +271,7 @@ fn entities(layout: &Layout, clearance_mm: f64) -> Result<Vec<Entity>, DxfExport
         out.push(polyline(Layer::Parting, &line.0, false, items));
     }
     out.extend(annotation(layout, clearance_mm));
+    out.extend(tube(layout));
     Ok(out)
 }
 
@@ -263,5 +369,9 @@ fn annotation(layout: &Layout, clearance_mm: f64) -> Vec<Entity> {
         t.location = Point::new(1.2, y, 0.0);
         t.second_alignment_point = t.location.clone();
     }
-    vec![title, frame, scale, bar, label]
+    let mut out = vec![title, frame, scale, bar, label];
+    if let Some(note) = split_note(layout) {
+        out.push(text(3, note));
+    }
+    out
 }

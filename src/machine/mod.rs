@@ -12,6 +12,7 @@
 
 mod library;
 mod profile;
+mod settle;
 mod template;
 
 use std::path::PathBuf;
@@ -22,6 +23,8 @@ pub use library::{MachineLibrary, DEFAULT_PROFILE};
 pub use profile::{
     Axes, Dialect, Fixture, Focus, LaserCommands, Limits, MachineProfile, RepeatMode, RotaryUnits,
 };
+/// Waiting for the source to settle between operations (`[settle]`).
+pub use settle::{Settle, SettleMode, DEFAULT_DWELL_S, MAX_DWELL_S};
 /// Laser command templates with `{placeholder}` values.
 pub use template::{format_number, LaserValues, Template};
 

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{MachineError, Template};
+use super::{MachineError, Settle, Template};
 
 /// Which post-processor writes the program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -150,6 +150,8 @@ struct ProfileFile {
     laser: LaserFile,
     #[serde(default)]
     fixture: Fixture,
+    #[serde(default)]
+    settle: Settle,
 }
 
 /// A checked machine profile.
@@ -173,6 +175,9 @@ pub struct MachineProfile {
     pub laser: LaserCommands,
     /// Fixture dimensions.
     pub fixture: Fixture,
+    /// How the program waits for the source to settle between operations with different
+    /// laser parameters (`[settle]`, optional).
+    pub settle: Settle,
 }
 
 impl MachineProfile {
@@ -223,6 +228,9 @@ impl MachineProfile {
                 "must be finite and >= 0".into(),
             ));
         }
+        file.settle
+            .check()
+            .map_err(|(value, limit)| bad("settle.dwell_s", value, limit))?;
         let letters = [
             ("axes.linear", file.axes.linear),
             ("axes.rotary", file.axes.rotary),
@@ -290,6 +298,7 @@ impl MachineProfile {
             focus: file.focus,
             laser,
             fixture: file.fixture,
+            settle: file.settle,
         })
     }
 

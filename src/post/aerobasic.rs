@@ -6,11 +6,13 @@
 //! move takes `t = d/v` and the focus crosses the surface at the set's scan speed. Passes are
 //! written out (no loops), which keeps the program free of controller variables.
 //!
+//! The settle between operations is `DWELL s` (seconds), `M1` (optional pause) or `M0`.
+//!
 //! No AeroBasic interpreter was available to check these programs; `tests/aerobasic_programs.rs`
 //! parses their move syntax and applies the same physical checks as the LinuxCNC tests.
 
 use super::{fixed, AxisWords, FeedMove, Post};
-use crate::machine::MachineProfile;
+use crate::machine::{MachineProfile, Settle, SettleMode};
 
 /// The AeroBasic post.
 #[derive(Debug, Clone, Copy, Default)]
@@ -47,6 +49,22 @@ impl Post for AeroBasic {
             "G76 // feeds in units per second".into(),
             "G90 // absolute coordinates".into(),
         ]
+    }
+
+    fn settle(&self, settle: &Settle) -> Vec<String> {
+        match settle.mode {
+            SettleMode::Dwell => vec![format!(
+                "DWELL {} // seconds: the source settles at its new pulse frequency and width",
+                fixed(settle.dwell_s, 3)
+            )],
+            SettleMode::OptionalStop => vec![
+                "M1 // optional pause: resume when the source has settled at its new pulse frequency and width".into(),
+            ],
+            SettleMode::Stop => vec![
+                "M0 // program pause: resume when the source has settled at its new pulse frequency and width".into(),
+            ],
+            SettleMode::None => Vec::new(),
+        }
     }
 
     fn postamble(&self, _profile: &MachineProfile) -> Vec<String> {

@@ -36,8 +36,10 @@ pub fn write_program(
         ..AxisWords::default()
     });
     w.out.push(post.rapid(profile, &words));
+    let mut prev: Option<&ProcessSet> = None;
     for op in &plan.operations {
-        w.operation(op)?;
+        w.operation(op, prev)?;
+        prev = Some(&op.process);
     }
     w.beam_off(false);
     w.out.extend(post.postamble(profile));
@@ -65,11 +67,12 @@ pub fn header_lines(plan: &Plan, profile: &MachineProfile, post: &dyn Post) -> V
             format_number(profile.focus.z_axis_mm)
         ),
         format!(
-            "kerf {} mm: notch outlines offset inward by {} mm; parting cut centre at {x}{} so the joint is {} mm long",
+            "kerf {} mm: notch outlines offset inward by {} mm; parting cut centre at {x}{} so the part is {} mm long (part length; the bending length L = {} mm lies within it)",
             format_number(plan.kerf_mm),
             format_number(plan.kerf_mm / 2.0),
             fixed(plan.joint_length_mm + plan.kerf_mm / 2.0, 4),
-            format_number(plan.joint_length_mm)
+            format_number(plan.joint_length_mm),
+            format_number(plan.bending_length_mm)
         ),
         "parameter sets (paper Table II):".into(),
         format!(
@@ -98,6 +101,23 @@ pub fn header_lines(plan: &Plan, profile: &MachineProfile, post: &dyn Post) -> V
         .map(|t| format!("{} {}", t.kind.name(), format_duration(t.total_s())))
         .collect();
     let total: f64 = times.iter().map(|t| t.total_s()).sum();
+    let settles: Vec<&str> = plan
+        .operations
+        .iter()
+        .enumerate()
+        .filter(|(i, op)| {
+            let prev = i.checked_sub(1).map(|j| &plan.operations[j].process);
+            profile.settle.needed(prev, &op.process)
+        })
+        .map(|(_, op)| op.kind.name())
+        .collect();
+    if !settles.is_empty() {
+        h.push(format!(
+            "settle: {} after the laser is set, before {} (machine profile, table settle)",
+            profile.settle.describe(),
+            settles.join(", ")
+        ));
+    }
     h.push(format!(
         "estimated time: {}; total {}",
         parts.join(", "),
@@ -209,7 +229,11 @@ impl Writer<'_> {
         }
     }
 
-    fn operation(&mut self, op: &crate::toolpath::Operation) -> Result<(), PostError> {
+    fn operation(
+        &mut self,
+        op: &crate::toolpath::Operation,
+        prev: Option<&ProcessSet>,
+    ) -> Result<(), PostError> {
         let set = &op.process;
         self.out.push(String::new());
         self.out.push(self.post.comment(&format!(
@@ -223,6 +247,9 @@ impl Writer<'_> {
         )));
         self.beam_off(false);
         self.set_laser(set);
+        if self.profile.settle.needed(prev, set) {
+            self.out.extend(self.post.settle(&self.profile.settle));
+        }
         let step = set.z_step_or_zero_mm();
         let reps = set.repetitions;
         let z_of = |k: u32| self.plan.surface_z_mm - f64::from(k) * step;

@@ -8,7 +8,7 @@
 //! named parameter `#<focus_z>` for a Z step per pass.
 
 use super::{fixed, AxisWords, FeedMove, Post};
-use crate::machine::MachineProfile;
+use crate::machine::{MachineProfile, Settle, SettleMode};
 
 /// The LinuxCNC post.
 #[derive(Debug, Clone, Copy, Default)]
@@ -42,6 +42,22 @@ impl Post for LinuxCnc {
             "G64 P0.001 (blend corners within 1 um)".into(),
             "G93 (inverse-time feeds: F = 1 / minutes per move)".into(),
         ]
+    }
+
+    fn settle(&self, settle: &Settle) -> Vec<String> {
+        match settle.mode {
+            SettleMode::Dwell => vec![format!(
+                "G4 P{} (dwell: the source settles at its new pulse frequency and width)",
+                fixed(settle.dwell_s, 3)
+            )],
+            SettleMode::OptionalStop => vec![
+                "M1 (optional stop: resume when the source has settled at its new pulse frequency and width)".into(),
+            ],
+            SettleMode::Stop => vec![
+                "M0 (stop: resume when the source has settled at its new pulse frequency and width)".into(),
+            ],
+            SettleMode::None => Vec::new(),
+        }
     }
 
     fn postamble(&self, _profile: &MachineProfile) -> Vec<String> {

@@ -11,14 +11,17 @@
 //! | `aerobasic` ([`AeroBasic`]) | same | `G76` units per second: `F` = X speed on moves with X motion, rotary speed on pure rotations (RS-274 semantics) | unrolled |
 //!
 //! Every program closes the beam gate before every rapid; the laser's parameters are set
-//! through the profile's templates before the first pass of each operation.
+//! through the profile's templates before the first pass of each operation. When they change
+//! between operations (the sensor set → the notch set), the program then waits for the source
+//! to settle as the profile's `[settle]` table says: `G4 P…` / `DWELL …`, or an optional stop
+//! `M1`, or a stop `M0` ([`crate::machine::Settle`]).
 
 mod aerobasic;
 mod emit;
 mod linuxcnc;
 mod state;
 
-use crate::machine::{Dialect, MachineProfile};
+use crate::machine::{Dialect, MachineProfile, Settle};
 
 /// The Aerotech AeroBasic (A3200) writer.
 pub use aerobasic::AeroBasic;
@@ -92,6 +95,10 @@ pub trait Post {
     fn comment(&self, text: &str) -> String;
     /// Lines before the first move: units, absolute positioning, feed mode.
     fn preamble(&self, profile: &MachineProfile) -> Vec<String>;
+    /// The wait for the source to settle after its parameters changed (beam off, axes still):
+    /// a dwell, an optional stop or a stop as `settle` says; nothing for
+    /// [`SettleMode::None`](crate::machine::SettleMode::None).
+    fn settle(&self, settle: &Settle) -> Vec<String>;
     /// Lines after the last move.
     fn postamble(&self, profile: &MachineProfile) -> Vec<String>;
     /// A rapid (beam off) to `words`.

@@ -10,6 +10,7 @@
 //! pulse_width_fs = 550
 //! repetitions = 1           # passes over every path
 //! z_step_mm = 0.0           # optional: focus lowered by this much after each pass
+//! min_wall_mm = 0.1         # optional: thinnest wall r_o − r_i it cuts cleanly (default 0.1)
 //! ```
 //!
 //! A design names the sets it uses in its `[process]` table ([`crate::design::ProcessChoice`]);
@@ -26,8 +27,8 @@ use std::path::PathBuf;
 
 /// Finds parameter sets by name and resolves a design's choice of sets.
 pub use library::{ProcessLibrary, ProcessSets};
-/// One laser parameter set (a Table II column).
-pub use set::ProcessSet;
+/// One laser parameter set (a Table II column), and the default thinnest wall it cuts.
+pub use set::{ProcessSet, DEFAULT_MIN_WALL_MM};
 
 /// Why a parameter set could not be used.
 #[derive(Debug, thiserror::Error)]

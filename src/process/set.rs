@@ -31,6 +31,21 @@ pub struct ProcessSet {
     /// Focus lowered by this much after each pass (mm); `None` keeps the focus on the surface.
     #[serde(default)]
     pub z_step_mm: Option<f64>,
+    /// Thinnest tube wall `r_o − r_i` (mm) this set cuts cleanly when it cuts through the wall
+    /// (notches, parting); a thinner wall is refused by the design rules
+    /// ([`crate::rules::check_wall`]). Default [`DEFAULT_MIN_WALL_MM`].
+    #[serde(default = "default_min_wall_mm")]
+    pub min_wall_mm: f64,
+}
+
+/// Default of `min_wall_mm` (mm): about half the thinnest wall the paper cut with its notch
+/// set (0.19 mm, Joints B-D). Below it the set's dose (2 W × 32 passes for Table II (b)) is far
+/// more than the wall needs, and the edges melt and char and the mandrel is marked. A margin
+/// on what was shown to work, not a measured limit: cut test tubes and set it for your process.
+pub const DEFAULT_MIN_WALL_MM: f64 = 0.1;
+
+fn default_min_wall_mm() -> f64 {
+    DEFAULT_MIN_WALL_MM
 }
 
 impl ProcessSet {
@@ -67,6 +82,7 @@ impl ProcessSet {
             ("scan_speed_mm_s", self.scan_speed_mm_s),
             ("pulse_frequency_khz", self.pulse_frequency_khz),
             ("pulse_width_fs", self.pulse_width_fs),
+            ("min_wall_mm", self.min_wall_mm),
         ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(value(key, v, "must be finite and > 0"));
@@ -109,6 +125,15 @@ mod tests {
         assert_eq!(row(&a), (1030.0, 160.0, 1.0, 200.0, 550.0, 1));
         assert_eq!(row(&b), (1030.0, 2000.0, 25.0, 60.0, 215.0, 32));
         assert_eq!(a.z_step_mm, None);
+        assert_eq!(b.min_wall_mm, DEFAULT_MIN_WALL_MM);
+        let thin = ProcessSet::from_toml("t", &format!("{NOTCHES}\nmin_wall_mm = 0.02\n")).unwrap();
+        assert_eq!(thin.min_wall_mm, 0.02);
+        let err = ProcessSet::from_toml("t", &format!("{NOTCHES}\nmin_wall_mm = 0\n")).unwrap_err();
+        assert!(
+            err.to_string()
+                .contains("min_wall_mm = 0 must be finite and > 0"),
+            "{err}"
+        );
         assert_eq!(b.name, "notches");
     }
 

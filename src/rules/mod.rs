@@ -12,6 +12,7 @@
 //! | `L = N·h + (N−1)·c` to [`LENGTH_TOLERANCE_MM`] | `length` |
 //! | `pad_pitch_mm ≥ trace_width_mm`; the pads fit round the tube | `pads` |
 //! | every arm, lead and pad keeps the clearance from every cut and every other trace (see `clearance`) | `clearance` |
+//! | `r_o − r_i ≥ min_wall_mm` of the notch and parting sets (run by the laser planner, which has the sets) | `wall` |
 //! | warning: sensor strain at the notch-closing angle past the saturation strain; backbone strain past its limit | `strain` |
 //!
 //! # Examples
@@ -32,6 +33,7 @@ mod parts;
 mod section;
 mod strain;
 mod violation;
+mod wall;
 
 use crate::design::{Design, DesignFile};
 use crate::layout::Layout;
@@ -40,6 +42,8 @@ use crate::layout::Layout;
 pub use length::LENGTH_TOLERANCE_MM;
 /// A broken design rule, and a warning.
 pub use violation::{Violation, Warning};
+/// The tube wall against the cutting sets' `min_wall_mm`.
+pub use wall::check_wall;
 
 /// What the rules found.
 #[derive(Debug, Clone, Default, PartialEq)]

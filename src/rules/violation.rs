@@ -142,6 +142,24 @@ pub enum Violation {
     /// The fabrication values cannot be laid out.
     #[error("{0}")]
     Layout(LayoutError),
+    /// The tube wall is thinner than a cutting set cuts cleanly.
+    #[error(
+        "tube wall r_o − r_i = {wall_mm:.4} mm (outer_radius_mm = {outer_mm}, inner_radius_mm = {inner_mm}) is thinner than min_wall_mm = {min_mm} mm of process set {set:?} ({operation}), the thinnest wall it cuts cleanly: use a thicker tube, or a set made and tested for thin walls"
+    )]
+    WallTooThin {
+        /// `r_o − r_i` (mm).
+        wall_mm: f64,
+        /// r_o (mm).
+        outer_mm: f64,
+        /// r_i (mm).
+        inner_mm: f64,
+        /// The set's `min_wall_mm` (mm).
+        min_mm: f64,
+        /// The set's name.
+        set: String,
+        /// What the set cuts: `notches` or `parting`.
+        operation: &'static str,
+    },
     /// Any other reason the design was refused, as its message.
     #[error("{0}")]
     Other(String),

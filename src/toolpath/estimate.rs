@@ -2,7 +2,9 @@
 //!
 //! Beam-on moves take `d/v` (surface distance over the set's scan speed, exact for a stage that
 //! follows the program). Rapids take `max(|Δx|/v_x, |ΔA|/v_A)` at the profile's speed limits,
-//! ignoring acceleration, so the rapid share is a lower bound.
+//! ignoring acceleration, so the rapid share is a lower bound. The profile's settle dwell
+//! before an operation whose laser parameters differ from the previous one's is counted in
+//! that operation (stops count 0: they last as long as the operator takes).
 
 use super::plan::{MoveKind, OperationKind, Plan};
 use crate::machine::MachineProfile;
@@ -18,12 +20,14 @@ pub struct OperationTime {
     pub rapid_s: f64,
     /// Length the beam travels over the surface, all passes (mm).
     pub beam_length_mm: f64,
+    /// Dwell before the operation while the source settles (s).
+    pub settle_s: f64,
 }
 
 impl OperationTime {
-    /// Beam-on plus rapid time (s).
+    /// Beam-on, rapid and settle time (s).
     pub fn total_s(&self) -> f64 {
-        self.beam_s + self.rapid_s
+        self.beam_s + self.rapid_s + self.settle_s
     }
 }
 
@@ -32,11 +36,21 @@ pub fn estimate(plan: &Plan, profile: &MachineProfile) -> Vec<OperationTime> {
     let mut out: Vec<OperationTime> = plan
         .operations
         .iter()
-        .map(|op| OperationTime {
-            kind: op.kind,
-            beam_s: 0.0,
-            rapid_s: 0.0,
-            beam_length_mm: 0.0,
+        .enumerate()
+        .map(|(i, op)| {
+            let prev = i.checked_sub(1).map(|j| &plan.operations[j].process);
+            let settle = &profile.settle;
+            OperationTime {
+                kind: op.kind,
+                beam_s: 0.0,
+                rapid_s: 0.0,
+                beam_length_mm: 0.0,
+                settle_s: if settle.needed(prev, &op.process) {
+                    settle.estimated_s()
+                } else {
+                    0.0
+                },
+            }
         })
         .collect();
     for mv in plan.moves() {

@@ -37,7 +37,6 @@ mod order;
 mod plan;
 mod planner;
 mod seam;
-mod sheet;
 
 /// Safety invariants of a plan.
 pub use check::check_plan;
@@ -55,12 +54,13 @@ pub use plan::{
 pub use planner::{plan, PlanOptions};
 /// Joining pieces across the drawing's seam.
 pub use seam::{chain_lines, join_outline, short_way_mm, SeamError};
-/// The operator's setup sheet.
-pub use sheet::{mandrel_mm, setup_sheet, SheetContext, MANDREL_CLEARANCE_MM, MANDREL_SIZES_MM};
 
 /// Why the planner refused a job.
 #[derive(Debug, thiserror::Error)]
 pub enum ToolpathError {
+    /// The design breaks a rule that needs the process sets (the wall thickness).
+    #[error(transparent)]
+    Rules(#[from] crate::rules::RulesError),
     /// The layout is not usable as it stands.
     #[error("layout: {0}")]
     Layout(String),

@@ -194,8 +194,12 @@ pub struct Plan {
     pub kerf_mm: f64,
     /// Width of a written line (mm).
     pub trace_width_mm: f64,
-    /// Joint length `L` (mm): the finished joint's proximal face.
+    /// Part length (mm): the finished joint's proximal face, where the parting cut ends it
+    /// (distal margin, notched length, leads, pads and proximal margin).
     pub joint_length_mm: f64,
+    /// Bending length `L` (mm), the design's `joint_length_mm` (the paper's Table I): the
+    /// length that bends, shorter than the part.
+    pub bending_length_mm: f64,
     /// Z of the focus on the tube's surface.
     pub surface_z_mm: f64,
     /// Where the program assumes the stage starts: `X = 0`, `A = 0`.

@@ -56,6 +56,14 @@ pub fn plan(
     profile: &MachineProfile,
     options: &PlanOptions,
 ) -> Result<Plan, ToolpathError> {
+    let violations = crate::rules::check_wall(&design.file, sets);
+    if !violations.is_empty() {
+        return Err(crate::rules::RulesError {
+            name: design.file.name.clone(),
+            violations,
+        }
+        .into());
+    }
     let r_o = layout.outer_radius_mm;
     let c = layout.circumference_mm;
     if !(r_o.is_finite() && r_o > 0.0 && (c - TAU * r_o).abs() <= 1e-6 * c.max(1.0)) {
@@ -142,6 +150,7 @@ pub fn plan(
         kerf_mm: layout.kerf_mm,
         trace_width_mm: layout.trace_width_mm,
         joint_length_mm: x_line,
+        bending_length_mm: design.file.joint_length_mm,
         surface_z_mm: profile.surface_z_mm(r_o),
         home,
         operations,

@@ -17,7 +17,7 @@ use dlw::machine::{MachineLibrary, MachineProfile};
 use dlw::process::{ProcessLibrary, ProcessSets};
 use dlw::rules;
 
-use super::{Canon, CanonMove};
+use super::{Canon, CanonMove, WaitKind};
 
 pub struct Expected {
     /// The layout the program must cut.
@@ -117,8 +117,66 @@ fn distance_to_lines(layout: &Layout, x: f64, s: f64) -> f64 {
     best
 }
 
+/// The settle the profile asks for: one wait after the laser is set for an operation whose
+/// laser parameters differ from the previous one's, before any move of that operation, with the
+/// beam off and the new set's power and pulse settings already in force; no other wait.
+pub fn check_settle(canon: &Canon, e: &Expected, what: &str) {
+    use dlw::machine::SettleMode;
+    let sets = [&e.sets.sensor, &e.sets.notches, &e.sets.parting];
+    let names = ["sensor", "notches", "parting"];
+    let mut want = Vec::new();
+    for i in 1..3 {
+        if e.profile.settle.needed(Some(sets[i - 1]), sets[i]) {
+            want.push(i);
+        }
+    }
+    assert_eq!(
+        canon.waits.len(),
+        want.len(),
+        "{what}: waits {:?}, expected one before each of {:?}",
+        canon.waits,
+        want.iter().map(|i| names[*i]).collect::<Vec<_>>()
+    );
+    for (w, &i) in canon.waits.iter().zip(&want) {
+        let set = sets[i];
+        assert_eq!(w.operation, names[i], "{what}: wait in the wrong operation");
+        assert!(!w.spindle_on, "{what}: wait with the beam on: {w:?}");
+        assert_eq!(
+            (w.spindle_speed, w.aux),
+            (set.power_mw, [set.pulse_frequency_khz, set.pulse_width_fs]),
+            "{what}: the wait must come after the {} set is commanded",
+            names[i]
+        );
+        let first = canon
+            .moves
+            .iter()
+            .position(|m| m.operation == names[i])
+            .unwrap_or(canon.moves.len());
+        assert!(
+            w.before_move <= first,
+            "{what}: the wait comes after the {} operation's first move",
+            names[i]
+        );
+        let s = &e.profile.settle;
+        let expected = match s.mode {
+            SettleMode::Dwell => WaitKind::Dwell(s.dwell_s),
+            SettleMode::OptionalStop => WaitKind::OptionalStop,
+            SettleMode::Stop => WaitKind::Stop,
+            SettleMode::None => unreachable!("no wait is wanted"),
+        };
+        match (w.kind, expected) {
+            (WaitKind::Dwell(got), WaitKind::Dwell(want)) => assert!(
+                (got - want).abs() < 1e-3,
+                "{what}: dwell {got} s, profile says {want} s"
+            ),
+            (got, want) => assert_eq!(got, want, "{what}: kind of wait"),
+        }
+    }
+}
+
 /// Every check of the issue, on one program's canonical output.
 pub fn check(canon: &Canon, e: &Expected, what: &str) {
+    check_settle(canon, e, what);
     let r_o = e.r_o;
     let kerf = e.layout.kerf_mm;
     let c = e.layout.circumference_mm;

@@ -47,9 +47,39 @@ pub struct CanonMove {
     pub segment: Option<usize>,
 }
 
+/// How a program waits (`DWELL`, `OPTIONAL_PROGRAM_STOP`, `PROGRAM_STOP`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WaitKind {
+    /// A dwell of so many seconds.
+    Dwell(f64),
+    /// `M1`.
+    OptionalStop,
+    /// `M0`.
+    Stop,
+}
+
+/// A wait, with the machine's state when it happens.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Wait {
+    /// What kind.
+    pub kind: WaitKind,
+    /// Spindle (the beam gate) on during the wait.
+    pub spindle_on: bool,
+    /// Spindle speed (the power, mW) in force.
+    pub spindle_speed: f64,
+    /// Analog outputs 0 and 1 in force (pulse frequency kHz, pulse width fs).
+    pub aux: [f64; 2],
+    /// The operation it happens in.
+    pub operation: String,
+    /// How many moves came before it.
+    pub before_move: usize,
+}
+
 /// The interpreter's output, read.
 #[derive(Debug, Clone, Default)]
 pub struct Canon {
+    /// Every dwell and stop, in order.
+    pub waits: Vec<Wait>,
     /// Every motion, in order.
     pub moves: Vec<CanonMove>,
     /// `operation` comments in order.
@@ -183,6 +213,21 @@ pub fn parse(text: &str) -> Canon {
                     segment,
                 });
                 pos = to;
+            }
+            "DWELL" | "OPTIONAL_PROGRAM_STOP" | "PROGRAM_STOP" => {
+                let kind = match name {
+                    "DWELL" => WaitKind::Dwell(nums()[0]),
+                    "OPTIONAL_PROGRAM_STOP" => WaitKind::OptionalStop,
+                    _ => WaitKind::Stop,
+                };
+                c.waits.push(Wait {
+                    kind,
+                    spindle_on,
+                    spindle_speed,
+                    aux,
+                    operation: operation.clone(),
+                    before_move: c.moves.len(),
+                });
             }
             "ARC_FEED" => panic!("unexpected arc in a dlw program: {line}"),
             _ => {}

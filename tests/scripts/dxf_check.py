@@ -7,6 +7,11 @@ Usage:
       checks $INSUNITS = 4, the five layers and their ACI colours, entity counts per layer
       (EXPECT_JSON: {"layers": {"NOTCHES": n, ...}, "notch_area_mm2": a}), that notches are
       closed LWPOLYLINEs and traces open ones, and the total notch area (shoelace) to 1e-6 mm².
+  dxf_check.py tube FILE EXPECT_JSON
+      Checks the TUBE layer: one closed LWPOLYLINE, the rectangle x 0..length, s seam..seam+C
+      (EXPECT_JSON: {"seam": s0, "circumference": c, "length": l, "split": bool}), a LINE along
+      each window edge (the seam) reaching past both ends, and a TEXT on ANNOTATION saying that
+      notches cross the seam exactly when "split" is true.
   dxf_check.py resave FILE OUT [--move-notch DX DY] [--strip-xdata]
       Re-saves FILE with ezdxf as OUT (as a designer's tool would), optionally moving the
       first NOTCHES polyline by (DX, DY) mm and/or removing dlw's XDATA from feature entities.
@@ -22,7 +27,7 @@ except ImportError:
     print("ezdxf is not installed for python3: run scripts/test.sh (pip install ezdxf)", file=sys.stderr)
     sys.exit(2)
 
-LAYERS = {"NOTCHES": 30, "SENSOR": 5, "LEADS_PADS": 3, "PARTING": 1, "ANNOTATION": 7}
+LAYERS = {"NOTCHES": 30, "SENSOR": 5, "LEADS_PADS": 3, "PARTING": 1, "ANNOTATION": 7, "TUBE": 8}
 
 
 def fail(msg):
@@ -70,6 +75,37 @@ def audit(path, expect):
     print(f"ok {path}: {doc.dxfversion}, layers {counts}, notch area {area:.9f} mm²")
 
 
+def tube(path, expect):
+    doc = ezdxf.readfile(path)
+    msp = doc.modelspace()
+    s0, c, length = expect["seam"], expect["circumference"], expect["length"]
+    tol = 1e-9
+    outlines = [e for e in msp.query("LWPOLYLINE") if e.dxf.layer == "TUBE"]
+    if len(outlines) != 1 or not outlines[0].closed:
+        fail(f"{path}: TUBE must hold one closed LWPOLYLINE, found {len(outlines)}")
+    pts = sorted((round(p[0], 9), round(p[1], 9)) for p in outlines[0].get_points("xy"))
+    want = sorted((round(x, 9), round(y, 9)) for x, y in [(0, s0), (length, s0), (length, s0 + c), (0, s0 + c)])
+    if pts != want:
+        fail(f"{path}: TUBE outline {pts}, expected {want}")
+    area = shoelace(outlines[0].get_points("xy"))
+    if abs(area - length * c) > 1e-9:
+        fail(f"{path}: TUBE outline area {area}, expected L*C = {length * c}")
+    seams = [e for e in msp.query("LINE") if e.dxf.layer == "TUBE"]
+    for s in (s0, s0 + c):
+        hit = [e for e in seams if abs(e.dxf.start.y - s) < tol and abs(e.dxf.end.y - s) < tol
+               and min(e.dxf.start.x, e.dxf.end.x) < 0 and max(e.dxf.start.x, e.dxf.end.x) > length]
+        if len(hit) != 1:
+            fail(f"{path}: no seam LINE along s = {s} past both ends of the outline")
+    texts = [e.dxf.text for e in msp.query("TEXT MTEXT") if e.dxf.layer == "ANNOTATION"]
+    note = [t for t in texts if "cross the seam" in t]
+    if bool(note) != expect["split"]:
+        fail(f"{path}: split-notch note {'missing' if expect['split'] else 'present'}: {note}")
+    labels = [e for e in msp.query("TEXT") if e.dxf.layer == "TUBE" and e.dxf.text.startswith("seam")]
+    if len(labels) != 2:
+        fail(f"{path}: expected 2 seam labels on TUBE, found {len(labels)}")
+    print(f"ok {path}: tube {length} x {c} mm from s = {s0}, split note {bool(note)}")
+
+
 def resave(path, out, args):
     doc = ezdxf.readfile(path)
     msp = doc.modelspace()
@@ -89,6 +125,8 @@ def resave(path, out, args):
 def main(argv):
     if len(argv) >= 3 and argv[0] == "audit":
         audit(argv[1], json.loads(argv[2]))
+    elif len(argv) >= 3 and argv[0] == "tube":
+        tube(argv[1], json.loads(argv[2]))
     elif len(argv) >= 3 and argv[0] == "resave":
         resave(argv[1], argv[2], argv[3:])
     else:

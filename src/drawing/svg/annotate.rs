@@ -97,20 +97,38 @@ fn linear(sheet: &mut Sheet, layer: &'static str, d: &Dimension, vertical: bool)
     let width = sheet.text_width(&d.label, style);
     let lift = sheet.paper(1.0);
     // Text sits on the side of the line with smaller sheet coordinates: above a horizontal
-    // line, left of a vertical one (whose text reads upward).
-    let (at, anchor) = if width + sheet.paper(2.0) <= hi - lo {
-        ((lo + hi) / 2.0, Anchor::Middle)
+    // line, left of a vertical one (whose text reads upward). Outside the arrows, it moves
+    // further out, then to the other end, until no line drawn so far strikes it.
+    let candidates: Vec<((f64, f64), TextStyle)> = if width + sheet.paper(2.0) <= hi - lo {
+        vec![(
+            pt((lo + hi) / 2.0, d.at - lift),
+            style.anchor(Anchor::Middle),
+        )]
     } else {
         let beyond = sheet.paper(if hi - lo >= 2.0 * arrow { 1.0 } else { 5.5 });
-        match (d.overflow, vertical) {
-            // Along a vertical line `lo` is the top of the sheet, which the text runs toward.
-            (Overflow::Before, false) => (lo - beyond, Anchor::End),
-            (Overflow::After, false) => (hi + beyond, Anchor::Start),
-            (Overflow::Before, true) => (hi + beyond, Anchor::End),
-            (Overflow::After, true) => (lo - beyond, Anchor::Start),
+        let step = sheet.paper(1.5);
+        let other = match d.overflow {
+            Overflow::Before => Overflow::After,
+            Overflow::After => Overflow::Before,
+        };
+        let mut out = Vec::new();
+        for overflow in [d.overflow, other] {
+            // (start, outward direction, anchor)
+            let (at, out_dir, anchor) = match (overflow, vertical) {
+                // Along a vertical line `lo` is the top of the sheet, which the text runs toward.
+                (Overflow::Before, false) => (lo - beyond, -1.0, Anchor::End),
+                (Overflow::After, false) => (hi + beyond, 1.0, Anchor::Start),
+                (Overflow::Before, true) => (hi + beyond, 1.0, Anchor::End),
+                (Overflow::After, true) => (lo - beyond, -1.0, Anchor::Start),
+            };
+            for k in 0..=8 {
+                let u = at + out_dir * f64::from(k) * step;
+                out.push((pt(u, d.at - lift), style.anchor(anchor)));
+            }
         }
+        out
     };
-    sheet.text(layer, pt(at, d.at - lift), &d.label, style.anchor(anchor));
+    sheet.text_clear(layer, &candidates, &d.label);
 }
 
 /// A scale bar whose top-left corner is at `origin`, about 40 paper mm long, with the print

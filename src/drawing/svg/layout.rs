@@ -73,6 +73,7 @@ fn draw(layout: &Layout, design: &Design, scale: f64) -> Drawn {
     draw_features(&mut sheet, layout, &frame);
     let right_edge = draw_dimensions(&mut sheet, layout, design, &frame);
     let below = draw_axes(&mut sheet, layout, x_min, x_max);
+    draw_line_labels(&mut sheet, layout, &frame);
     let title = format!(
         "{} — unrolled layout ({}), scale {}",
         design.file.name,
@@ -240,20 +241,55 @@ fn draw_tube(sheet: &mut Sheet, layout: &Layout, f: &Frame) {
         Some(&outline),
         "tube",
     );
-    // Centre lines of the cross-section's +y (φ = 0) and −y (φ = 180°) directions.
+    // Centre lines of the cross-section's +y (φ = 0) and −y (φ = 180°) directions; their
+    // labels are written last ([`draw_line_labels`]), clear of every line.
     let centre = sheet.pen(palette::GUIDE, THIN_MM, Some(&[6.0, 1.5, 1.0, 1.5]));
-    let label = TextStyle::new(SMALL_MM, palette::GUIDE);
-    for (phi_deg, s) in [(0.0, 0.0), (180.0, PI * layout.outer_radius_mm)] {
-        let s = wrap(s, layout);
+    for (_, s) in phi_lines(layout) {
         let (_, y) = f.pt(0.0, s);
         sheet.line("guides", (0.0, y), (layout.length_mm, y), &centre);
-        sheet.text(
-            "labels",
-            (layout.length_mm + sheet.paper(1.5), y + sheet.paper(0.7)),
-            &format!("φ = {phi_deg:.0}°"),
-            label,
-        );
     }
+}
+
+/// The φ = 0 and φ = 180° centre lines: `(φ in degrees, s in the window)`.
+fn phi_lines(layout: &Layout) -> [(f64, f64); 2] {
+    [(0.0, 0.0), (180.0, PI * layout.outer_radius_mm)].map(|(phi, s)| (phi, wrap(s, layout)))
+}
+
+/// The labels of lines that run across the sheet (the φ centre lines, the parting cut), written
+/// after every line so each is placed where no line strikes it: level with the end of its
+/// line if that is clear, else moved just off it.
+fn draw_line_labels(sheet: &mut Sheet, layout: &Layout, f: &Frame) {
+    let label = TextStyle::new(SMALL_MM, palette::GUIDE);
+    for (phi_deg, s) in phi_lines(layout) {
+        let (_, y) = f.pt(0.0, s);
+        let x = layout.length_mm + sheet.paper(1.5);
+        // Centred on the line's height first, then 1, 2, … paper mm above and below it.
+        let mut candidates = vec![((x, y + sheet.paper(0.7)), label)];
+        for k in 1..=6 {
+            let d = sheet.paper(f64::from(k));
+            candidates.push(((x, y + sheet.paper(0.7) - d), label));
+            candidates.push(((x, y + sheet.paper(0.7) + d), label));
+        }
+        sheet.text_clear("labels", &candidates, &format!("φ = {phi_deg:.0}°"));
+    }
+    if layout.parting.is_empty() {
+        return;
+    }
+    // Above the tube at the parting line: centred on it, else beside the extension line that
+    // marks the same x.
+    let x = layout.length_mm;
+    let y = -sheet.paper(1.5);
+    let style = TextStyle::new(SMALL_MM, palette::PARTING);
+    let gap = sheet.paper(1.0);
+    sheet.text_clear(
+        "labels",
+        &[
+            ((x, y), style.anchor(Anchor::Middle)),
+            ((x - gap, y), style.anchor(Anchor::End)),
+            ((x + gap, y), style.anchor(Anchor::Start)),
+        ],
+        "parting cut",
+    );
 }
 
 /// `s` moved into the drawing's window by whole turns.
@@ -303,53 +339,40 @@ fn draw_features(sheet: &mut Sheet, layout: &Layout, f: &Frame) {
         let pts: Vec<(f64, f64)> = line.coords().map(|p| f.pt(p.x, p.y)).collect();
         sheet.path("parting", &pts, false, None, Some(&parting), "parting");
     }
-    if layout.parting.is_empty() {
-        return;
-    }
-    let x = layout.length_mm;
-    sheet.text(
-        "labels",
-        (x, -sheet.paper(1.5)),
-        "parting cut",
-        TextStyle::new(SMALL_MM, palette::PARTING).anchor(Anchor::Middle),
-    );
 }
 
 /// Draws the dimensions; returns the sheet x of the rightmost annotation column.
+///
+/// The outermost dimensions are drawn first, so that the labels of the inner ones are placed
+/// clear of the outer ones' extension lines, which cross the inner rows and columns.
 fn draw_dimensions(sheet: &mut Sheet, layout: &Layout, design: &Design, f: &Frame) -> f64 {
     let length = layout.length_mm;
     let k = sheet.paper(1.0);
     let row = |i: f64| -k * (6.0 + 8.0 * i);
     let mut next_row = 0.0;
+    // Horizontal dimensions above the tube, innermost row first.
+    let mut rows: Vec<Dimension> = Vec::new();
     let h_and_c = h_and_c_notches(layout);
     if let Some((a, b)) = h_and_c {
         let at = row(0.0);
         let top_a = f.pt(0.0, a.s1).1;
-        annotate::horizontal(
-            sheet,
-            "dimensions",
-            &Dimension {
-                ends: (a.x0, a.x1),
-                at,
-                feature: (top_a, top_a),
-                label: format!("h = {}", fixed(a.x1 - a.x0, 2)),
-                overflow: Overflow::Before,
-                beside: false,
-            },
-        );
+        rows.push(Dimension {
+            ends: (a.x0, a.x1),
+            at,
+            feature: (top_a, top_a),
+            label: format!("h = {}", fixed(a.x1 - a.x0, 2)),
+            overflow: Overflow::Before,
+            beside: false,
+        });
         if let Some(b) = b {
-            annotate::horizontal(
-                sheet,
-                "dimensions",
-                &Dimension {
-                    ends: (a.x1, b.x0),
-                    at,
-                    feature: (top_a, f.pt(0.0, b.s1).1),
-                    label: format!("c = {}", fixed(b.x0 - a.x1, 2)),
-                    overflow: Overflow::After,
-                    beside: false,
-                },
-            );
+            rows.push(Dimension {
+                ends: (a.x1, b.x0),
+                at,
+                feature: (top_a, f.pt(0.0, b.s1).1),
+                label: format!("c = {}", fixed(b.x0 - a.x1, 2)),
+                overflow: Overflow::After,
+                beside: false,
+            });
         }
         next_row = 1.0;
     }
@@ -369,53 +392,45 @@ fn draw_dimensions(sheet: &mut Sheet, layout: &Layout, design: &Design, f: &Fram
         } else {
             format!("notched length N·h + (N−1)·c = {}", fixed(span, 2))
         };
-        annotate::horizontal(
-            sheet,
-            "dimensions",
-            &Dimension {
-                ends: (e.x0, e.x1),
-                at: row(next_row),
-                feature: (0.0, 0.0),
-                label,
-                overflow: Overflow::After,
-                beside: false,
-            },
-        );
+        rows.push(Dimension {
+            ends: (e.x0, e.x1),
+            at: row(next_row),
+            feature: (0.0, 0.0),
+            label,
+            overflow: Overflow::After,
+            beside: false,
+        });
         next_row += 1.0;
         if !same {
-            annotate::horizontal(
-                sheet,
-                "dimensions",
-                &Dimension {
-                    ends: (e.x0, e.x0 + joint_l),
-                    at: row(next_row),
-                    feature: (0.0, 0.0),
-                    label: format!("L = {} (sensor gauge length)", fixed(joint_l, 2)),
-                    overflow: Overflow::After,
-                    beside: false,
-                },
-            );
+            rows.push(Dimension {
+                ends: (e.x0, e.x0 + joint_l),
+                at: row(next_row),
+                feature: (0.0, 0.0),
+                label: format!("L = {} (sensor gauge length)", fixed(joint_l, 2)),
+                overflow: Overflow::After,
+                beside: false,
+            });
             next_row += 1.0;
         }
     }
-    annotate::horizontal(
-        sheet,
-        "dimensions",
-        &Dimension {
-            ends: (0.0, length),
-            at: row(next_row),
-            feature: (0.0, 0.0),
-            label: format!("to parting cut {}", fixed(length, 2)),
-            overflow: Overflow::After,
-            beside: false,
-        },
-    );
-    // Vertical dimensions right of the tube: s_s, s_n, circumference.
+    rows.push(Dimension {
+        ends: (0.0, length),
+        at: row(next_row),
+        feature: (0.0, 0.0),
+        label: format!("to parting cut {}", fixed(length, 2)),
+        overflow: Overflow::After,
+        beside: false,
+    });
+    for d in rows.iter().rev() {
+        annotate::horizontal(sheet, "dimensions", d);
+    }
+    // Vertical dimensions right of the tube: s_s, s_n, circumference; drawn outermost first.
     let phi_label = sheet.text_width("φ = 180°", TextStyle::new(SMALL_MM, palette::GUIDE));
     let mut col = length + phi_label + sheet.paper(9.0);
     let step = sheet.paper(TEXT_MM + 5.5);
+    let mut arcs: Vec<(f64, Vec<Extent>, &str)> = Vec::new();
     if let Some(sensor) = layout.sensors.first() {
-        arc_dimension(sheet, f, col, &trace_pieces(sensor), "s_{s}");
+        arcs.push((col, trace_pieces(sensor), "s_{s}"));
         col += step;
     }
     // The last notch of side 0, whose extension lines cross the least.
@@ -425,7 +440,7 @@ fn draw_dimensions(sheet: &mut Sheet, layout: &Layout, design: &Design, f: &Fram
         .filter(|n| n.side == 0)
         .max_by_key(|n| n.level);
     if let Some(n) = notch {
-        arc_dimension(sheet, f, col, &notch_pieces(n), "s_{n}");
+        arcs.push((col, notch_pieces(n), "s_{n}"));
         col += step;
     }
     annotate::vertical(
@@ -440,6 +455,9 @@ fn draw_dimensions(sheet: &mut Sheet, layout: &Layout, design: &Design, f: &Fram
             beside: false,
         },
     );
+    for (at, pieces, symbol) in arcs.iter().rev() {
+        arc_dimension(sheet, f, *at, pieces, symbol);
+    }
     col
 }
 

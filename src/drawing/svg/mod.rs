@@ -48,6 +48,8 @@
 //! [`SvgError`] names a non-finite or non-positive layout value, or an unusable print scale.
 
 mod annotate;
+#[cfg(test)]
+mod collisions;
 mod error;
 #[cfg(test)]
 mod fixture;

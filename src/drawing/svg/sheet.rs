@@ -82,12 +82,20 @@ pub(crate) struct Pen {
     pub dash: Option<Vec<f64>>,
 }
 
+/// A label's box in user units: `(x0, y0, x1, y1)`.
+pub(crate) type Rect = (f64, f64, f64, f64);
+
+/// A stroked straight segment and half its stroke width (user units).
+pub(crate) type Segment = ((f64, f64), (f64, f64), f64);
+
 /// The layers of a sheet, drawn in the order given; each becomes a `<g id=…>`.
 pub(crate) struct Sheet {
     scale: f64,
     layers: Vec<(&'static str, Group)>,
     min: (f64, f64),
     max: (f64, f64),
+    /// Every stroked segment drawn so far, so labels can be placed clear of them.
+    segments: Vec<Segment>,
 }
 
 impl Sheet {
@@ -101,6 +109,7 @@ impl Sheet {
                 .collect(),
             min: (f64::INFINITY, f64::INFINITY),
             max: (f64::NEG_INFINITY, f64::NEG_INFINITY),
+            segments: Vec::new(),
         }
     }
 
@@ -172,6 +181,15 @@ impl Sheet {
         for (x, y) in points {
             self.cover(x - pad, y - pad);
             self.cover(x + pad, y + pad);
+        }
+        if pen.is_some() {
+            for w in points.windows(2) {
+                self.segments.push((w[0], w[1], pad));
+            }
+            if closed && points.len() > 2 {
+                self.segments
+                    .push((points[points.len() - 1], points[0], pad));
+            }
         }
         let mut path = Path::new().set("d", d).set("fill", fill.unwrap_or("none"));
         if !class.is_empty() {
@@ -273,6 +291,56 @@ impl Sheet {
         style: TextStyle,
     ) {
         self.emit_text(layer, at, &[(text.to_string(), Shift::None)], style);
+    }
+
+    /// The box a text covers on the sheet (user units): its estimated advance, from the cap
+    /// height (0.7 em above the baseline) to the descenders (0.2 em below), turned with the
+    /// text when it runs upward.
+    pub fn text_box(&self, at: (f64, f64), markup: &str, style: TextStyle) -> Rect {
+        let size = self.paper(style.size_mm);
+        let w = self.text_width(markup, style);
+        let (before, after) = match style.anchor {
+            Anchor::Start => (0.0, w),
+            Anchor::Middle => (w / 2.0, w / 2.0),
+            Anchor::End => (w, 0.0),
+        };
+        let (up, down) = (0.7 * size, 0.2 * size);
+        if style.vertical {
+            (at.0 - up, at.1 - after, at.0 + down, at.1 + before)
+        } else {
+            (at.0 - before, at.1 - up, at.0 + after, at.1 + down)
+        }
+    }
+
+    /// Whether no line drawn so far passes within `margin` (user units) of `rect`.
+    pub fn is_clear(&self, rect: Rect, margin: f64) -> bool {
+        self.segments.iter().all(|(a, b, half)| {
+            let m = margin + half;
+            !crosses(*a, *b, (rect.0 - m, rect.1 - m, rect.2 + m, rect.3 + m))
+        })
+    }
+
+    /// Writes `markup` at the first of `candidates` (anchor point and style) whose box no line
+    /// drawn so far strikes, keeping a 0.3 paper-mm gap; at the first candidate if none is
+    /// clear. Returns whether the chosen place is clear. Lines drawn later are not seen, so
+    /// draw labels after the lines they must avoid.
+    pub fn text_clear(
+        &mut self,
+        layer: &'static str,
+        candidates: &[((f64, f64), TextStyle)],
+        markup: &str,
+    ) -> bool {
+        let margin = self.paper(0.3);
+        let pick = candidates
+            .iter()
+            .find(|(at, style)| self.is_clear(self.text_box(*at, markup, *style), margin));
+        match pick.or(candidates.first()) {
+            Some(&(at, style)) => {
+                self.text(layer, at, markup, style);
+                pick.is_some()
+            }
+            None => false,
+        }
     }
 
     /// Estimated advance of a text in user units (for layout and the extent).
@@ -383,6 +451,35 @@ impl Sheet {
             size_mm: (w * self.scale, h * self.scale),
         }
     }
+}
+
+/// Whether segment `a`-`b` passes through `r` (Liang–Barsky clipping).
+pub(crate) fn crosses(a: (f64, f64), b: (f64, f64), r: Rect) -> bool {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (p, q) in [
+        (-dx, a.0 - r.0),
+        (dx, r.2 - a.0),
+        (-dy, a.1 - r.1),
+        (dy, r.3 - a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+            if t0 > t1 {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 fn stroke<T: Node>(mut node: T, pen: Option<&Pen>) -> T {

@@ -1,9 +1,8 @@
-//! The operator's setup sheet (Markdown): stock and mandrel, fixturing, zeroing against the
+//! The operator's setup sheet (Markdown): laser safety, stock and mandrel, fixturing, zeroing against the
 //! drawing's frame, the parameter sets and times, and the steps after the laser.
 
-use super::estimate::{estimate, format_duration};
-use super::plan::{Feature, OperationKind, Plan, TraceKind};
-use crate::machine::{format_number, MachineProfile};
+use crate::machine::{format_number, MachineProfile, SettleMode};
+use crate::toolpath::{estimate, format_duration, Feature, OperationKind, Plan, TraceKind};
 
 /// Steel rod diameters the sheet picks a mandrel from (mm): common ground-rod and gauge-wire
 /// sizes, including the paper's 1.2 mm and 1.5 mm.
@@ -101,6 +100,9 @@ pub fn setup_sheet(plan: &Plan, ctx: &SheetContext<'_>) -> String {
         format_duration(total)
     ));
     w(String::new());
+    for line in super::safety_lines(plan) {
+        w(line);
+    }
     w("## 1. Stock tube and mandrel".into());
     w(String::new());
     w("| item | what to use |".into());
@@ -152,14 +154,15 @@ pub fn setup_sheet(plan: &Plan, ctx: &SheetContext<'_>) -> String {
         format_number(profile.limits.x_min_mm),
         format_number(profile.limits.x_max_mm)
     ));
-    w(format!(
-        "- **{al}0 at s = 0**: on a fresh tube any orientation will do; the line under the beam at {al}0 becomes s = 0, the centre line of sensor 1 (the backbone of a UAN joint). {}",
-        if bsn {
-            format!("The notch pairs are centred at {al}0 and {al}180 (s = 0 and s = π·r_o).")
-        } else {
-            format!("The notches are centred at {al}180 (s = π·r_o).")
-        }
-    ));
+    w(if bsn {
+        format!(
+            "- **{al}0 at s = 0**: on a fresh tube any orientation will do; the line under the beam at {al}0 becomes s = 0, the centre line of sensor 1. This is a BSN joint: its notch pairs are centred at {al}0 and {al}180 (s = 0 and s = π·r_o), sensor 1's arms straddle the {al}0 notches and sensor 2's the {al}180 notches, and the two backbones run along {al}90 and {al}270 (s = ±π·r_o/2)."
+        )
+    } else {
+        format!(
+            "- **{al}0 at s = 0**: on a fresh tube any orientation will do; the line under the beam at {al}0 becomes s = 0, the centre line of sensor 1 and of the backbone (this is a UAN joint). The notches are centred at {al}180 (s = π·r_o)."
+        )
+    });
     w(format!(
         "- **Sense of {al}:** once per machine, jog {al} from 0 to +10 {units}: the beam must now sit on the +s side of the {al}0 line (s grows upwards in the drawing). If it sits on the −s side the stage turns the other way and the sensor and pads would come out mirrored; reverse the axis in the controller first."
     ));
@@ -195,7 +198,12 @@ pub fn setup_sheet(plan: &Plan, ctx: &SheetContext<'_>) -> String {
     }
     w(String::new());
     w(format!(
-        "Times: beam-on moves at the set's surface speed, rapids at the profile's speed limits without acceleration (a lower bound); total {}.",
+        "Times: beam-on moves at the set's surface speed, rapids at the profile's speed limits without acceleration (a lower bound){}; total {}.",
+        if times.iter().any(|t| t.settle_s > 0.0) {
+            ", and the settle dwell"
+        } else {
+            ""
+        },
         format_duration(total)
     ));
     let l = &profile.laser;
@@ -216,17 +224,40 @@ pub fn setup_sheet(plan: &Plan, ctx: &SheetContext<'_>) -> String {
         ));
     }
     w(format!(
-        "Cuts: notch outlines are offset inward by half the kerf ({} mm) and start from a lead-in inside the notch; the parting cut runs all the way round at {xl}{} ({} mm kerf, joint length {} mm).",
+        "Cuts: notch outlines are offset inward by half the kerf ({} mm) and start from a lead-in inside the notch; the parting cut runs all the way round at {xl}{} ({} mm kerf), leaving part length {} mm beside bending length L = {} mm (the notched, bending section lies within the part, between the distal margin and the leads and pads).",
         format_number(plan.kerf_mm / 2.0),
         crate::post::fixed(cut_x, 4),
         format_number(plan.kerf_mm),
-        format_number(plan.joint_length_mm)
+        format_number(plan.joint_length_mm),
+        format_number(plan.bending_length_mm)
     ));
     w(String::new());
     w("## 5. Run".into());
     w(String::new());
     w("1. Dry-run the program with the beam gate disabled and watch the tube and jig: nothing may touch the objective.".into());
     w("2. Run it. Do not touch the tube between operations: the sensor and notches are aligned because they are made in one setup.".into());
+    let settle_before: Vec<&str> = plan
+        .operations
+        .iter()
+        .enumerate()
+        .filter(|(i, op)| {
+            let prev = i.checked_sub(1).map(|j| &plan.operations[j].process);
+            profile.settle.needed(prev, &op.process)
+        })
+        .map(|(_, op)| op.kind.name())
+        .collect();
+    if !settle_before.is_empty() {
+        let how = match profile.settle.mode {
+            SettleMode::OptionalStop => " Turn the controller's optional-stop switch on before the run: the program then pauses there; check the source's pulse frequency and width, then resume.".to_string(),
+            SettleMode::Stop => " The program pauses there: check the source's pulse frequency and width, then resume.".to_string(),
+            _ => String::new(),
+        };
+        w(format!(
+            "   Before the {} the program sets the laser and waits for the source to settle at its new pulse frequency and width: {} (machine profile, `[settle]`).{how}",
+            settle_before.join(", "),
+            profile.settle.describe()
+        ));
+    }
     w("3. After the parting cut, slide the joint off the mandrel towards the free end.".into());
     w(String::new());
     w("## 6. After the laser".into());
@@ -279,6 +310,42 @@ fn mandrel_line(od: f64, id: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn sheet_for(design: &str) -> String {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("designs")
+            .join(design);
+        let file = crate::design::DesignFile::read(&path).unwrap();
+        let checked = crate::rules::check_file(file).unwrap();
+        let sets = crate::process::ProcessLibrary::beside(&path)
+            .resolve(&checked.design.file.process)
+            .unwrap();
+        let profile = crate::machine::MachineLibrary::beside(&path)
+            .find(None)
+            .unwrap();
+        crate::job::make_job(&checked.design, &checked.layout, &sets, &profile, "x.ngc")
+            .unwrap()
+            .sheet
+    }
+
+    #[test]
+    fn text_matches_the_joints_style_and_names_both_lengths() {
+        let c = sheet_for("joint-c.toml");
+        assert!(c.contains("This is a BSN joint"), "{c}");
+        assert!(!c.contains("UAN"), "a BSN sheet mentions UAN:\n{c}");
+        assert!(c.contains("two backbones run along A90 and A270"));
+        let a = sheet_for("joint-a.toml");
+        assert!(a.contains("(this is a UAN joint)"), "{a}");
+        assert!(!a.contains("BSN"), "a UAN sheet mentions BSN:\n{a}");
+        for sheet in [&a, &c] {
+            assert!(
+                sheet.contains("part length 13.3 mm beside bending length L = 9.5 mm"),
+                "{sheet}"
+            );
+            assert!(sheet.contains("## Laser safety"));
+            assert!(sheet.contains("a dwell of 5 s"));
+        }
+    }
 
     #[test]
     fn mandrels_are_the_papers_for_its_tubes() {
