@@ -15,4 +15,7 @@ pub use dxf_convention::{Layer, APP_ID};
 /// Writing a layout as an AutoCAD DXF.
 pub use dxf_export::{layout_to_dxf, DxfExportError};
 /// Reading a DXF in that convention back into a layout.
-pub use dxf_import::{layout_from_dxf, DxfImportError, ImportedDxf};
+pub use dxf_import::{
+    layout_from_dxf, read_dxf, DrawingUnits, DxfImportError, ImportOptions, ImportedDxf,
+    LayoutNumbers, UnitsSource, DEFAULT_JOIN_TOLERANCE_MM, DLW_LAYERS_NOT_READ,
+};

@@ -1,0 +1,444 @@
+//! Reading a DXF in `dlw`'s convention (see `dxf_convention`) back into a [`Layout`], as CAD
+//! tools write it: a drawing `dlw` wrote, re-saved by AutoCAD, LibreCAD or ezdxf (R12 to
+//! R2018), possibly without dlw's XDATA, with outlines redrawn as lines and arcs, and with a
+//! title block or other content on layers of its own.
+//!
+//! Before reading: an empty file, a file that is not DXF and a truncated one each get their own
+//! error (`sniff`). Units: `$INSUNITS` mm, µm or inches; a drawing without it (every R12 file)
+//! needs [`ImportOptions::units`]. Everything is converted to mm.
+//!
+//! How each entity is read:
+//! - `NOTCHES`: closed LWPOLYLINEs or POLYLINEs (the closed flag, or a last vertex on the
+//!   first), straight segments only; LINEs, ARCs and open polylines are joined end to end into
+//!   closed outlines, ends meeting within [`ImportOptions::join_tolerance_mm`] (`loops`). Pieces
+//!   with the same `DLW` notch index form one notch; an untagged outline is a notch of its own,
+//!   except that two untagged pieces with the same `x` range, one ending on the window's top
+//!   edge and one starting on the seam, are the halves of one split notch. Level and side
+//!   always come from the geometry, so an edited drawing describes itself: levels rank the
+//!   notches' distal edges `x` (edges within 1 µm share a level), and the side is the notch
+//!   centre nearer `s = π·r_o` (side 0) or `s = 0` (side 1).
+//! - `SENSOR`: open LWPOLYLINEs, POLYLINEs or LINEs, U-trace pieces.
+//! - `LEADS_PADS`: tagged entities say whether they are a lead or a pad. An untagged one is a
+//!   pad if it turns through at least a full turn (a spiral), else a lead.
+//! - Which sensor a trace belongs to: its tag; untagged, sensor 1 (index 1) if the drawing has
+//!   BSN notch pairs and the trace's mean `s` is nearer `π·r_o` than `0`, else sensor 0.
+//! - `PARTING`: LWPOLYLINEs, POLYLINEs or LINEs; the joint length is the parting cut's largest
+//!   `x`.
+//! - `ANNOTATION`: anything; the title's XDATA gives the layout's numbers. Without it they come
+//!   from [`ImportOptions::numbers`] (the design's own layout).
+//! - `TUBE` (dlw's tube outline and seam, for people): skipped. Any other layer: skipped and
+//!   counted ([`ImportedDxf::ignored`]).
+//!
+//! Tagged traces keep their list order and piece order; untagged ones follow in file order.
+
+mod error;
+mod loops;
+mod notches;
+mod sniff;
+mod traces;
+mod units;
+mod xdata;
+
+use std::collections::BTreeMap;
+
+use dxf::entities::{Entity, EntityType};
+use dxf::XDataItem;
+use geo::{Coord, LineString, Polygon};
+
+use crate::layout::Layout;
+
+use super::dxf_convention::{
+    Layer, TAG_LAYOUT, TAG_LEAD, TAG_NOTCH, TAG_PAD, TAG_PARTING, TAG_SENSOR,
+};
+pub use error::DxfImportError;
+use notches::{notches, NotchPiece};
+use traces::{group_traces, is_spiral, TracePiece};
+pub use units::{DrawingUnits, UnitsSource};
+pub use xdata::LayoutNumbers;
+use xdata::{dlw_xdata, int_at, is_tag, read_numbers};
+
+/// Ends of LINEs and ARCs closer than this join into one outline, unless told otherwise (mm):
+/// 1 µm, a tenth of the finest trace width dlw writes, far above a CAD tool's rounding.
+pub const DEFAULT_JOIN_TOLERANCE_MM: f64 = 1e-3;
+
+/// Layers dlw writes for people that hold nothing to cut or write (the unrolled tube outline and
+/// the seam): skipped without a warning.
+pub const DLW_LAYERS_NOT_READ: [&str; 1] = ["TUBE"];
+
+/// How to read a drawing that does not say everything itself.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImportOptions {
+    /// The drawing's unit when it has no `$INSUNITS` (R12); must agree with it when it has.
+    pub units: Option<DrawingUnits>,
+    /// The layout's numbers when the title's XDATA is gone (from the design).
+    pub numbers: Option<LayoutNumbers>,
+    /// Ends of lines and arcs within this join (mm); also the chord error of flattened arcs.
+    pub join_tolerance_mm: f64,
+}
+
+impl Default for ImportOptions {
+    fn default() -> Self {
+        Self {
+            units: None,
+            numbers: None,
+            join_tolerance_mm: DEFAULT_JOIN_TOLERANCE_MM,
+        }
+    }
+}
+
+/// What a DXF held.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImportedDxf {
+    /// The layout read (mm).
+    pub layout: Layout,
+    /// The clearance recorded by the writer, or the design's (mm).
+    pub clearance_mm: f64,
+    /// Entities per layer, as named in the file.
+    pub layer_counts: BTreeMap<String, usize>,
+    /// Feature entities without `DLW` XDATA, read from their geometry alone.
+    pub untagged: usize,
+    /// Entities on layers that are not dlw's, which were not read, per layer.
+    pub ignored: BTreeMap<String, usize>,
+    /// The unit the drawing was read in, and where it came from.
+    pub units: (DrawingUnits, UnitsSource),
+    /// The layout's numbers came from the title's XDATA (else from [`ImportOptions::numbers`]).
+    pub numbers_from_xdata: bool,
+    /// The file's AutoCAD version, e.g. `R12`.
+    pub version: String,
+    /// Notch outlines joined from separate LINEs, ARCs or open polylines.
+    pub joined_outlines: usize,
+}
+
+impl ImportedDxf {
+    /// One warning per layer whose entities were ignored, with their count.
+    pub fn ignored_warnings(&self) -> Vec<String> {
+        self.ignored
+            .iter()
+            .map(|(layer, n)| {
+                format!(
+                    "ignored {n} entit{} on layer {layer:?}, which is not a dlw layer (dlw reads NOTCHES, SENSOR, LEADS_PADS, PARTING and ANNOTATION)",
+                    if *n == 1 { "y" } else { "ies" }
+                )
+            })
+            .collect()
+    }
+}
+
+/// Reads a DXF's bytes as a layout, with the default [`ImportOptions`] (the drawing must give
+/// its units and carry dlw's layout numbers).
+///
+/// # Errors
+/// See [`read_dxf`].
+pub fn layout_from_dxf(bytes: &[u8]) -> Result<ImportedDxf, DxfImportError> {
+    read_dxf(bytes, &ImportOptions::default())
+}
+
+/// Reads a DXF's bytes as a layout.
+///
+/// # Errors
+/// [`DxfImportError`] for empty, foreign, truncated or unreadable files, missing or unknown
+/// units, outlines that do not close, entity types the convention does not use on a feature
+/// layer, or missing layout numbers.
+pub fn read_dxf(bytes: &[u8], options: &ImportOptions) -> Result<ImportedDxf, DxfImportError> {
+    sniff::sniff(bytes)?;
+    let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(bytes))
+        .map_err(|e| DxfImportError::Parse(e.to_string()))?;
+    let has_insunits = bytes.windows(9).any(|w| w == b"$INSUNITS");
+    let units = units::resolve(
+        drawing.header.default_drawing_units,
+        has_insunits,
+        options.units,
+    )?;
+    let reader = Reader {
+        k: units.0.mm_per_unit(),
+        tol: options.join_tolerance_mm,
+    };
+    let mut layer_counts = BTreeMap::new();
+    let mut ignored = BTreeMap::new();
+    let mut numbers = None;
+    let mut notch_pieces: Vec<NotchPiece> = Vec::new();
+    let mut loose: Vec<Vec<Coord>> = Vec::new();
+    let mut traces: Vec<TracePiece> = Vec::new();
+    let mut parting: Vec<(Option<i16>, LineString<f64>)> = Vec::new();
+    for entity in drawing.entities() {
+        let layer_name = entity.common.layer.clone();
+        *layer_counts.entry(layer_name.clone()).or_insert(0) += 1;
+        if DLW_LAYERS_NOT_READ
+            .iter()
+            .any(|l| l.eq_ignore_ascii_case(&layer_name))
+        {
+            continue;
+        }
+        let Some(layer) = Layer::from_name(&layer_name) else {
+            *ignored.entry(layer_name).or_insert(0) += 1;
+            continue;
+        };
+        let tag = dlw_xdata(entity);
+        match layer {
+            Layer::Annotation => {
+                if let Some(items) = tag.filter(|i| is_tag(i, TAG_LAYOUT)) {
+                    numbers = Some(read_numbers(items)?);
+                }
+            }
+            Layer::Notches => {
+                let expected = "a closed LWPOLYLINE or POLYLINE, or LINEs and ARCs that close";
+                let (mut points, closed) = reader.points(entity, layer, expected, true)?;
+                let closed = closed || (points.len() > 3 && points.first() == points.last());
+                if !closed {
+                    loose.push(points);
+                    continue;
+                }
+                if points.len() > 1 && points.first() == points.last() {
+                    points.pop();
+                }
+                if points.len() < 3 {
+                    return Err(bad(
+                        entity,
+                        layer,
+                        format!("a notch needs at least 3 corners, found {}", points.len()),
+                    ));
+                }
+                let id = tag
+                    .filter(|i| is_tag(i, TAG_NOTCH))
+                    .and_then(|i| Some((int_at(i, 1)?, int_at(i, 2)?)));
+                notch_pieces.push((id, Polygon::new(LineString::new(points), vec![])));
+            }
+            Layer::Sensor | Layer::LeadsPads => {
+                let expected = "an open LWPOLYLINE or POLYLINE, or a LINE";
+                let (points, closed) = reader.points(entity, layer, expected, false)?;
+                if closed {
+                    return Err(bad(
+                        entity,
+                        layer,
+                        "a trace must be open (the closed flag is set)".into(),
+                    ));
+                }
+                if points.len() < 2 {
+                    return Err(bad(
+                        entity,
+                        layer,
+                        format!("a trace needs at least 2 vertices, found {}", points.len()),
+                    ));
+                }
+                let tagged = tag.and_then(|i| {
+                    let kind = match (layer, i.first()) {
+                        (Layer::Sensor, Some(XDataItem::Str(s))) if s == TAG_SENSOR => TAG_SENSOR,
+                        (Layer::LeadsPads, Some(XDataItem::Str(s))) if s == TAG_LEAD => TAG_LEAD,
+                        (Layer::LeadsPads, Some(XDataItem::Str(s))) if s == TAG_PAD => TAG_PAD,
+                        _ => return None,
+                    };
+                    Some((kind, (int_at(i, 1)?, int_at(i, 2)?, int_at(i, 3)?)))
+                });
+                let line = LineString::new(points);
+                traces.push(match tagged {
+                    Some((kind, ids)) => TracePiece {
+                        kind,
+                        tag: Some(ids),
+                        line,
+                    },
+                    None => TracePiece {
+                        kind: match layer {
+                            Layer::Sensor => TAG_SENSOR,
+                            _ if is_spiral(&line.0) => TAG_PAD,
+                            _ => TAG_LEAD,
+                        },
+                        tag: None,
+                        line,
+                    },
+                });
+            }
+            Layer::Parting => {
+                let expected = "an LWPOLYLINE, a POLYLINE or a LINE";
+                let (points, _) = reader.points(entity, layer, expected, false)?;
+                let piece = tag
+                    .filter(|i| is_tag(i, TAG_PARTING))
+                    .and_then(|i| int_at(i, 1));
+                parting.push((piece, LineString::new(points)));
+            }
+        }
+    }
+    let numbers_from_xdata = numbers.is_some();
+    let numbers = numbers
+        .or_else(|| options.numbers.clone())
+        .ok_or_else(|| DxfImportError::Metadata("none found".into()))?;
+    let joined = loops::join_loops(loose, Layer::Notches.name(), reader.tol)?;
+    let joined_outlines = joined.len();
+    notch_pieces.extend(
+        joined
+            .into_iter()
+            .map(|ring| (None, Polygon::new(LineString::new(ring), vec![]))),
+    );
+    let untagged = notch_pieces.iter().filter(|(t, _)| t.is_none()).count()
+        + traces.iter().filter(|t| t.tag.is_none()).count()
+        + parting.iter().filter(|(t, _)| t.is_none()).count();
+    let notches = notches(notch_pieces, &numbers);
+    let bsn = notches.iter().any(|n| n.side == 1);
+    parting.sort_by_key(|(piece, _)| piece.unwrap_or(i16::MAX));
+    let parting: Vec<LineString<f64>> = parting.into_iter().map(|(_, l)| l).collect();
+    let length_mm = parting
+        .iter()
+        .flat_map(|l| l.0.iter().map(|c| c.x))
+        .reduce(f64::max)
+        .unwrap_or(numbers.length_mm);
+    let group = |kind: &str| group_traces(&traces, kind, bsn, numbers.outer_radius_mm);
+    let layout = Layout {
+        name: numbers.name.clone(),
+        outer_radius_mm: numbers.outer_radius_mm,
+        circumference_mm: numbers.circumference_mm,
+        seam_s_mm: numbers.seam_s_mm,
+        trace_width_mm: numbers.trace_width_mm,
+        kerf_mm: numbers.kerf_mm,
+        length_mm,
+        notches,
+        sensors: group(TAG_SENSOR),
+        leads: group(TAG_LEAD),
+        pads: group(TAG_PAD),
+        parting,
+    };
+    Ok(ImportedDxf {
+        layout,
+        clearance_mm: numbers.clearance_mm,
+        layer_counts,
+        untagged,
+        ignored,
+        units,
+        numbers_from_xdata,
+        version: format!("{:?}", drawing.header.version),
+        joined_outlines,
+    })
+}
+
+fn type_name(entity: &Entity) -> String {
+    let debug = format!("{:?}", entity.specific);
+    debug
+        .split(['(', ' ', '{'])
+        .next()
+        .unwrap_or("entity")
+        .to_uppercase()
+}
+
+fn handle(entity: &Entity) -> String {
+    format!("#{}", entity.common.handle.as_string())
+}
+
+fn bad(entity: &Entity, layer: Layer, problem: String) -> DxfImportError {
+    DxfImportError::BadPolyline {
+        entity: type_name(entity),
+        handle: handle(entity),
+        layer: layer.name(),
+        problem,
+    }
+}
+
+/// Reads entity geometry in mm.
+struct Reader {
+    /// mm per drawing unit.
+    k: f64,
+    /// Join tolerance and arc chord error (mm).
+    tol: f64,
+}
+
+impl Reader {
+    fn at(&self, x: f64, y: f64) -> Coord {
+        Coord {
+            x: x * self.k,
+            y: y * self.k,
+        }
+    }
+
+    /// The vertices (mm) of an LWPOLYLINE or POLYLINE (and whether it is closed), of a LINE, or
+    /// of an ARC flattened (when `arcs`).
+    fn points(
+        &self,
+        entity: &Entity,
+        layer: Layer,
+        expected: &'static str,
+        arcs: bool,
+    ) -> Result<(Vec<Coord>, bool), DxfImportError> {
+        let mirrored = || {
+            bad(
+                entity,
+                layer,
+                "mirrored (extrusion −Z); explode or mirror it back".into(),
+            )
+        };
+        let bulge = |b: f64, x: f64, y: f64| {
+            bad(
+                entity,
+                layer,
+                format!("arc segment (bulge {b}) at x = {:.4} mm, s = {:.4} mm; dlw reads straight polyline segments only (draw arcs as ARC entities)", x * self.k, y * self.k),
+            )
+        };
+        match &entity.specific {
+            EntityType::LwPolyline(p) => {
+                if p.extrusion_direction.z < 0.0 {
+                    return Err(mirrored());
+                }
+                if let Some(v) = p.vertices.iter().find(|v| v.bulge != 0.0) {
+                    return Err(bulge(v.bulge, v.x, v.y));
+                }
+                let points = p.vertices.iter().map(|v| self.at(v.x, v.y)).collect();
+                Ok((points, p.is_closed()))
+            }
+            EntityType::Polyline(p) => {
+                if p.normal.z < 0.0 {
+                    return Err(mirrored());
+                }
+                if p.is_3d_polygon_mesh() || p.is_polyface_mesh() {
+                    return Err(bad(
+                        entity,
+                        layer,
+                        "a polygon mesh or polyface, not a 2D outline".into(),
+                    ));
+                }
+                if let Some(v) = p.vertices().find(|v| v.bulge != 0.0) {
+                    return Err(bulge(v.bulge, v.location.x, v.location.y));
+                }
+                let points = p
+                    .vertices()
+                    .map(|v| self.at(v.location.x, v.location.y))
+                    .collect();
+                Ok((points, p.is_closed()))
+            }
+            EntityType::Line(l) => Ok((
+                vec![self.at(l.p1.x, l.p1.y), self.at(l.p2.x, l.p2.y)],
+                false,
+            )),
+            EntityType::Arc(a) if arcs => {
+                let r = a.radius * self.k;
+                if !(r.is_finite() && r > 0.0) {
+                    return Err(bad(
+                        entity,
+                        layer,
+                        format!("arc radius {} must be > 0", a.radius),
+                    ));
+                }
+                let c = self.at(a.center.x, a.center.y);
+                // An arc seen from below (extrusion −Z) is the mirror image in x of its
+                // object-coordinate form.
+                let mut points = if a.normal.z < 0.0 {
+                    flatten_mirrored(c, r, a.start_angle, a.end_angle, self.tol)
+                } else {
+                    loops::flatten_arc(c, r, a.start_angle, a.end_angle, self.tol)
+                };
+                points.dedup();
+                Ok((points, false))
+            }
+            _ => Err(DxfImportError::WrongEntity {
+                entity: type_name(entity),
+                handle: handle(entity),
+                layer: layer.name(),
+                expected,
+            }),
+        }
+    }
+}
+
+/// An arc whose extrusion is −Z: flattened in its object frame (centre `(−cx, cy)`), then
+/// mirrored in x into the drawing.
+fn flatten_mirrored(c: Coord, r: f64, start_deg: f64, end_deg: f64, tol: f64) -> Vec<Coord> {
+    loops::flatten_arc(Coord { x: -c.x, y: c.y }, r, start_deg, end_deg, tol)
+        .into_iter()
+        .map(|p| Coord { x: -p.x, y: p.y })
+        .collect()
+}
