@@ -27,6 +27,7 @@
 mod clearance;
 mod dimensions;
 mod length;
+mod notch_layout;
 mod pads;
 mod parts;
 mod section;
@@ -107,10 +108,11 @@ pub fn check_parameters(file: &DesignFile) -> Vec<Violation> {
     out
 }
 
-/// The clearance rules on a layout, with `clearance_mm` edge to edge (for a design,
+/// The notch rules and the clearance rules on a layout, with `clearance_mm` edge to edge (for a design,
 /// `Fabrication::clearance_mm()`). Works on any layout, generated or read from a DXF.
 pub fn check_layout(layout: &Layout, clearance_mm: f64) -> Vec<Violation> {
     let mut out = Vec::new();
+    notch_layout::check(layout, &mut out);
     clearance::check(layout, clearance_mm, &mut out);
     out
 }
