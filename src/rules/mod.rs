@@ -26,6 +26,7 @@
 
 mod clearance;
 mod dimensions;
+mod drawing;
 mod length;
 mod notch_layout;
 mod pads;
@@ -39,6 +40,10 @@ use crate::layout::Layout;
 
 /// How far the joint length may differ from the notch pattern (mm).
 pub use length::LENGTH_TOLERANCE_MM;
+/// A drawing checked against its design, and the joint's numbers as drawn.
+pub use drawing::{check_drawing, Derived, DrawingReport};
+/// How a notch is named in messages.
+pub(crate) use notch_layout::notch_label;
 /// A broken design rule, and a warning.
 pub use violation::{Violation, Warning};
 
