@@ -146,6 +146,7 @@ pub fn plan(
         home,
         operations,
         travel,
+        provenance: None,
     };
     check::check_plan(&plan, layout, profile)?;
     Ok(plan)

@@ -143,7 +143,7 @@ pub fn read_dxf(bytes: &[u8], options: &ImportOptions) -> Result<ImportedDxf, Dx
     sniff::sniff(bytes)?;
     let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(bytes))
         .map_err(|e| DxfImportError::Parse(e.to_string()))?;
-    let has_insunits = bytes.windows(9).any(|w| w == b"$INSUNITS");
+    let has_insunits = sniff::has_header_variable(bytes, "$INSUNITS");
     let units = units::resolve(
         drawing.header.default_drawing_units,
         has_insunits,

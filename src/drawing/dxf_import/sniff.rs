@@ -57,6 +57,21 @@ pub(super) fn sniff(bytes: &[u8]) -> Result<(), DxfImportError> {
     })
 }
 
+/// Whether an ASCII DXF sets the header variable `name` (group 9 followed by the name; the
+/// name inside a TEXT does not count).
+pub(super) fn has_header_variable(bytes: &[u8], name: &str) -> bool {
+    let text = String::from_utf8_lossy(bytes);
+    let mut lines = text.lines().map(str::trim);
+    let mut previous = lines.next();
+    for line in lines {
+        if previous == Some("9") && line == name {
+            return true;
+        }
+        previous = Some(line);
+    }
+    false
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -75,5 +90,7 @@ mod tests {
             "{err}"
         );
         assert!(sniff(b"999\nmade by hand\n0\nSECTION\n0\nEOF\n").is_ok());
+        assert!(has_header_variable(b"  9\n$INSUNITS\n 70\n4\n", "$INSUNITS"));
+        assert!(!has_header_variable(b"  1\nunits $INSUNITS\n", "$INSUNITS"));
     }
 }
