@@ -53,7 +53,10 @@ pub fn header_lines(plan: &Plan, profile: &MachineProfile, post: &dyn Post) -> V
     let (x, a, z) = (profile.axes.linear, profile.axes.rotary, profile.axes.focus);
     let mut h = vec![
         format!("dlw laser program for design \"{}\"", plan.design_name),
-        format!("design checksum {} (FNV-1a 64 of the design's canonical TOML)", plan.design_checksum),
+        format!(
+            "design checksum {} (FNV-1a 64 of the design's canonical TOML)",
+            plan.design_checksum
+        ),
     ];
     h.extend(plan.provenance.iter().flat_map(|p| p.lines()));
     h.extend([

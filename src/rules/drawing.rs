@@ -161,8 +161,14 @@ fn derive(design: &Design, layout: &Layout) -> Result<Derived, Violation> {
         let Some(first) = boxes.first() else {
             continue;
         };
-        let x0 = boxes.iter().map(|r| r.min().x).fold(first.min().x, f64::min);
-        let x1 = boxes.iter().map(|r| r.max().x).fold(first.max().x, f64::max);
+        let x0 = boxes
+            .iter()
+            .map(|r| r.min().x)
+            .fold(first.min().x, f64::min);
+        let x1 = boxes
+            .iter()
+            .map(|r| r.max().x)
+            .fold(first.max().x, f64::max);
         // Pieces split at the seam are disjoint in s: their extents add up.
         let arc: f64 = boxes.iter().map(|r| r.height()).sum::<f64>().min(c_mm);
         widths.push(x1 - x0);
@@ -250,9 +256,12 @@ mod tests {
         let l = Layout::from_design(&b).unwrap();
         let r = check_drawing(&c, &l, 0.08);
         let m: Vec<String> = r.errors.iter().map(ToString::to_string).collect();
-        assert!(m.iter().any(|m| m.starts_with(
-            "the drawing's notch style is UAN (notches on one side) but the design's is BSN"
-        )), "{m:?}");
+        assert!(
+            m.iter().any(|m| m.starts_with(
+                "the drawing's notch style is UAN (notches on one side) but the design's is BSN"
+            )),
+            "{m:?}"
+        );
         assert!(
             m.iter()
                 .any(|m| m.starts_with("the drawing's sensor count is 1 but the design's is 2")),

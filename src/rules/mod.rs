@@ -38,10 +38,10 @@ mod violation;
 use crate::design::{Design, DesignFile};
 use crate::layout::Layout;
 
-/// How far the joint length may differ from the notch pattern (mm).
-pub use length::LENGTH_TOLERANCE_MM;
 /// A drawing checked against its design, and the joint's numbers as drawn.
 pub use drawing::{check_drawing, Derived, DrawingReport};
+/// How far the joint length may differ from the notch pattern (mm).
+pub use length::LENGTH_TOLERANCE_MM;
 /// How a notch is named in messages.
 pub(crate) use notch_layout::notch_label;
 /// A broken design rule, and a warning.

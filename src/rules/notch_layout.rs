@@ -111,7 +111,10 @@ mod tests {
 
     fn shift(notch: &mut Notch, dx: f64) {
         for p in &mut notch.outline {
-            p.map_coords_in_place(|c| Coord { x: c.x + dx, y: c.y });
+            p.map_coords_in_place(|c| Coord {
+                x: c.x + dx,
+                y: c.y,
+            });
         }
     }
 
@@ -154,7 +157,10 @@ mod tests {
         );
         shift(&mut l.notches[1], -0.1);
         let m = messages(&l);
-        assert!(m[0].starts_with("notch 1 overlaps notch 2 at x = "), "{m:?}");
+        assert!(
+            m[0].starts_with("notch 1 overlaps notch 2 at x = "),
+            "{m:?}"
+        );
     }
 
     #[test]
@@ -170,8 +176,9 @@ mod tests {
         });
         let m = messages(&l);
         assert!(
-            m.iter().any(|m| m.starts_with("notch 11 reaches x = 13.5000 mm")
-                && m.contains("past the parting line x = 13.3000 mm")),
+            m.iter()
+                .any(|m| m.starts_with("notch 11 reaches x = 13.5000 mm")
+                    && m.contains("past the parting line x = 13.3000 mm")),
             "{m:?}"
         );
     }

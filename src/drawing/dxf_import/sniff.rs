@@ -90,7 +90,10 @@ mod tests {
             "{err}"
         );
         assert!(sniff(b"999\nmade by hand\n0\nSECTION\n0\nEOF\n").is_ok());
-        assert!(has_header_variable(b"  9\n$INSUNITS\n 70\n4\n", "$INSUNITS"));
+        assert!(has_header_variable(
+            b"  9\n$INSUNITS\n 70\n4\n",
+            "$INSUNITS"
+        ));
         assert!(!has_header_variable(b"  1\nunits $INSUNITS\n", "$INSUNITS"));
     }
 }

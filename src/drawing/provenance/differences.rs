@@ -69,6 +69,15 @@ fn delta(a: (f64, f64), b: (f64, f64), c_mm: f64) -> (f64, f64) {
     (b.0 - a.0, ds)
 }
 
+/// `v` with its sign to 4 decimals, never `-0.0000`.
+fn signed(v: f64) -> String {
+    if v.abs() < 5e-5 {
+        "+0.0000".into()
+    } else {
+        format!("{v:+.4}")
+    }
+}
+
 /// Every difference, one line each; empty when the drawing is the design's own layout.
 pub(super) fn differences(design: &Layout, drawing: &Layout) -> Vec<String> {
     let mut out = Vec::new();
@@ -148,7 +157,11 @@ fn notch_differences(design: &Layout, drawing: &Layout, c_mm: f64, out: &mut Vec
         let mut changes = Vec::new();
         let (dx, ds) = delta(p.centre(), q.centre(), c_mm);
         if dx.abs() > SAME || ds.abs() > SAME {
-            changes.push(format!("moved by Δx = {dx:+.4} mm, Δs = {ds:+.4} mm"));
+            changes.push(format!(
+                "moved by Δx = {} mm, Δs = {} mm",
+                signed(dx),
+                signed(ds)
+            ));
         }
         let (w0, h0) = (p.x[1] - p.x[0], p.s[1] - p.s[0]);
         let (w1, h1) = (q.x[1] - q.x[0], q.s[1] - q.s[0]);
@@ -175,7 +188,11 @@ fn notch_differences(design: &Layout, drawing: &Layout, c_mm: f64, out: &mut Vec
         out.push(format!("{} removed (was at {})", p.label, p.describe()));
     }
     for (q, _) in b.iter().zip(&used_b).filter(|(_, u)| !**u) {
-        out.push(format!("notch added at {} (drawn as {})", q.describe(), q.label));
+        out.push(format!(
+            "notch added at {} (drawn as {})",
+            q.describe(),
+            q.label
+        ));
     }
 }
 
@@ -292,17 +309,32 @@ mod tests {
         let last = drawn.notches.pop().unwrap();
         let mut far = last.clone();
         for p in &mut far.outline {
-            p.map_coords_in_place(|c| Coord { x: c.x, y: c.y - 3.0 });
+            p.map_coords_in_place(|c| Coord {
+                x: c.x,
+                y: c.y - 3.0,
+            });
         }
         drawn.notches.push(far);
         drawn.pads[0].pieces[0].0.pop();
         let d = differences(&design, &drawn);
         assert_eq!(d.len(), 5, "{d:#?}");
-        assert!(d[0].starts_with("notch 4 moved by Δx = +0.0000 mm, Δs = +0.0500 mm"), "{d:#?}");
-        assert!(d[1].starts_with("notch 6 moved by Δx = +0.0500 mm"), "{d:#?}");
+        assert!(
+            d[0].starts_with("notch 4 moved by Δx = +0.0000 mm, Δs = +0.0500 mm"),
+            "{d:#?}"
+        );
+        assert!(
+            d[1].starts_with("notch 6 moved by Δx = +0.0500 mm"),
+            "{d:#?}"
+        );
         assert!(d[1].contains("resized from 0.5000 × "), "{d:#?}");
-        assert!(d[2].starts_with("notch 10 removed (was at x 10.0000..10.5000 mm"), "{d:#?}");
-        assert!(d[3].starts_with("notch added at x 10.0000..10.5000 mm"), "{d:#?}");
+        assert!(
+            d[2].starts_with("notch 10 removed (was at x 10.0000..10.5000 mm"),
+            "{d:#?}"
+        );
+        assert!(
+            d[3].starts_with("notch added at x 10.0000..10.5000 mm"),
+            "{d:#?}"
+        );
         assert!(d[4].starts_with("sensor 1 pads changed: length"), "{d:#?}");
     }
 }
