@@ -54,10 +54,10 @@ impl Derived {
         self.design.joint.closing_angle_rad().to_degrees()
     }
 
-    /// One line: the drawn numbers beside the design's.
+    /// One line (ASCII, for program headers): the drawn numbers beside the design's.
     pub fn summary(&self, design: &Design) -> String {
         format!(
-            "as drawn: {} notch levels ({} notches), mean h = {:.4} mm, c = {:.4} mm, s_n = {:.4} mm, closing angle {:.1}° (design: {} levels, h = {} mm, c = {} mm, s_n = {} mm, {:.1}°)",
+            "as drawn: {} notch levels ({} notches), mean h = {:.4} mm, c = {:.4} mm, s_n = {:.4} mm, closing angle {:.1} deg (design: {} levels, h = {} mm, c = {} mm, s_n = {} mm, {:.1} deg)",
             self.levels,
             self.notches,
             self.notch_width_mm,

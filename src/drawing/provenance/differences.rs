@@ -11,6 +11,8 @@ use geo::{Area, BoundingRect, LineString};
 use crate::layout::{Layout, Notch, Trace};
 use crate::rules::notch_label;
 
+/// Lines are ASCII: the program header carries them as G-code comments.
+///
 /// Changes smaller than this are not differences (mm, mm²).
 const SAME: f64 = 1e-6;
 
@@ -158,7 +160,7 @@ fn notch_differences(design: &Layout, drawing: &Layout, c_mm: f64, out: &mut Vec
         let (dx, ds) = delta(p.centre(), q.centre(), c_mm);
         if dx.abs() > SAME || ds.abs() > SAME {
             changes.push(format!(
-                "moved by Δx = {} mm, Δs = {} mm",
+                "moved by dx = {} mm, ds = {} mm",
                 signed(dx),
                 signed(ds)
             ));
@@ -167,11 +169,11 @@ fn notch_differences(design: &Layout, drawing: &Layout, c_mm: f64, out: &mut Vec
         let (w1, h1) = (q.x[1] - q.x[0], q.s[1] - q.s[0]);
         if (w0 - w1).abs() > SAME || (h0 - h1).abs() > SAME {
             changes.push(format!(
-                "resized from {w0:.4} × {h0:.4} mm to {w1:.4} × {h1:.4} mm (x × s)"
+                "resized from {w0:.4} x {h0:.4} mm to {w1:.4} x {h1:.4} mm (along x by s)"
             ));
         } else if (p.area_mm2 - q.area_mm2).abs() > SAME {
             changes.push(format!(
-                "reshaped: area {:.6} mm² instead of {:.6} mm²",
+                "reshaped: area {:.6} mm^2 instead of {:.6} mm^2",
                 q.area_mm2, p.area_mm2
             ));
         }
@@ -319,14 +321,14 @@ mod tests {
         let d = differences(&design, &drawn);
         assert_eq!(d.len(), 5, "{d:#?}");
         assert!(
-            d[0].starts_with("notch 4 moved by Δx = +0.0000 mm, Δs = +0.0500 mm"),
+            d[0].starts_with("notch 4 moved by dx = +0.0000 mm, ds = +0.0500 mm"),
             "{d:#?}"
         );
         assert!(
-            d[1].starts_with("notch 6 moved by Δx = +0.0500 mm"),
+            d[1].starts_with("notch 6 moved by dx = +0.0500 mm"),
             "{d:#?}"
         );
-        assert!(d[1].contains("resized from 0.5000 × "), "{d:#?}");
+        assert!(d[1].contains("resized from 0.5000 x "), "{d:#?}");
         assert!(
             d[2].starts_with("notch 10 removed (was at x 10.0000..10.5000 mm"),
             "{d:#?}"
