@@ -18,7 +18,7 @@ use dlw::rules::{self, Checked, RulesError, Warning};
 pub struct DrawingOptions {
     /// The drawing's unit when it has no $INSUNITS (R12 files cannot store it): mm, um or in.
     #[arg(long, value_name = "mm|um|in", value_parser = parse_units)]
-    units: Option<DrawingUnits>,
+    pub units: Option<DrawingUnits>,
     /// Ends of LINEs and ARCs on NOTCHES closer than this are joined into one outline (mm);
     /// also the chord error of arcs.
     #[arg(long, value_name = "MM", default_value_t = DEFAULT_JOIN_TOLERANCE_MM)]

@@ -104,6 +104,9 @@ pub(crate) fn job(inputs: &Inputs, program_file: &str) -> anyhow::Result<Job> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if args.from_dxf.is_none() && args.drawing.units.is_some() {
+        bail!("--units is for reading a drawing: give it with --from-dxf DRAWING.dxf");
+    }
     let Some(design_path) = args.design.or(args.design_flag) else {
         bail!("give the design file: dlw program DESIGN -o FILE (or --from-dxf DRAWING.dxf --design DESIGN)");
     };

@@ -2,6 +2,7 @@
 //! loops, the way a CAD tool's "join" does: two ends meet when they are within a stated
 //! tolerance.
 
+use std::collections::HashMap;
 use std::f64::consts::TAU;
 
 use geo::Coord;
@@ -46,6 +47,68 @@ fn dist(a: Coord, b: Coord) -> f64 {
     (a.x - b.x).hypot(a.y - b.y)
 }
 
+/// Chain ends in a grid of cells one tolerance wide, so that the ends near a point are found
+/// without looking at every chain (a drawing may hold many thousands of LINEs).
+struct Ends {
+    cell_mm: f64,
+    cells: HashMap<(i64, i64), Vec<(usize, bool)>>,
+}
+
+impl Ends {
+    fn new(chains: &[Vec<Coord>], tolerance_mm: f64) -> Self {
+        let mut ends = Self {
+            cell_mm: tolerance_mm,
+            cells: HashMap::new(),
+        };
+        for (i, c) in chains.iter().enumerate() {
+            for (reversed, p) in [(false, c[0]), (true, c[c.len() - 1])] {
+                ends.cells
+                    .entry(ends.key(p))
+                    .or_default()
+                    .push((i, reversed));
+            }
+        }
+        ends
+    }
+
+    fn key(&self, p: Coord) -> (i64, i64) {
+        // `as` saturates, so huge coordinates share the last cell rather than wrap.
+        (
+            (p.x / self.cell_mm).floor() as i64,
+            (p.y / self.cell_mm).floor() as i64,
+        )
+    }
+
+    /// The unused chain end nearest `p` within one cell, and whether the chain must be reversed
+    /// to continue from `p`.
+    fn nearest(
+        &self,
+        p: Coord,
+        chains: &[Vec<Coord>],
+        used: &[bool],
+    ) -> Option<(usize, bool, f64)> {
+        let (kx, ky) = self.key(p);
+        let mut best: Option<(usize, bool, f64)> = None;
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                let cell = (kx.saturating_add(dx), ky.saturating_add(dy));
+                for &(i, reversed) in self.cells.get(&cell).into_iter().flatten() {
+                    if used[i] {
+                        continue;
+                    }
+                    let c = &chains[i];
+                    let end = if reversed { c[c.len() - 1] } else { c[0] };
+                    let d = dist(p, end);
+                    if best.is_none_or(|b| d < b.2) {
+                        best = Some((i, reversed, d));
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
 /// Joins open chains into closed loops (each without its closing point repeated). Ends within
 /// `tolerance_mm` meet; a closed loop needs at least 3 corners.
 ///
@@ -56,13 +119,19 @@ pub(super) fn join_loops(
     layer: &'static str,
     tolerance_mm: f64,
 ) -> Result<Vec<Vec<Coord>>, DxfImportError> {
-    let mut pool: Vec<Vec<Coord>> = chains
+    let chains: Vec<Vec<Coord>> = chains
         .into_iter()
         .filter(|c| c.len() >= 2 && c.windows(2).any(|w| dist(w[0], w[1]) > tolerance_mm))
         .collect();
+    let ends = Ends::new(&chains, tolerance_mm);
+    let mut used = vec![false; chains.len()];
     let mut loops = Vec::new();
-    while !pool.is_empty() {
-        let mut current = pool.swap_remove(0);
+    for start in 0..chains.len() {
+        if used[start] {
+            continue;
+        }
+        used[start] = true;
+        let mut current = chains[start].clone();
         loop {
             let (first, last) = (current[0], current[current.len() - 1]);
             if current.len() >= 4 && dist(first, last) <= tolerance_mm {
@@ -70,34 +139,27 @@ pub(super) fn join_loops(
                 loops.push(current);
                 break;
             }
-            // The chain whose end is nearest the loose end.
-            let next = pool
-                .iter()
-                .enumerate()
-                .flat_map(|(i, c)| {
-                    [
-                        (i, false, dist(last, c[0])),
-                        (i, true, dist(last, c[c.len() - 1])),
-                    ]
-                })
-                .min_by(|a, b| a.2.total_cmp(&b.2));
-            match next {
+            match ends.nearest(last, &chains, &used) {
                 Some((i, reversed, d)) if d <= tolerance_mm => {
-                    let mut more = pool.swap_remove(i);
+                    used[i] = true;
+                    let more = &chains[i];
                     if reversed {
-                        more.reverse();
+                        current.extend(more.iter().rev().skip(1));
+                    } else {
+                        current.extend(more.iter().skip(1));
                     }
-                    current.extend(more.into_iter().skip(1));
                 }
                 _ => {
-                    let own = (current.len() >= 3).then(|| dist(last, first));
-                    let nearest = next
-                        .map(|(i, reversed, d)| {
-                            let c = &pool[i];
-                            (d, if reversed { c[c.len() - 1] } else { c[0] })
-                        })
-                        .into_iter()
-                        .chain(own.map(|d| (d, first)))
+                    // Only now look everywhere: how far is the nearest other end?
+                    let others = chains
+                        .iter()
+                        .zip(&used)
+                        .filter(|(_, u)| !**u)
+                        .flat_map(|(c, _)| [c[0], c[c.len() - 1]]);
+                    let own = (current.len() >= 3).then_some(first);
+                    let nearest = others
+                        .chain(own)
+                        .map(|p| (dist(last, p), p))
                         .min_by(|a, b| a.0.total_cmp(&b.0));
                     let gap = match nearest {
                         Some((d, p)) => format!(
@@ -155,6 +217,24 @@ mod tests {
             e.contains("end at x = 0.0000 mm, s = 0.0200 mm is 0.0200 mm from the nearest other end, at x = 0.0000 mm, s = 0.0000 mm"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn many_lines_join_quickly() {
+        // 20000 unit squares drawn as 80000 LINEs, shuffled by a fixed stride.
+        let mut lines = Vec::new();
+        for k in 0..20_000 {
+            let x = 2.0 * k as f64;
+            let p = [c(x, 0.0), c(x + 1.0, 0.0), c(x + 1.0, 1.0), c(x, 1.0)];
+            for i in 0..4 {
+                lines.push(vec![p[i], p[(i + 1) % 4]]);
+            }
+        }
+        let n = lines.len();
+        let shuffled: Vec<_> = (0..n).map(|i| lines[(i * 7919) % n].clone()).collect();
+        let loops = join_loops(shuffled, "NOTCHES", 1e-3).unwrap();
+        assert_eq!(loops.len(), 20_000);
+        assert!(loops.iter().all(|l| l.len() == 4));
     }
 
     #[test]

@@ -62,10 +62,13 @@ pub(super) fn notches(pieces: Vec<NotchPiece>, numbers: &LayoutNumbers) -> Vec<N
     edges.sort_by(f64::total_cmp);
     edges.dedup_by(|a, b| (*a - *b).abs() <= 1e-3);
     for (x0, notch) in &mut notches {
-        notch.level = edges
-            .iter()
-            .position(|e| (*e - *x0).abs() <= 1e-3)
-            .unwrap_or(0);
+        // The first edge within 1 µm (the edges are sorted).
+        let at = edges.partition_point(|e| *e < *x0 - 1e-3);
+        notch.level = if edges.get(at).is_some_and(|e| (*e - *x0).abs() <= 1e-3) {
+            at
+        } else {
+            0
+        };
     }
     let mut notches: Vec<Notch> = notches.into_iter().map(|(_, n)| n).collect();
     notches.sort_by_key(|n| (n.level, n.side));

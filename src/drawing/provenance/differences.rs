@@ -128,16 +128,33 @@ fn notch_differences(design: &Layout, drawing: &Layout, c_mm: f64, out: &mut Vec
         let (dx, ds) = delta(p.centre(), q.centre(), c_mm);
         dx.hypot(ds)
     };
+    // Both lists by centre x, so that only notches near in x are compared (a design may have
+    // thousands).
+    let by_x = |boxes: &[NotchBox]| {
+        let mut order: Vec<usize> = (0..boxes.len()).collect();
+        order.sort_by(|&i, &j| boxes[i].centre().0.total_cmp(&boxes[j].centre().0));
+        order
+    };
+    let (order_a, order_b) = (by_x(&a), by_x(&b));
     let mut reach = f64::INFINITY;
-    for (i, p) in a.iter().enumerate() {
-        for q in &a[i + 1..] {
-            reach = reach.min(dist(p, q) / 2.0);
+    for (k, &i) in order_a.iter().enumerate() {
+        for &j in &order_a[k + 1..] {
+            if a[j].centre().0 - a[i].centre().0 >= 2.0 * reach {
+                break;
+            }
+            reach = reach.min(dist(&a[i], &a[j]) / 2.0);
         }
     }
+    let xs_b: Vec<f64> = order_b.iter().map(|&j| b[j].centre().0).collect();
     let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
     for (i, p) in a.iter().enumerate() {
-        for (j, q) in b.iter().enumerate() {
-            let d = dist(p, q);
+        let x = p.centre().0;
+        let from = xs_b.partition_point(|v| *v <= x - reach);
+        for &j in &order_b[from..] {
+            if b[j].centre().0 >= x + reach {
+                break;
+            }
+            let d = dist(p, &b[j]);
             if d < reach {
                 pairs.push((d, i, j));
             }
