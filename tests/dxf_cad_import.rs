@@ -570,7 +570,7 @@ fn derived_numbers_come_from_the_drawn_notches() {
     // Nine notches of ten close at nine tenths of the angle.
     assert!(
         program.contains(&format!(
-            "as drawn: 9 notch levels [9 notches], mean h = 0.5000 mm, c = 0.5000 mm, s_n = {:.4} mm, closing angle {:.1} deg [design: 10 levels",
+            "(as drawn: 9 notch levels [9 notches], mean h = 0.5000 mm, c = 0.5000 mm, s_n = {:.4} mm, closing angle {:.1} deg)\n(as designed: 10 notch levels",
             checked.design.file.notch_arc_mm,
             0.9 * closing
         )),

@@ -54,22 +54,27 @@ impl Derived {
         self.design.joint.closing_angle_rad().to_degrees()
     }
 
-    /// One line (ASCII, for program headers): the drawn numbers beside the design's.
-    pub fn summary(&self, design: &Design) -> String {
-        format!(
-            "as drawn: {} notch levels ({} notches), mean h = {:.4} mm, c = {:.4} mm, s_n = {:.4} mm, closing angle {:.1} deg (design: {} levels, h = {} mm, c = {} mm, s_n = {} mm, {:.1} deg)",
-            self.levels,
-            self.notches,
-            self.notch_width_mm,
-            self.notch_spacing_mm,
-            self.notch_arc_mm,
-            self.closing_angle_deg(),
-            design.file.notch_count,
-            design.file.notch_width_mm,
-            design.file.notch_spacing_mm,
-            design.file.notch_arc_mm,
-            design.joint.closing_angle_rad().to_degrees()
-        )
+    /// Two lines (ASCII, for program headers): the numbers as drawn, then the design's.
+    pub fn summary(&self, design: &Design) -> [String; 2] {
+        [
+            format!(
+                "as drawn: {} notch levels ({} notches), mean h = {:.4} mm, c = {:.4} mm, s_n = {:.4} mm, closing angle {:.1} deg",
+                self.levels,
+                self.notches,
+                self.notch_width_mm,
+                self.notch_spacing_mm,
+                self.notch_arc_mm,
+                self.closing_angle_deg()
+            ),
+            format!(
+                "as designed: {} notch levels, h = {} mm, c = {} mm, s_n = {} mm, closing angle {:.1} deg",
+                design.file.notch_count,
+                design.file.notch_width_mm,
+                design.file.notch_spacing_mm,
+                design.file.notch_arc_mm,
+                design.joint.closing_angle_rad().to_degrees()
+            ),
+        ]
     }
 }
 

@@ -25,6 +25,40 @@ use super::{ImportedDxf, UnitsSource};
 
 pub use sha256::sha256_hex;
 
+/// Longest line [`Provenance::lines`] gives (characters): G-code comments must stay well under
+/// LinuxCNC's 255-character line limit.
+pub const MAX_LINE_CHARS: usize = 180;
+
+/// `line` broken at spaces into pieces of at most `max` characters (a word longer than that is
+/// cut); continuations are indented by two spaces.
+fn wrap(line: &str, max: usize) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    let mut current = String::new();
+    for word in line.split(' ') {
+        let mut word = word.to_string();
+        loop {
+            let sep = usize::from(!current.is_empty() && !current.trim().is_empty());
+            if current.chars().count() + sep + word.chars().count() <= max {
+                if sep == 1 {
+                    current.push(' ');
+                }
+                current.push_str(&word);
+                break;
+            }
+            if current.trim().is_empty() {
+                // A word longer than a line: cut it.
+                let room = max - current.chars().count();
+                let head: String = word.chars().take(room).collect();
+                word = word.chars().skip(room).collect();
+                current.push_str(&head);
+            }
+            out.push(std::mem::replace(&mut current, "  ".into()));
+        }
+    }
+    out.push(current);
+    out
+}
+
 /// Where a layout came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Provenance {
@@ -36,8 +70,8 @@ pub struct Provenance {
     pub bytes: usize,
     /// How it was read: version, units, where the layout's numbers came from.
     pub read_as: String,
-    /// The joint's numbers as drawn, beside the design's (see [`crate::rules::Derived`]).
-    pub derived: Option<String>,
+    /// The joint's numbers as drawn and as designed (see [`crate::rules::Derived`]).
+    pub derived: Vec<String>,
     /// Every difference from the design's own layout, one line each.
     pub differences: Vec<String>,
 }
@@ -71,14 +105,14 @@ impl Provenance {
             sha256: sha256_hex(bytes),
             bytes: bytes.len(),
             read_as,
-            derived: None,
+            derived: Vec::new(),
             differences: differences::differences(design_layout, &imported.layout),
         }
     }
 
-    /// The same, with the joint's numbers as drawn (a line from [`crate::rules::Derived::summary`]).
-    pub fn with_derived(mut self, summary: String) -> Self {
-        self.derived = Some(summary);
+    /// The same, with the joint's numbers as drawn ([`crate::rules::Derived::summary`]).
+    pub fn with_derived(mut self, summary: impl IntoIterator<Item = String>) -> Self {
+        self.derived = summary.into_iter().collect();
         self
     }
 
@@ -100,12 +134,13 @@ impl Provenance {
     pub fn lines(&self) -> Vec<String> {
         let mut out = vec![
             format!(
-                "layout from drawing {} ({} bytes; {})",
-                self.file_name, self.bytes, self.read_as
+                "layout from drawing {} ({} bytes)",
+                self.file_name, self.bytes
             ),
+            format!("read as {}", self.read_as),
             format!("drawing SHA-256 {}", self.sha256),
         ];
-        out.extend(self.derived.clone());
+        out.extend(self.derived.iter().cloned());
         if self.differences.is_empty() {
             out.push("differences from the design's own layout: none".into());
         } else {
@@ -115,6 +150,36 @@ impl Provenance {
             ));
             out.extend(self.differences.iter().map(|d| format!("- {d}")));
         }
-        out
+        out.into_iter()
+            .flat_map(|l| wrap(&l, MAX_LINE_CHARS))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_lines_are_wrapped_without_losing_a_character() {
+        let name = format!("{}.dxf", "x".repeat(300));
+        let line = format!("layout from drawing {name} (1234 bytes)");
+        let wrapped = wrap(&line, MAX_LINE_CHARS);
+        assert!(wrapped.len() >= 3, "{wrapped:?}");
+        assert!(wrapped.iter().all(|l| l.chars().count() <= MAX_LINE_CHARS));
+        let joined: String = wrapped
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                if i == 0 {
+                    l.clone()
+                } else {
+                    l[2..].to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("");
+        assert_eq!(joined.replace(' ', ""), line.replace(' ', ""));
+        assert_eq!(wrap("short line", 180), vec!["short line".to_string()]);
     }
 }
