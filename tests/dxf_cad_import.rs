@@ -414,7 +414,7 @@ fn program_from(
         "--sheet".as_ref(),
         sheet.as_os_str(),
     ];
-    args.extend(extra.iter().map(|a| std::ffi::OsStr::new(a)));
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
     (dlw(&args), ngc, sheet)
 }
 

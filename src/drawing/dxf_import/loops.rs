@@ -99,7 +99,7 @@ impl Ends {
                     let c = &chains[i];
                     let end = if reversed { c[c.len() - 1] } else { c[0] };
                     let d = dist(p, end);
-                    if best.is_none_or(|b| d < b.2) {
+                    if best.map_or(true, |b| d < b.2) {
                         best = Some((i, reversed, d));
                     }
                 }
