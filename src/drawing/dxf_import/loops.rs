@@ -9,38 +9,57 @@ use geo::Coord;
 
 use super::DxfImportError;
 
-/// Most segments one arc is flattened into.
-const MAX_ARC_SEGMENTS: usize = 4096;
+/// Most chords one arc is flattened into: enough for a 50 mm radius at 1 µm (a joint's whole
+/// circumference is a few mm), and a bound on what one ARC entity can allocate.
+pub(super) const MAX_ARC_SEGMENTS: usize = 1024;
 
 /// The points of an arc from `start_deg` counter-clockwise to `end_deg`, flattened so that no
-/// chord strays more than `tolerance_mm` from the arc; ends exact.
+/// chord strays more than `tolerance_mm` from the arc; ends exact. `None` when that takes more
+/// than [`MAX_ARC_SEGMENTS`] chords, or the numbers are not finite.
 pub(super) fn flatten_arc(
     center: Coord,
     radius_mm: f64,
     start_deg: f64,
     end_deg: f64,
     tolerance_mm: f64,
-) -> Vec<Coord> {
+) -> Option<Vec<Coord>> {
+    let finite = [
+        center.x,
+        center.y,
+        radius_mm,
+        start_deg,
+        end_deg,
+        tolerance_mm,
+    ];
+    if !finite.iter().all(|v| v.is_finite()) || radius_mm <= 0.0 || tolerance_mm <= 0.0 {
+        return None;
+    }
     let a0 = start_deg.to_radians();
     let mut sweep = (end_deg.to_radians() - a0).rem_euclid(TAU);
     if sweep == 0.0 {
         sweep = TAU;
     }
-    let step = if tolerance_mm > 0.0 && tolerance_mm < radius_mm {
+    let step = if tolerance_mm < radius_mm {
         2.0 * (1.0 - tolerance_mm / radius_mm).acos()
     } else {
         sweep
     };
-    let n = ((sweep / step).ceil() as usize).clamp(1, MAX_ARC_SEGMENTS);
-    (0..=n)
-        .map(|i| {
-            let a = a0 + sweep * i as f64 / n as f64;
-            Coord {
-                x: center.x + radius_mm * a.cos(),
-                y: center.y + radius_mm * a.sin(),
-            }
-        })
-        .collect()
+    let n = (sweep / step).ceil().max(1.0);
+    if n > MAX_ARC_SEGMENTS as f64 {
+        return None;
+    }
+    let n = n as usize;
+    Some(
+        (0..=n)
+            .map(|i| {
+                let a = a0 + sweep * i as f64 / n as f64;
+                Coord {
+                    x: center.x + radius_mm * a.cos(),
+                    y: center.y + radius_mm * a.sin(),
+                }
+            })
+            .collect(),
+    )
 }
 
 fn dist(a: Coord, b: Coord) -> f64 {
@@ -239,7 +258,7 @@ mod tests {
 
     #[test]
     fn arcs_flatten_within_the_tolerance() {
-        let pts = flatten_arc(c(0.0, 0.0), 1.0, 0.0, 90.0, 1e-4);
+        let pts = flatten_arc(c(0.0, 0.0), 1.0, 0.0, 90.0, 1e-4).unwrap();
         assert_relative_eq!(pts[0].x, 1.0);
         assert_relative_eq!(pts.last().unwrap().y, 1.0);
         for w in pts.windows(2) {
@@ -247,7 +266,10 @@ mod tests {
             assert!(1.0 - mid.x.hypot(mid.y) <= 1e-4 + 1e-12);
         }
         // 350° → 10° goes the short way through 0°.
-        let pts = flatten_arc(c(0.0, 0.0), 1.0, 350.0, 10.0, 1e-3);
+        let pts = flatten_arc(c(0.0, 0.0), 1.0, 350.0, 10.0, 1e-3).unwrap();
         assert!(pts.iter().all(|p| p.x > 0.98));
+        // A 1 m arc at 1 µm needs too many chords; NaN is no arc.
+        assert!(flatten_arc(c(0.0, 0.0), 1000.0, 0.0, 360.0, 1e-3).is_none());
+        assert!(flatten_arc(c(0.0, f64::NAN), 1.0, 0.0, 90.0, 1e-3).is_none());
     }
 }

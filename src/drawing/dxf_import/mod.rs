@@ -346,9 +346,31 @@ impl Reader {
         }
     }
 
+    /// [`Self::shape`], refusing coordinates that are not finite numbers.
+    fn points(
+        &self,
+        entity: &Entity,
+        layer: Layer,
+        expected: &'static str,
+        arcs: bool,
+    ) -> Result<(Vec<Coord>, bool), DxfImportError> {
+        let (points, closed) = self.shape(entity, layer, expected, arcs)?;
+        if let Some(p) = points
+            .iter()
+            .find(|p| !(p.x.is_finite() && p.y.is_finite()))
+        {
+            return Err(bad(
+                entity,
+                layer,
+                format!("a vertex at ({}, {}) is not a finite number", p.x, p.y),
+            ));
+        }
+        Ok((points, closed))
+    }
+
     /// The vertices (mm) of an LWPOLYLINE or POLYLINE (and whether it is closed), of a LINE, or
     /// of an ARC flattened (when `arcs`).
-    fn points(
+    fn shape(
         &self,
         entity: &Entity,
         layer: Layer,
@@ -406,20 +428,26 @@ impl Reader {
             )),
             EntityType::Arc(a) if arcs => {
                 let r = a.radius * self.k;
-                if !(r.is_finite() && r > 0.0) {
-                    return Err(bad(
-                        entity,
-                        layer,
-                        format!("arc radius {} must be > 0", a.radius),
-                    ));
-                }
                 let c = self.at(a.center.x, a.center.y);
                 // An arc seen from below (extrusion −Z) is the mirror image in x of its
                 // object-coordinate form.
-                let mut points = if a.normal.z < 0.0 {
+                let flat = if a.normal.z < 0.0 {
                     flatten_mirrored(c, r, a.start_angle, a.end_angle, self.tol)
                 } else {
                     loops::flatten_arc(c, r, a.start_angle, a.end_angle, self.tol)
+                };
+                let Some(mut points) = flat else {
+                    return Err(bad(
+                        entity,
+                        layer,
+                        format!(
+                            "an arc of radius {r} mm from {}° to {}° cannot be flattened within {} mm in at most {} chords",
+                            a.start_angle,
+                            a.end_angle,
+                            self.tol,
+                            loops::MAX_ARC_SEGMENTS
+                        ),
+                    ));
                 };
                 points.dedup();
                 Ok((points, false))
@@ -436,9 +464,18 @@ impl Reader {
 
 /// An arc whose extrusion is −Z: flattened in its object frame (centre `(−cx, cy)`), then
 /// mirrored in x into the drawing.
-fn flatten_mirrored(c: Coord, r: f64, start_deg: f64, end_deg: f64, tol: f64) -> Vec<Coord> {
-    loops::flatten_arc(Coord { x: -c.x, y: c.y }, r, start_deg, end_deg, tol)
-        .into_iter()
-        .map(|p| Coord { x: -p.x, y: p.y })
-        .collect()
+fn flatten_mirrored(
+    c: Coord,
+    r: f64,
+    start_deg: f64,
+    end_deg: f64,
+    tol: f64,
+) -> Option<Vec<Coord>> {
+    let points = loops::flatten_arc(Coord { x: -c.x, y: c.y }, r, start_deg, end_deg, tol)?;
+    Some(
+        points
+            .into_iter()
+            .map(|p| Coord { x: -p.x, y: p.y })
+            .collect(),
+    )
 }
