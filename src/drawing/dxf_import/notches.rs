@@ -80,35 +80,108 @@ pub(super) fn notches(pieces: Vec<NotchPiece>, numbers: &LayoutNumbers) -> Vec<N
 /// piece comes first, as the layout writes them.
 fn merge_seam_halves(groups: &mut Vec<NotchGroup>, seam_mm: f64, c_mm: f64) {
     const TOL_MM: f64 = 1e-6;
-    let bounds = |p: &Polygon<f64>| p.bounding_rect();
-    let mut i = 0;
-    while i < groups.len() {
-        let top = match &groups[i] {
-            (None, list) if list.len() == 1 => bounds(&list[0].1),
-            _ => None,
+    let single = |g: &NotchGroup| match g {
+        (None, list) if list.len() == 1 => list[0].1.bounding_rect(),
+        _ => None,
+    };
+    let boxes: Vec<_> = groups.iter().map(single).collect();
+    // Pieces starting on the seam, by their distal edge, for a binary search (a drawing may
+    // hold thousands of hand-drawn notches).
+    let mut bottoms: Vec<(f64, usize)> = boxes
+        .iter()
+        .enumerate()
+        .filter_map(|(j, b)| {
+            b.filter(|b| (b.min().y - seam_mm).abs() <= TOL_MM)
+                .map(|b| (b.min().x, j))
+        })
+        .collect();
+    bottoms.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut partner: Vec<Option<usize>> = vec![None; groups.len()];
+    let mut taken = vec![false; groups.len()];
+    for (i, top) in boxes.iter().enumerate() {
+        let Some(t) = top.filter(|t| (t.max().y - (seam_mm + c_mm)).abs() <= TOL_MM) else {
+            continue;
         };
-        let partner = top
-            .filter(|t| (t.max().y - (seam_mm + c_mm)).abs() <= TOL_MM)
-            .and_then(|t| {
-                groups.iter().position(|(tag, list)| {
-                    tag.is_none()
-                        && list.len() == 1
-                        && bounds(&list[0].1).is_some_and(|b| {
-                            (b.min().y - seam_mm).abs() <= TOL_MM
-                                && (b.min().x - t.min().x).abs() <= TOL_MM
-                                && (b.max().x - t.max().x).abs() <= TOL_MM
-                        })
-                })
-            });
-        if let Some(j) = partner.filter(|&j| j != i) {
-            let (_, mut bottom) = groups.remove(j);
-            let at = if j < i { i - 1 } else { i };
-            if let Some((_, piece)) = bottom.pop() {
-                groups[at].1.push((1, piece));
+        if taken[i] {
+            continue;
+        }
+        let from = bottoms.partition_point(|(x, _)| *x < t.min().x - TOL_MM);
+        let found = bottoms[from..]
+            .iter()
+            .take_while(|(x, _)| *x <= t.min().x + TOL_MM)
+            .map(|(_, j)| *j)
+            .filter(|&j| {
+                j != i
+                    && !taken[j]
+                    && partner[j].is_none()
+                    && boxes[j].is_some_and(|b| (b.max().x - t.max().x).abs() <= TOL_MM)
+            })
+            .min();
+        if let Some(j) = found {
+            partner[i] = Some(j);
+            taken[j] = true;
+        }
+    }
+    let mut bottom_pieces: Vec<Option<Polygon<f64>>> = groups
+        .iter_mut()
+        .enumerate()
+        .map(|(j, g)| {
+            if taken[j] {
+                g.1.pop().map(|(_, p)| p)
+            } else {
+                None
             }
-            i = at + 1;
-        } else {
-            i += 1;
+        })
+        .collect();
+    let old = std::mem::take(groups);
+    for (i, mut group) in old.into_iter().enumerate() {
+        if taken[i] {
+            continue;
+        }
+        if let Some(piece) = partner[i].and_then(|j| bottom_pieces[j].take()) {
+            group.1.push((1, piece));
+        }
+        groups.push(group);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use geo::LineString;
+
+    use super::*;
+
+    fn rect(x0: f64, x1: f64, s0: f64, s1: f64) -> Polygon<f64> {
+        Polygon::new(
+            LineString::from(vec![(x0, s0), (x1, s0), (x1, s1), (x0, s1)]),
+            vec![],
+        )
+    }
+
+    #[test]
+    fn thousands_of_seam_halves_pair_up_in_order() {
+        // Window [0, 10): each notch's top half ends at s = 10, its bottom half starts at 0.
+        let mut groups: Vec<NotchGroup> = Vec::new();
+        let n = 10_000;
+        for k in (0..n).rev() {
+            let x = k as f64;
+            groups.push((None, vec![(0, rect(x, x + 0.5, 0.0, 1.0))]));
+        }
+        for k in 0..n {
+            let x = k as f64;
+            groups.push((None, vec![(0, rect(x, x + 0.5, 9.0, 10.0))]));
+        }
+        groups.push((None, vec![(0, rect(0.2, 0.3, 4.0, 5.0))]));
+        merge_seam_halves(&mut groups, 0.0, 10.0);
+        assert_eq!(groups.len(), n + 1);
+        // The lone notch stays; every top half now holds its bottom half as piece 1.
+        assert_eq!(groups[n].1.len(), 1);
+        for (k, (_, list)) in groups[..n].iter().enumerate() {
+            assert_eq!(list.len(), 2);
+            let top = list[0].1.bounding_rect().unwrap();
+            let bottom = list[1].1.bounding_rect().unwrap();
+            assert_eq!((top.min().x, top.max().y), (k as f64, 10.0));
+            assert_eq!((bottom.min().x, bottom.min().y), (k as f64, 0.0));
         }
     }
 }
