@@ -53,13 +53,7 @@ pub fn header_lines(plan: &Plan, profile: &MachineProfile, post: &dyn Post) -> V
     let (x, a, z) = (profile.axes.linear, profile.axes.rotary, profile.axes.focus);
     let mut h = vec![
         format!("dlw laser program for design \"{}\"", plan.design_name),
-        format!(
-            "design checksum {} (FNV-1a 64 of the design's canonical TOML)",
-            plan.design_checksum
-        ),
-    ];
-    h.extend(plan.provenance.iter().flat_map(|p| p.lines()));
-    h.extend([
+        format!("design checksum {} (FNV-1a 64 of the design's canonical TOML)", plan.design_checksum),
         format!("machine profile {} ({}), {} post", profile.name, profile.source, post.name()),
         format!(
             "frame: {x} = drawing x in mm, 0 at the tube's free (distal) end; {a} = s/r_o in {units}, {a}0 at s = 0; r_o = {} mm",
@@ -82,7 +76,9 @@ pub fn header_lines(plan: &Plan, profile: &MachineProfile, post: &dyn Post) -> V
             "{:<9} {:<10} {:>8} {:>9} {:>11} {:>10} {:>9} {:>7} {:>10}",
             "operation", "set", "wl nm", "power mW", "speed mm/s", "pulse kHz", "pulse fs", "passes", "Z step mm"
         ),
-    ]);
+    ];
+    // Where the layout came from, after the design's name and checksum (`--from-dxf` only).
+    h.splice(2..2, plan.provenance.iter().flat_map(|p| p.lines()));
     for op in &plan.operations {
         let p = &op.process;
         h.push(format!(
