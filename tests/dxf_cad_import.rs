@@ -285,6 +285,29 @@ fn notches_redrawn_as_lines_are_joined_into_outlines() {
 }
 
 #[test]
+fn exploded_drawings_read_back_as_drawn() {
+    // EXPLODE turns every polyline into LINEs: notches, U-traces, leads, the pads' spirals and
+    // the parting cut; leads and pads are told apart again where the lead meets the spiral.
+    let dir = tempfile::tempdir().unwrap();
+    for j in ['a', 'b', 'c'] {
+        let joint = joint(j, dir.path());
+        for (name, edits) in [
+            ("exploded", vec!["explode"]),
+            ("exploded-r12", vec!["explode", "+", "r12"]),
+        ] {
+            let file = dir.path().join(format!("{j}-{name}.dxf"));
+            ezdxf_edit(&joint.dxf, &file, &edits);
+            let back = read(&file, Some(DrawingUnits::Mm), None);
+            let diff = joint
+                .layout
+                .max_difference_mm(&back.layout)
+                .unwrap_or_else(|e| panic!("joint {j} {name}: {e}"));
+            assert!(diff <= 1e-9, "joint {j} {name}: differs by {diff:e} mm");
+        }
+    }
+}
+
+#[test]
 fn an_arc_edge_is_read_within_the_tolerance() {
     let dir = tempfile::tempdir().unwrap();
     let joint = joint('a', dir.path());
@@ -541,6 +564,9 @@ fn programs_from_edited_drawings_pass_rs274_and_say_where_they_came_from() {
         &["importer", "R2018", "+", "lines", "+", "extras"],
     );
     check_program(&b_lines, &b.design, dir.path(), &[], &[]);
+    // Every polyline exploded into LINEs (BSN, two sensors).
+    let c_exploded = edit(&c, "c-exploded.dxf", &["explode"]);
+    check_program(&c_exploded, &c.design, dir.path(), &[], &[]);
     // A notch moved 0.05 mm round the tube.
     let a_moved = edit(
         &a,

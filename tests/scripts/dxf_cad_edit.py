@@ -6,6 +6,8 @@ Usage: dxf_cad_edit.py IN OUT EDIT [ARGS...]
   resave VERSION         re-save as VERSION (R2000, R2018)
   importer VERSION       rebuild in a new VERSION document with ezdxf's Importer (drops XDATA)
   lines                  redraw every NOTCHES polyline as LINEs (exploded), in reverse order
+  explode                explode every polyline on NOTCHES, SENSOR, LEADS_PADS and PARTING
+                         into LINEs (ezdxf's explode(), as CAD's EXPLODE does)
   arc-edge SAGITTA       redraw the first notch as three LINEs and an ARC bulging SAGITTA mm
                          towards the free end in place of its distal edge (x = x_min)
   gap GAP                redraw the first notch as LINEs, its last LINE GAP mm short
@@ -65,6 +67,10 @@ def edit(doc, name, args):
     elif name == "lines":
         for e in reversed(notches(doc)):
             as_lines(doc, e)
+    elif name == "explode":
+        for e in list(msp):
+            if e.dxftype() in ("LWPOLYLINE", "POLYLINE") and e.dxf.layer in ("NOTCHES", "SENSOR", "LEADS_PADS", "PARTING"):
+                e.explode()
     elif name == "arc-edge":
         sag = float(args[0])
         e = notches(doc)[0]

@@ -98,6 +98,32 @@ impl Ends {
         )
     }
 
+    /// Every unused chain end within `tolerance_mm` of `p`, with whether the chain must be
+    /// reversed to continue from `p`.
+    fn within(
+        &self,
+        p: Coord,
+        chains: &[Vec<Coord>],
+        used: &[bool],
+        tolerance_mm: f64,
+    ) -> Vec<(usize, bool)> {
+        let (kx, ky) = self.key(p);
+        let mut out = Vec::new();
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                let cell = (kx.saturating_add(dx), ky.saturating_add(dy));
+                for &(i, reversed) in self.cells.get(&cell).into_iter().flatten() {
+                    let c = &chains[i];
+                    let end = if reversed { c[c.len() - 1] } else { c[0] };
+                    if !used[i] && dist(p, end) <= tolerance_mm {
+                        out.push((i, reversed));
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// The unused chain end nearest `p` within one cell, and whether the chain must be reversed
     /// to continue from `p`.
     fn nearest(
@@ -201,6 +227,47 @@ pub(super) fn join_loops(
     Ok(loops)
 }
 
+/// Open lines chained end to end where exactly two ends meet (a node where three or more meet
+/// is a junction and ends the chains there). Chains come in the order of their first line.
+pub(super) fn chain_open(lines: Vec<Vec<Coord>>, tolerance_mm: f64) -> Vec<Vec<Coord>> {
+    let lines: Vec<Vec<Coord>> = lines.into_iter().filter(|l| l.len() >= 2).collect();
+    let ends = Ends::new(&lines, tolerance_mm);
+    let mut used = vec![false; lines.len()];
+    let none_used = vec![false; lines.len()];
+    let mut out = Vec::new();
+    for start in 0..lines.len() {
+        if used[start] {
+            continue;
+        }
+        used[start] = true;
+        let mut chain = lines[start].clone();
+        for _ in 0..2 {
+            loop {
+                let last = chain[chain.len() - 1];
+                // Every line end at this node, the chain's own included: two make a joint,
+                // three or more a junction.
+                let here = ends.within(last, &lines, &none_used, tolerance_mm);
+                let next: Vec<_> = here.iter().filter(|(i, _)| !used[*i]).collect();
+                let (2, [&(i, reversed)]) = (here.len(), &next[..]) else {
+                    break;
+                };
+                used[i] = true;
+                if reversed {
+                    chain.extend(lines[i].iter().rev().skip(1));
+                } else {
+                    chain.extend(lines[i].iter().skip(1));
+                }
+                if dist(chain[0], chain[chain.len() - 1]) <= tolerance_mm {
+                    break;
+                }
+            }
+            chain.reverse();
+        }
+        out.push(chain);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -221,6 +288,25 @@ mod tests {
         let loops = join_loops(lines, "NOTCHES", 1e-3).unwrap();
         assert_eq!(loops.len(), 1);
         assert_eq!(loops[0].len(), 4);
+    }
+
+    #[test]
+    fn open_lines_chain_through_two_way_nodes_and_stop_at_junctions() {
+        let lines = vec![
+            vec![c(1.0, 0.0), c(2.0, 0.0)],
+            vec![c(0.0, 0.0), c(1.0, 0.0)],
+            vec![c(2.0, 1.0), c(2.0, 0.0)],
+            // A junction at (5, 0): three lines meet.
+            vec![c(5.0, 0.0), c(6.0, 0.0)],
+            vec![c(5.0, 0.0), c(5.0, 1.0)],
+            vec![c(4.0, 0.0), c(5.0, 0.0)],
+        ];
+        let chains = chain_open(lines, 1e-3);
+        assert_eq!(
+            chains[0],
+            vec![c(0.0, 0.0), c(1.0, 0.0), c(2.0, 0.0), c(2.0, 1.0)]
+        );
+        assert_eq!(chains.len(), 4, "{chains:?}");
     }
 
     #[test]

@@ -160,6 +160,7 @@ pub fn read_dxf(bytes: &[u8], options: &ImportOptions) -> Result<ImportedDxf, Dx
     let mut loose: Vec<Vec<Coord>> = Vec::new();
     let mut traces: Vec<TracePiece> = Vec::new();
     let mut parting: Vec<(Option<i16>, LineString<f64>)> = Vec::new();
+    let (mut sensor_lines, mut lead_pad_lines) = (Vec::new(), Vec::new());
     for entity in drawing.entities() {
         let layer_name = entity.common.layer.clone();
         *layer_counts.entry(layer_name.clone()).or_insert(0) += 1;
@@ -229,6 +230,17 @@ pub fn read_dxf(bytes: &[u8], options: &ImportOptions) -> Result<ImportedDxf, Dx
                     };
                     Some((kind, (int_at(i, 1)?, int_at(i, 2)?, int_at(i, 3)?)))
                 });
+                // Untagged LINEs (a polyline exploded in CAD) are chained before they are
+                // classified: one LINE of a spiral is no spiral.
+                if tagged.is_none() && matches!(entity.specific, EntityType::Line(_)) {
+                    let list = if layer == Layer::Sensor {
+                        &mut sensor_lines
+                    } else {
+                        &mut lead_pad_lines
+                    };
+                    list.push(points);
+                    continue;
+                }
                 let line = LineString::new(points);
                 traces.push(match tagged {
                     Some((kind, ids)) => TracePiece {
@@ -268,6 +280,13 @@ pub fn read_dxf(bytes: &[u8], options: &ImportOptions) -> Result<ImportedDxf, Dx
             .into_iter()
             .map(|ring| (None, Polygon::new(LineString::new(ring), vec![]))),
     );
+    chain_trace_lines(
+        &mut traces,
+        sensor_lines,
+        lead_pad_lines,
+        &numbers,
+        reader.tol,
+    );
     let untagged = notch_pieces.iter().filter(|(t, _)| t.is_none()).count()
         + traces.iter().filter(|t| t.tag.is_none()).count()
         + parting.iter().filter(|(t, _)| t.is_none()).count();
@@ -306,6 +325,97 @@ pub fn read_dxf(bytes: &[u8], options: &ImportOptions) -> Result<ImportedDxf, Dx
         version: format!("{:?}", drawing.header.version),
         joined_outlines,
     })
+}
+
+/// Chains untagged SENSOR and LEADS_PADS LINEs end to end and adds them as traces: a chain on
+/// SENSOR is a U-trace; one on LEADS_PADS that starts at a sensor end (or the seam) and ends in
+/// a spiral is split into a lead and a pad, else it is a pad if it is a spiral and a lead if not.
+fn chain_trace_lines(
+    traces: &mut Vec<TracePiece>,
+    sensor_lines: Vec<Vec<Coord>>,
+    lead_pad_lines: Vec<Vec<Coord>>,
+    numbers: &LayoutNumbers,
+    tol: f64,
+) {
+    for chain in loops::chain_open(sensor_lines, tol) {
+        traces.push(TracePiece {
+            kind: TAG_SENSOR,
+            tag: None,
+            line: LineString::new(chain),
+        });
+    }
+    let sensor_ends: Vec<Coord> = traces
+        .iter()
+        .filter(|t| t.kind == TAG_SENSOR)
+        .flat_map(|t| [t.line.0[0], t.line.0[t.line.0.len() - 1]])
+        .collect();
+    let window = [
+        numbers.seam_s_mm,
+        numbers.seam_s_mm + numbers.circumference_mm,
+    ];
+    let starts_a_lead = |p: Coord| {
+        sensor_ends
+            .iter()
+            .any(|e| (e.x - p.x).hypot(e.y - p.y) <= tol)
+            || window.iter().any(|w| (p.y - w).abs() <= tol)
+    };
+    for chain in loops::chain_open(lead_pad_lines, tol) {
+        for (kind, points) in split_lead_pad(chain, &starts_a_lead) {
+            traces.push(TracePiece {
+                kind,
+                tag: None,
+                line: LineString::new(points),
+            });
+        }
+    }
+}
+
+/// A LEADS_PADS chain as (kind, points): a lead and a pad when one end starts a lead
+/// (`starts_a_lead`: a sensor end, or the seam) and the rest ends in a spiral. The pad is the
+/// spiral: from its inner end back to the first vertex that turns the other way (the lead meets
+/// the pad's outer corner with a turn against the spiral's sense).
+fn split_lead_pad(
+    chain: Vec<Coord>,
+    starts_a_lead: &dyn Fn(Coord) -> bool,
+) -> Vec<(&'static str, Vec<Coord>)> {
+    if !is_spiral(&chain) {
+        return vec![(TAG_LEAD, chain)];
+    }
+    let reversed: Vec<Coord> = chain.iter().rev().copied().collect();
+    for way in [&chain, &reversed] {
+        if !starts_a_lead(way[0]) {
+            continue;
+        }
+        let j = pad_start(way);
+        if j > 0 && is_spiral(&way[j..]) {
+            return vec![(TAG_LEAD, way[..=j].to_vec()), (TAG_PAD, way[j..].to_vec())];
+        }
+    }
+    vec![(TAG_PAD, chain)]
+}
+
+/// Index of the vertex where the spiral at the end of `points` starts: the vertex before the
+/// run of turns, back from the end, in the sense of the last turn.
+fn pad_start(points: &[Coord]) -> usize {
+    let turn = |i: usize| {
+        let (a, b) = (points[i] - points[i - 1], points[i + 1] - points[i]);
+        let cross = a.x * b.y - a.y * b.x;
+        if cross.abs() <= 1e-12 * a.x.hypot(a.y) * b.x.hypot(b.y) {
+            0.0
+        } else {
+            cross.signum()
+        }
+    };
+    let n = points.len();
+    if n < 3 {
+        return 0;
+    }
+    let sense = turn(n - 2);
+    let mut b = n - 2;
+    while b > 1 && turn(b - 1) == sense {
+        b -= 1;
+    }
+    b - 1
 }
 
 fn type_name(entity: &Entity) -> String {
