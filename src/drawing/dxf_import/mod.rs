@@ -17,7 +17,9 @@
 //!   always come from the geometry, so an edited drawing describes itself: levels rank the
 //!   notches' distal edges `x` (edges within 1 µm share a level), and the side is the notch
 //!   centre nearer `s = π·r_o` (side 0) or `s = 0` (side 1).
-//! - `SENSOR`: open LWPOLYLINEs, POLYLINEs or LINEs, U-trace pieces.
+//! - `SENSOR`: open LWPOLYLINEs, POLYLINEs or LINEs, U-trace pieces. Untagged LINEs here and
+//!   on `LEADS_PADS` (an exploded polyline) are chained end to end first (`loops::chain_open`);
+//!   a `LEADS_PADS` chain from a sensor end into a spiral is split into its lead and its pad.
 //! - `LEADS_PADS`: tagged entities say whether they are a lead or a pad. An untagged one is a
 //!   pad if it turns through at least a full turn (a spiral), else a lead.
 //! - Which sensor a trace belongs to: its tag; untagged, sensor 1 (index 1) if the drawing has
