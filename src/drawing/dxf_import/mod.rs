@@ -33,6 +33,7 @@
 //!
 //! Tagged traces keep their list order and piece order; untagged ones follow in file order.
 
+mod entity;
 mod error;
 mod loops;
 mod notches;
@@ -43,7 +44,7 @@ mod xdata;
 
 use std::collections::BTreeMap;
 
-use dxf::entities::{Entity, EntityType};
+use dxf::entities::EntityType;
 use dxf::XDataItem;
 use geo::{Coord, LineString, Polygon};
 
@@ -52,9 +53,10 @@ use crate::layout::Layout;
 use super::dxf_convention::{
     Layer, TAG_LAYOUT, TAG_LEAD, TAG_NOTCH, TAG_PAD, TAG_PARTING, TAG_SENSOR,
 };
+use entity::{bad, Reader};
 pub use error::DxfImportError;
 use notches::{notches, NotchPiece};
-use traces::{group_traces, is_spiral, TracePiece};
+use traces::{chain_trace_lines, group_traces, is_spiral, TracePiece};
 pub use units::{DrawingUnits, UnitsSource};
 pub use xdata::LayoutNumbers;
 use xdata::{dlw_xdata, int_at, is_tag, read_numbers};
@@ -327,267 +329,4 @@ pub fn read_dxf(bytes: &[u8], options: &ImportOptions) -> Result<ImportedDxf, Dx
         version: format!("{:?}", drawing.header.version),
         joined_outlines,
     })
-}
-
-/// Chains untagged SENSOR and LEADS_PADS LINEs end to end and adds them as traces: a chain on
-/// SENSOR is a U-trace; one on LEADS_PADS that starts at a sensor end (or the seam) and ends in
-/// a spiral is split into a lead and a pad, else it is a pad if it is a spiral and a lead if not.
-fn chain_trace_lines(
-    traces: &mut Vec<TracePiece>,
-    sensor_lines: Vec<Vec<Coord>>,
-    lead_pad_lines: Vec<Vec<Coord>>,
-    numbers: &LayoutNumbers,
-    tol: f64,
-) {
-    for chain in loops::chain_open(sensor_lines, tol) {
-        traces.push(TracePiece {
-            kind: TAG_SENSOR,
-            tag: None,
-            line: LineString::new(chain),
-        });
-    }
-    let sensor_ends: Vec<Coord> = traces
-        .iter()
-        .filter(|t| t.kind == TAG_SENSOR)
-        .flat_map(|t| [t.line.0[0], t.line.0[t.line.0.len() - 1]])
-        .collect();
-    let window = [
-        numbers.seam_s_mm,
-        numbers.seam_s_mm + numbers.circumference_mm,
-    ];
-    let starts_a_lead = |p: Coord| {
-        sensor_ends
-            .iter()
-            .any(|e| (e.x - p.x).hypot(e.y - p.y) <= tol)
-            || window.iter().any(|w| (p.y - w).abs() <= tol)
-    };
-    for chain in loops::chain_open(lead_pad_lines, tol) {
-        for (kind, points) in split_lead_pad(chain, &starts_a_lead) {
-            traces.push(TracePiece {
-                kind,
-                tag: None,
-                line: LineString::new(points),
-            });
-        }
-    }
-}
-
-/// A LEADS_PADS chain as (kind, points): a lead and a pad when one end starts a lead
-/// (`starts_a_lead`: a sensor end, or the seam) and the rest ends in a spiral. The pad is the
-/// spiral: from its inner end back to the first vertex that turns the other way (the lead meets
-/// the pad's outer corner with a turn against the spiral's sense).
-fn split_lead_pad(
-    chain: Vec<Coord>,
-    starts_a_lead: &dyn Fn(Coord) -> bool,
-) -> Vec<(&'static str, Vec<Coord>)> {
-    if !is_spiral(&chain) {
-        return vec![(TAG_LEAD, chain)];
-    }
-    let reversed: Vec<Coord> = chain.iter().rev().copied().collect();
-    for way in [&chain, &reversed] {
-        if !starts_a_lead(way[0]) {
-            continue;
-        }
-        let j = pad_start(way);
-        if j > 0 && is_spiral(&way[j..]) {
-            return vec![(TAG_LEAD, way[..=j].to_vec()), (TAG_PAD, way[j..].to_vec())];
-        }
-    }
-    vec![(TAG_PAD, chain)]
-}
-
-/// Index of the vertex where the spiral at the end of `points` starts: the vertex before the
-/// run of turns, back from the end, in the sense of the last turn.
-fn pad_start(points: &[Coord]) -> usize {
-    let turn = |i: usize| {
-        let (a, b) = (points[i] - points[i - 1], points[i + 1] - points[i]);
-        let cross = a.x * b.y - a.y * b.x;
-        if cross.abs() <= 1e-12 * a.x.hypot(a.y) * b.x.hypot(b.y) {
-            0.0
-        } else {
-            cross.signum()
-        }
-    };
-    let n = points.len();
-    if n < 3 {
-        return 0;
-    }
-    let sense = turn(n - 2);
-    let mut b = n - 2;
-    while b > 1 && turn(b - 1) == sense {
-        b -= 1;
-    }
-    b - 1
-}
-
-fn type_name(entity: &Entity) -> String {
-    let debug = format!("{:?}", entity.specific);
-    debug
-        .split(['(', ' ', '{'])
-        .next()
-        .unwrap_or("entity")
-        .to_uppercase()
-}
-
-fn handle(entity: &Entity) -> String {
-    format!("#{}", entity.common.handle.as_string())
-}
-
-fn bad(entity: &Entity, layer: Layer, problem: String) -> DxfImportError {
-    DxfImportError::BadPolyline {
-        entity: type_name(entity),
-        handle: handle(entity),
-        layer: layer.name(),
-        problem,
-    }
-}
-
-/// Reads entity geometry in mm.
-struct Reader {
-    /// mm per drawing unit.
-    k: f64,
-    /// Join tolerance and arc chord error (mm).
-    tol: f64,
-}
-
-impl Reader {
-    fn at(&self, x: f64, y: f64) -> Coord {
-        Coord {
-            x: x * self.k,
-            y: y * self.k,
-        }
-    }
-
-    /// [`Self::shape`], refusing coordinates that are not finite numbers.
-    fn points(
-        &self,
-        entity: &Entity,
-        layer: Layer,
-        expected: &'static str,
-        arcs: bool,
-    ) -> Result<(Vec<Coord>, bool), DxfImportError> {
-        let (points, closed) = self.shape(entity, layer, expected, arcs)?;
-        if let Some(p) = points
-            .iter()
-            .find(|p| !(p.x.is_finite() && p.y.is_finite()))
-        {
-            return Err(bad(
-                entity,
-                layer,
-                format!("a vertex at ({}, {}) is not a finite number", p.x, p.y),
-            ));
-        }
-        Ok((points, closed))
-    }
-
-    /// The vertices (mm) of an LWPOLYLINE or POLYLINE (and whether it is closed), of a LINE, or
-    /// of an ARC flattened (when `arcs`).
-    fn shape(
-        &self,
-        entity: &Entity,
-        layer: Layer,
-        expected: &'static str,
-        arcs: bool,
-    ) -> Result<(Vec<Coord>, bool), DxfImportError> {
-        let mirrored = || {
-            bad(
-                entity,
-                layer,
-                "mirrored (extrusion −Z); explode or mirror it back".into(),
-            )
-        };
-        let bulge = |b: f64, x: f64, y: f64| {
-            bad(
-                entity,
-                layer,
-                format!("arc segment (bulge {b}) at x = {:.4} mm, s = {:.4} mm; dlw reads straight polyline segments only (draw arcs as ARC entities)", x * self.k, y * self.k),
-            )
-        };
-        match &entity.specific {
-            EntityType::LwPolyline(p) => {
-                if p.extrusion_direction.z < 0.0 {
-                    return Err(mirrored());
-                }
-                if let Some(v) = p.vertices.iter().find(|v| v.bulge != 0.0) {
-                    return Err(bulge(v.bulge, v.x, v.y));
-                }
-                let points = p.vertices.iter().map(|v| self.at(v.x, v.y)).collect();
-                Ok((points, p.is_closed()))
-            }
-            EntityType::Polyline(p) => {
-                if p.normal.z < 0.0 {
-                    return Err(mirrored());
-                }
-                if p.is_3d_polygon_mesh() || p.is_polyface_mesh() {
-                    return Err(bad(
-                        entity,
-                        layer,
-                        "a polygon mesh or polyface, not a 2D outline".into(),
-                    ));
-                }
-                if let Some(v) = p.vertices().find(|v| v.bulge != 0.0) {
-                    return Err(bulge(v.bulge, v.location.x, v.location.y));
-                }
-                let points = p
-                    .vertices()
-                    .map(|v| self.at(v.location.x, v.location.y))
-                    .collect();
-                Ok((points, p.is_closed()))
-            }
-            EntityType::Line(l) => Ok((
-                vec![self.at(l.p1.x, l.p1.y), self.at(l.p2.x, l.p2.y)],
-                false,
-            )),
-            EntityType::Arc(a) if arcs => {
-                let r = a.radius * self.k;
-                let c = self.at(a.center.x, a.center.y);
-                // An arc seen from below (extrusion −Z) is the mirror image in x of its
-                // object-coordinate form.
-                let flat = if a.normal.z < 0.0 {
-                    flatten_mirrored(c, r, a.start_angle, a.end_angle, self.tol)
-                } else {
-                    loops::flatten_arc(c, r, a.start_angle, a.end_angle, self.tol)
-                };
-                let Some(mut points) = flat else {
-                    return Err(bad(
-                        entity,
-                        layer,
-                        format!(
-                            "an arc of radius {r} mm from {}° to {}° cannot be flattened within {} mm in at most {} chords",
-                            a.start_angle,
-                            a.end_angle,
-                            self.tol,
-                            loops::MAX_ARC_SEGMENTS
-                        ),
-                    ));
-                };
-                points.dedup();
-                Ok((points, false))
-            }
-            _ => Err(DxfImportError::WrongEntity {
-                entity: type_name(entity),
-                handle: handle(entity),
-                layer: layer.name(),
-                expected,
-            }),
-        }
-    }
-}
-
-/// An arc whose extrusion is −Z: flattened in its object frame (centre `(−cx, cy)`), then
-/// mirrored in x into the drawing.
-fn flatten_mirrored(
-    c: Coord,
-    r: f64,
-    start_deg: f64,
-    end_deg: f64,
-    tol: f64,
-) -> Option<Vec<Coord>> {
-    let points = loops::flatten_arc(Coord { x: -c.x, y: c.y }, r, start_deg, end_deg, tol)?;
-    Some(
-        points
-            .into_iter()
-            .map(|p| Coord { x: -p.x, y: p.y })
-            .collect(),
-    )
 }
