@@ -17,6 +17,7 @@
 //! ```
 
 use crate::design::Design;
+use crate::drawing::Provenance;
 use crate::layout::Layout;
 use crate::machine::MachineProfile;
 use crate::post::{post_for, write_program, PostError};
@@ -65,7 +66,24 @@ pub fn make_job(
     profile: &MachineProfile,
     program_file: &str,
 ) -> Result<Job, JobError> {
-    let plan = plan(design, layout, sets, profile, &PlanOptions::default())?;
+    make_job_from(design, layout, sets, profile, program_file, None)
+}
+
+/// [`make_job`] for a layout read from a drawing: the program header and the setup sheet say
+/// where it came from (`provenance`).
+///
+/// # Errors
+/// [`JobError`] from the planner or the post-processor; nothing is written here.
+pub fn make_job_from(
+    design: &Design,
+    layout: &Layout,
+    sets: &ProcessSets,
+    profile: &MachineProfile,
+    program_file: &str,
+    provenance: Option<Provenance>,
+) -> Result<Job, JobError> {
+    let mut plan = plan(design, layout, sets, profile, &PlanOptions::default())?;
+    plan.provenance = provenance;
     let post = post_for(profile.dialect);
     let program = write_program(&plan, profile, post.as_ref())?;
     let program_file = program_file.to_string();

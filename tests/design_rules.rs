@@ -239,7 +239,7 @@ fn import_dxf_refuses_bad_drawings_with_one_message() {
     assert!(!out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
-        stderr.starts_with("dlw: error: reading ") && stderr.contains("not a readable DXF"),
+        stderr.starts_with("dlw: error: reading ") && stderr.contains("not a DXF file"),
         "{stderr}"
     );
 }

@@ -439,11 +439,9 @@ fn the_harness_catches_panics_and_hoarding() {
 
 /// Found by these tests and by `cargo fuzz run dxf_import` (docs/fuzzing.md): the `dxf` crate
 /// (0.6.2) panics in its header reader on a date out of chrono's range, so `dlw import-dxf`
-/// panics (exit 101) on this 100-byte file instead of refusing it. The fix belongs in
-/// `src/drawing/dxf_import.rs` (catch the panic around `dxf::Drawing::load` and report a broken
-/// file), which is outside this change; un-ignore this test with it.
+/// panicked (exit 101) on this 100-byte file instead of refusing it. The importer now catches
+/// the reader's panic and reports a broken file.
 #[test]
-#[ignore = "dxf 0.6.2 panics on an out-of-range header date; fix in src/drawing/dxf_import.rs"]
 fn a_header_date_out_of_range_is_refused_not_a_panic() {
     for value in ["1e308", "1e10"] {
         let dxf = format!(

@@ -1,24 +1,144 @@
-//! `dlw import-dxf FILE`: reads a drawing in dlw's DXF convention and summarizes it.
+//! `dlw import-dxf FILE [--design DESIGN] [--units mm|um|in] [--join-tolerance MM]`: reads a
+//! drawing in dlw's DXF convention, as CAD tools save it, and summarizes it; with a design, also
+//! checks it against the design and lists every difference from the design's own layout.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use anyhow::Context;
-use dlw::drawing::layout_from_dxf;
-use dlw::rules::{self, RulesError};
+use anyhow::{bail, Context};
+use dlw::design::DesignFile;
+use dlw::drawing::{
+    read_dxf, DrawingUnits, ImportOptions, ImportedDxf, LayoutNumbers, Provenance,
+    DEFAULT_JOIN_TOLERANCE_MM,
+};
+use dlw::layout::Layout;
+use dlw::rules::{self, Checked, RulesError, Warning};
+
+/// How to read a drawing that does not say everything itself (shared with `dlw program`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct DrawingOptions {
+    /// The drawing's unit when it has no $INSUNITS (R12 files cannot store it): mm, um or in.
+    #[arg(long, value_name = "mm|um|in", value_parser = parse_units)]
+    pub units: Option<DrawingUnits>,
+    /// Ends of LINEs and ARCs on NOTCHES closer than this are joined into one outline (mm);
+    /// also the chord error of arcs.
+    #[arg(long, value_name = "MM", default_value_t = DEFAULT_JOIN_TOLERANCE_MM)]
+    join_tolerance: f64,
+}
+
+fn parse_units(s: &str) -> Result<DrawingUnits, String> {
+    DrawingUnits::from_name(s).ok_or_else(|| format!("unknown unit {s:?}: use mm, um or in"))
+}
+
+/// A drawing read, checked against its design.
+pub(crate) struct Drawing {
+    /// The layout to cut: the drawing's geometry with the design's kerf and trace width.
+    pub layout: Layout,
+    /// Where it came from, what it derives and how it differs from the design's layout.
+    pub provenance: Provenance,
+    /// Warnings for the joint as drawn.
+    pub warnings: Vec<Warning>,
+    /// What the reader found.
+    pub imported: ImportedDxf,
+}
+
+/// Reads `path` with `options`; prints a warning per layer whose entities were ignored.
+fn read(
+    path: &Path,
+    options: &DrawingOptions,
+    numbers: Option<LayoutNumbers>,
+) -> anyhow::Result<(ImportedDxf, Vec<u8>)> {
+    let tol = options.join_tolerance;
+    if !(tol.is_finite() && tol > 0.0 && tol <= 0.1) {
+        bail!("--join-tolerance {tol} mm must be greater than 0 and at most 0.1 mm");
+    }
+    let bytes =
+        std::fs::read(path).with_context(|| format!("cannot read drawing {}", path.display()))?;
+    let imported = read_dxf(
+        &bytes,
+        &ImportOptions {
+            units: options.units,
+            numbers,
+            join_tolerance_mm: tol,
+        },
+    )
+    .with_context(|| format!("reading {}", path.display()))?;
+    for w in imported.ignored_warnings() {
+        eprintln!("warning: {}: {w}", path.display());
+    }
+    Ok((imported, bytes))
+}
+
+/// Reads the drawing at `path` for the checked design `checked` and checks it against the
+/// design: the design gives the layout's numbers when the drawing lost its XDATA, and its kerf,
+/// trace width and clearance are the ones used.
+///
+/// # Errors
+/// Reading errors, and a [`RulesError`] listing every rule the drawing breaks.
+pub(crate) fn read_for_design(
+    path: &Path,
+    options: &DrawingOptions,
+    checked: &Checked,
+) -> anyhow::Result<Drawing> {
+    let design = &checked.design;
+    let clearance_mm = design.file.fabrication.clearance_mm();
+    let numbers = LayoutNumbers::of(&checked.layout, clearance_mm);
+    let (imported, bytes) = read(path, options, Some(numbers))?;
+    let file_name = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let provenance = Provenance::new(&file_name, &bytes, &imported, &checked.layout);
+    let mut layout = imported.layout.clone();
+    layout.kerf_mm = checked.layout.kerf_mm;
+    layout.trace_width_mm = checked.layout.trace_width_mm;
+    let report = rules::check_drawing(design, &layout, clearance_mm);
+    if !report.errors.is_empty() {
+        return Err(RulesError {
+            name: design.file.name.clone(),
+            violations: report.errors,
+        })
+        .with_context(|| format!("drawing {} checked against the design", path.display()));
+    }
+    let provenance = match &report.derived {
+        Some(d) => provenance.with_derived(d.summary(design)),
+        None => provenance,
+    };
+    Ok(Drawing {
+        layout,
+        provenance,
+        warnings: report.warnings,
+        imported,
+    })
+}
 
 /// Arguments of `dlw import-dxf`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// DXF drawing (mm) in dlw's layer convention, e.g. written by `dlw draw --dxf` and edited.
+    /// DXF drawing in dlw's layer convention, e.g. written by `dlw draw --dxf` and edited.
     dxf: PathBuf,
+    /// Check the drawing against this design (and take the layout's numbers from it when the
+    /// drawing lost dlw's XDATA).
+    #[arg(long, value_name = "DESIGN")]
+    design: Option<PathBuf>,
+    #[command(flatten)]
+    drawing: DrawingOptions,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let bytes = std::fs::read(&args.dxf)
-        .with_context(|| format!("cannot read drawing {}", args.dxf.display()))?;
-    let imported =
-        layout_from_dxf(&bytes).with_context(|| format!("reading {}", args.dxf.display()))?;
-    let layout = &imported.layout;
+    let (imported, layout, clearance_mm, drawing) = match &args.design {
+        Some(design) => {
+            let checked = rules::check_file(DesignFile::read(design)?)?;
+            let d = read_for_design(&args.dxf, &args.drawing, &checked)?;
+            let clearance = checked.design.file.fabrication.clearance_mm();
+            (d.imported.clone(), d.layout.clone(), clearance, Some(d))
+        }
+        None => {
+            let (imported, _) = read(&args.dxf, &args.drawing, None)?;
+            let layout = imported.layout.clone();
+            let clearance = imported.clearance_mm;
+            (imported, layout, clearance, None)
+        }
+    };
     println!("{} (read from {})", layout.name, args.dxf.display());
     let counts: Vec<String> = imported
         .layer_counts
@@ -26,6 +146,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .map(|(layer, n)| format!("{layer} {n}"))
         .collect();
     println!("  entities per layer  {}", counts.join(", "));
+    let (units, _) = imported.units;
+    println!(
+        "  file                AutoCAD {}, read in {}",
+        imported.version,
+        units.name()
+    );
     let pieces: usize = layout.notches.iter().map(|n| n.outline.len()).sum();
     println!(
         "  features            {} notches ({pieces} pieces), {} sensor traces, {} leads, {} pads, {} parting pieces",
@@ -55,12 +181,28 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             imported.untagged
         );
     }
-    let violations = rules::check_layout(layout, imported.clearance_mm);
-    if violations.is_empty() {
+    if imported.joined_outlines > 0 {
         println!(
-            "  design rules        clearance {:.3} mm kept everywhere",
-            imported.clearance_mm
+            "  joined outlines     {} notch outlines joined from LINEs, ARCs or open polylines",
+            imported.joined_outlines
         );
+    }
+    if let Some(d) = &drawing {
+        for w in &d.warnings {
+            eprintln!("warning: {w}");
+        }
+        for line in d.provenance.lines() {
+            println!("  {line}");
+        }
+        println!(
+            "  design rules        kept on the drawing (clearance {clearance_mm:.3} mm, kerf {} mm)",
+            layout.kerf_mm
+        );
+        return Ok(());
+    }
+    let violations = rules::check_layout(&layout, clearance_mm);
+    if violations.is_empty() {
+        println!("  design rules        clearance {clearance_mm:.3} mm kept everywhere");
         Ok(())
     } else {
         Err(RulesError {

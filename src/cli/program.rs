@@ -5,13 +5,15 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
 use dlw::design::{Design, DesignFile};
-use dlw::drawing::layout_from_dxf;
-use dlw::job::{make_job, Job};
+use dlw::drawing::Provenance;
+use dlw::job::{make_job_from, Job};
 use dlw::layout::Layout;
 use dlw::machine::{MachineLibrary, MachineProfile};
 use dlw::output::write_all_atomic;
 use dlw::process::{ProcessLibrary, ProcessSets};
-use dlw::rules::{self, RulesError, Warning};
+use dlw::rules::{self, Warning};
+
+use super::import_dxf::{read_for_design, DrawingOptions};
 
 /// Arguments of `dlw program`.
 #[derive(Debug, clap::Args)]
@@ -23,8 +25,10 @@ pub struct Args {
     #[arg(long = "design", value_name = "DESIGN", conflicts_with = "design")]
     design_flag: Option<PathBuf>,
     /// Take the layout from this DXF (dlw's layer convention, e.g. a drawing from `dlw draw`
-    /// that a designer edited) instead of laying the design out; the design still gives the
-    /// radii, materials and process sets.
+    /// that a designer edited and saved again) instead of laying the design out. The drawing
+    /// must be of the design and keep every design rule; the design gives the radii, kerf,
+    /// trace width, materials and process sets, and the program header and setup sheet name
+    /// the drawing and list how it differs from the design's own layout.
     #[arg(long, value_name = "DRAWING.dxf")]
     from_dxf: Option<PathBuf>,
     /// Machine profile: a name looked for in `machines/` next to the design, then among the
@@ -37,6 +41,9 @@ pub struct Args {
     /// Also write the operator's setup sheet (Markdown) here.
     #[arg(long, value_name = "FILE.md")]
     sheet: Option<PathBuf>,
+    /// How to read the `--from-dxf` drawing.
+    #[command(flatten)]
+    drawing: DrawingOptions,
 }
 
 /// What a job is made from, resolved and checked.
@@ -48,48 +55,27 @@ pub(crate) struct Inputs {
     pub warnings: Vec<Warning>,
     /// The clearance the layout was checked with (mm).
     pub clearance_mm: f64,
+    /// The drawing the layout was read from (`--from-dxf`).
+    pub provenance: Option<Provenance>,
 }
 
-/// Reads and checks the design (every design rule), takes its layout or the DXF's, finds the
-/// process sets and the machine profile.
+/// Reads and checks the design (every design rule), takes its layout or the DXF's (checked
+/// against the design), finds the process sets and the machine profile.
 pub(crate) fn resolve_inputs(
     design_path: &Path,
-    from_dxf: Option<&Path>,
+    from_dxf: Option<(&Path, &DrawingOptions)>,
     machine: Option<&str>,
 ) -> anyhow::Result<Inputs> {
     let checked = rules::check_file(DesignFile::read(design_path)?)?;
-    let design = checked.design;
-    let mut clearance_mm = design.file.fabrication.clearance_mm();
-    let layout = match from_dxf {
-        None => checked.layout,
-        Some(dxf) => {
-            let bytes = std::fs::read(dxf)
-                .with_context(|| format!("cannot read drawing {}", dxf.display()))?;
-            let imported =
-                layout_from_dxf(&bytes).with_context(|| format!("reading {}", dxf.display()))?;
-            let layout = imported.layout;
-            let r_design = design.file.outer_radius_mm;
-            if (layout.outer_radius_mm - r_design).abs() > 1e-9 {
-                bail!(
-                    "drawing {} is for r_o = {} mm but design {} has outer_radius_mm = {}",
-                    dxf.display(),
-                    layout.outer_radius_mm,
-                    design_path.display(),
-                    r_design
-                );
-            }
-            clearance_mm = imported.clearance_mm;
-            let violations = rules::check_layout(&layout, clearance_mm);
-            if !violations.is_empty() {
-                return Err(RulesError {
-                    name: layout.name.clone(),
-                    violations,
-                })
-                .with_context(|| format!("drawing {}", dxf.display()));
-            }
-            layout
+    let clearance_mm = checked.design.file.fabrication.clearance_mm();
+    let (layout, warnings, provenance) = match from_dxf {
+        None => (checked.layout, checked.warnings, None),
+        Some((dxf, options)) => {
+            let drawing = read_for_design(dxf, options, &checked)?;
+            (drawing.layout, drawing.warnings, Some(drawing.provenance))
         }
     };
+    let design = checked.design;
     let sets = ProcessLibrary::beside(design_path).resolve(&design.file.process)?;
     let profile = MachineLibrary::beside(design_path).find(machine)?;
     Ok(Inputs {
@@ -97,31 +83,36 @@ pub(crate) fn resolve_inputs(
         layout,
         sets,
         profile,
-        warnings: checked.warnings,
+        warnings,
         clearance_mm,
+        provenance,
     })
 }
 
 /// Makes the job, naming the program `program_file` on the sheet.
 pub(crate) fn job(inputs: &Inputs, program_file: &str) -> anyhow::Result<Job> {
-    let job = make_job(
+    let job = make_job_from(
         &inputs.design,
         &inputs.layout,
         &inputs.sets,
         &inputs.profile,
         program_file,
+        inputs.provenance.clone(),
     )
     .with_context(|| format!("planning the laser job for {:?}", inputs.design.file.name))?;
     Ok(job)
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if args.from_dxf.is_none() && args.drawing.units.is_some() {
+        bail!("--units is for reading a drawing: give it with --from-dxf DRAWING.dxf");
+    }
     let Some(design_path) = args.design.or(args.design_flag) else {
         bail!("give the design file: dlw program DESIGN -o FILE (or --from-dxf DRAWING.dxf --design DESIGN)");
     };
     let inputs = resolve_inputs(
         &design_path,
-        args.from_dxf.as_deref(),
+        args.from_dxf.as_deref().map(|p| (p, &args.drawing)),
         args.machine.as_deref(),
     )?;
     for w in &inputs.warnings {

@@ -6,6 +6,7 @@
 mod dxf_convention;
 mod dxf_export;
 mod dxf_import;
+mod provenance;
 
 /// SVG drawings for people: the unrolled layout and the cross-section through a notch.
 pub mod svg;
@@ -15,4 +16,9 @@ pub use dxf_convention::{Layer, APP_ID};
 /// Writing a layout as an AutoCAD DXF.
 pub use dxf_export::{layout_to_dxf, DxfExportError};
 /// Reading a DXF in that convention back into a layout.
-pub use dxf_import::{layout_from_dxf, DxfImportError, ImportedDxf};
+pub use dxf_import::{
+    layout_from_dxf, read_dxf, DrawingUnits, DxfImportError, ImportOptions, ImportedDxf,
+    LayoutNumbers, UnitsSource, DEFAULT_JOIN_TOLERANCE_MM, DLW_LAYERS_NOT_READ,
+};
+/// Where a program's layout came from when it was read from a drawing.
+pub use provenance::{sha256_hex, Provenance};

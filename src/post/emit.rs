@@ -80,6 +80,8 @@ pub fn header_lines(plan: &Plan, profile: &MachineProfile, post: &dyn Post) -> V
             "operation", "set", "wl nm", "power mW", "speed mm/s", "pulse kHz", "pulse fs", "passes", "Z step mm"
         ),
     ];
+    // Where the layout came from, after the design's name and checksum (`--from-dxf` only).
+    h.splice(2..2, plan.provenance.iter().flat_map(|p| p.lines()));
     for op in &plan.operations {
         let p = &op.process;
         h.push(format!(

@@ -21,6 +21,7 @@ use geo::{ConvexHull, Coord, LineString, Polygon};
 
 use crate::layout::Layout;
 
+use super::notch_layout::notch_label;
 use super::parts::{closest_on_cylinder, join_pieces, polyline_length, sub_polyline, Part};
 use super::Violation;
 
@@ -88,14 +89,7 @@ fn cuts(layout: &Layout) -> Vec<Part> {
     let mut cuts: Vec<Part> = layout
         .notches
         .iter()
-        .map(|n| {
-            let name = if bsn {
-                format!("notch {} (side {})", n.level + 1, n.side)
-            } else {
-                format!("notch {}", n.level + 1)
-            };
-            Part::from_polygons(&n.outline, &name)
-        })
+        .map(|n| Part::from_polygons(&n.outline, &notch_label(n, bsn)))
         .collect();
     cuts.push(Part::from_lines(&layout.parting, |_| {
         "the parting cut".into()

@@ -27,7 +27,9 @@
 
 mod clearance;
 mod dimensions;
+mod drawing;
 mod length;
+mod notch_layout;
 mod pads;
 mod parts;
 mod section;
@@ -38,8 +40,12 @@ mod wall;
 use crate::design::{Design, DesignFile};
 use crate::layout::Layout;
 
+/// A drawing checked against its design, and the joint's numbers as drawn.
+pub use drawing::{check_drawing, Derived, DrawingReport};
 /// How far the joint length may differ from the notch pattern (mm).
 pub use length::LENGTH_TOLERANCE_MM;
+/// How a notch is named in messages.
+pub(crate) use notch_layout::notch_label;
 /// A broken design rule, and a warning.
 pub use violation::{Violation, Warning};
 /// The tube wall against the cutting sets' `min_wall_mm`.
@@ -111,10 +117,11 @@ pub fn check_parameters(file: &DesignFile) -> Vec<Violation> {
     out
 }
 
-/// The clearance rules on a layout, with `clearance_mm` edge to edge (for a design,
+/// The notch rules and the clearance rules on a layout, with `clearance_mm` edge to edge (for a design,
 /// `Fabrication::clearance_mm()`). Works on any layout, generated or read from a DXF.
 pub fn check_layout(layout: &Layout, clearance_mm: f64) -> Vec<Violation> {
     let mut out = Vec::new();
+    notch_layout::check(layout, &mut out);
     clearance::check(layout, clearance_mm, &mut out);
     out
 }

@@ -136,6 +136,58 @@ pub enum Violation {
         /// The clearance in force (mm).
         required_mm: f64,
     },
+    /// A notch reaches past the free end or the parting line.
+    #[error("{what} reaches x = {x_mm:.4} mm, {past_mm:.4} mm past {beyond} (every cut must lie inside the joint, between the free end x = 0 and the parting line x = {length_mm:.4} mm)")]
+    OutsideJoint {
+        /// The notch, e.g. `notch 1`.
+        what: String,
+        /// Its farthest point, x (mm).
+        x_mm: f64,
+        /// The edge it passes, e.g. `the free end x = 0`.
+        beyond: String,
+        /// How far past (mm).
+        past_mm: f64,
+        /// The joint's length, free end to parting line (mm).
+        length_mm: f64,
+    },
+    /// Two notches touch or overlap.
+    #[error("{what} overlaps {other} at x = {x_mm:.4} mm, s = {s_mm:.4} mm: notches must be separate cuts with a web wider than the kerf between them")]
+    NotchOverlap {
+        /// One notch.
+        what: String,
+        /// The other.
+        other: String,
+        /// Where, x (mm).
+        x_mm: f64,
+        /// Where, s (mm).
+        s_mm: f64,
+    },
+    /// The web between two notches is no wider than the kerf.
+    #[error("the web between {what} and {other} at x = {x_mm:.4} mm, s = {s_mm:.4} mm is {web_mm:.4} mm wide; it must be wider than the kerf kerf_mm = {kerf_mm}")]
+    NotchWeb {
+        /// One notch.
+        what: String,
+        /// The other.
+        other: String,
+        /// Where, x (mm).
+        x_mm: f64,
+        /// Where, s (mm).
+        s_mm: f64,
+        /// The web (mm).
+        web_mm: f64,
+        /// The kerf (mm).
+        kerf_mm: f64,
+    },
+    /// A drawing does not match the design it is to be cut with.
+    #[error("the drawing's {quantity} is {drawing} but the design's is {design}: this drawing is not of this design")]
+    DrawingMismatch {
+        /// What differs, e.g. `notch style`.
+        quantity: &'static str,
+        /// As drawn.
+        drawing: String,
+        /// As designed.
+        design: String,
+    },
     /// The cross-section itself is not physical (caught by the geometry crate).
     #[error("{0}")]
     Geometry(GeometryError),

@@ -92,6 +92,9 @@ pub fn setup_sheet(plan: &Plan, ctx: &SheetContext<'_>) -> String {
         profile.source,
         plan.design_checksum
     ));
+    if let Some(p) = &plan.provenance {
+        w(p.markdown());
+    }
     w(format!(
         "One fixturing runs everything: the sensor (set `{}`), then the notches (set `{}`), then the parting cut (set `{}`). Estimated time {}.",
         set_name(plan, OperationKind::Sensor),

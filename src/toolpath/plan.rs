@@ -208,6 +208,8 @@ pub struct Plan {
     pub operations: Vec<Operation>,
     /// Rapid travel per operation, in operation order.
     pub travel: Vec<Travel>,
+    /// The drawing the layout was read from, if it was (`--from-dxf`).
+    pub provenance: Option<crate::drawing::Provenance>,
 }
 
 /// Whether a move has the beam on.

@@ -155,6 +155,7 @@ pub fn plan(
         home,
         operations,
         travel,
+        provenance: None,
     };
     check::check_plan(&plan, layout, profile)?;
     Ok(plan)
