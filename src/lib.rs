@@ -26,6 +26,7 @@
 pub mod design;
 pub mod drawing;
 pub mod fixed;
+pub mod fluoro;
 pub mod job;
 pub mod layout;
 pub mod machine;
