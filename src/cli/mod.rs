@@ -7,6 +7,8 @@ mod build;
 mod draw;
 mod estimate;
 mod estimator_config;
+mod fluoro;
+mod fluoro_render;
 mod import_dxf;
 mod inspect;
 mod program;
@@ -39,6 +41,10 @@ enum Command {
     EstimatorConfig(estimator_config::Args),
     /// Run the runtime estimator over a recording and report its error.
     Estimate(estimate::Args),
+    /// Measure the joint angle in fluoroscopy frames (the phantom's ground truth).
+    Fluoro(fluoro::Args),
+    /// Render synthetic fluoroscopy frames of a recording's angle, to try `dlw fluoro`.
+    FluoroRender(fluoro_render::Args),
 }
 
 /// Runs the parsed command.
@@ -52,5 +58,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Simulate(args) => simulate::run(args),
         Command::EstimatorConfig(args) => estimator_config::run(args),
         Command::Estimate(args) => estimate::run(args),
+        Command::Fluoro(args) => fluoro::run(args),
+        Command::FluoroRender(args) => fluoro_render::run(args),
     }
 }

@@ -13,10 +13,12 @@
 //! - [`component`]: the largest connected component of the mask (imageproc) and its moments;
 //! - [`ellipse`]: the second-moment ellipse of that component and its major axis's angle;
 //! - [`analyze`]: one frame from pixels to a fitted pin, or the reason it has none;
+//! - [`folder`]: every frame of a folder, checked against the first and analyzed;
 //! - [`unwrap`], [`smooth`], [`baseline`]: the series across frames;
 //! - [`series`]: all of it over a sequence of frames;
 //! - [`csv`]: `angles.csv`, written and read back (by `dlw estimate --truth`);
 //! - [`overlay`]: frames with the fitted ellipse and axis drawn on them, for a person to check;
+//! - [`staged`]: output folders written whole or not at all;
 //! - [`render`]: synthetic frames of a pin at known angles (tests, benchmarks, `dlw
 //!   fluoro-render`).
 //!
@@ -30,11 +32,13 @@ pub mod component;
 pub mod crop;
 pub mod csv;
 pub mod ellipse;
+pub mod folder;
 pub mod frames;
 pub mod overlay;
 pub mod render;
 pub mod series;
 pub mod smooth;
+pub mod staged;
 pub mod threshold;
 pub mod unwrap;
 
@@ -52,14 +56,18 @@ pub use crop::Crop;
 pub use csv::{angles_csv_bytes, parse_angles, read_angles, TruthAngles, ANGLES_HEADER};
 /// The second-moment ellipse.
 pub use ellipse::Ellipse;
+/// A folder of frames analyzed in name order.
+pub use folder::{analyze_folder, FolderFits};
 /// Frames on disk.
 pub use frames::{list_frames, read_frame, Frame};
 /// Drawing the fit on a frame, and the overlay folder.
-pub use overlay::{draw_overlay, OverlayFolder};
+pub use overlay::draw_overlay;
+/// A folder written whole or not at all.
+pub use staged::StagedFolder;
 /// Synthetic frames.
 pub use render::{render_frame, PinScene};
 /// A sequence of frames to a series of angles.
-pub use series::{Row, Series};
+pub use series::{Row, Series, SeriesSettings};
 /// The centred moving average.
 pub use smooth::moving_average;
 /// Otsu or a fixed threshold.
@@ -194,14 +202,14 @@ pub enum FluoroError {
         /// The window (s).
         baseline_s: f64,
     },
-    /// The overlay folder exists and is not empty.
-    #[error("overlay folder {path} already exists and is not empty (pass --force to replace it)")]
-    OverlayExists {
+    /// An output folder exists and is not empty.
+    #[error("output folder {path} already exists and is not empty (pass --force to replace it)")]
+    FolderExists {
         /// The folder.
         path: PathBuf,
     },
-    /// An overlay image could not be encoded.
-    #[error("cannot encode overlay {name}: {message}")]
+    /// An image could not be encoded.
+    #[error("cannot encode {name}: {message}")]
     Encode {
         /// The overlay's file name.
         name: String,

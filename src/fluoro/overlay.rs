@@ -6,10 +6,8 @@
 //! skipped, e.g. too round) and its major axis across the full ellipse (yellow). No text is
 //! drawn (imageproc's text needs a font file); the numbers are in `angles.csv`.
 //!
-//! The overlay folder is built under a temporary name beside the destination and renamed into
-//! place by [`OverlayFolder::finish`], so a failed run leaves no partial folder.
-
-use std::path::{Path, PathBuf};
+//! The overlay folder is written through a [`StagedFolder`](super::StagedFolder), so a failed
+//! run leaves no partial folder.
 
 use image::{Rgb, RgbImage};
 use imageproc::drawing::{draw_hollow_polygon_mut, draw_hollow_rect_mut, draw_line_segment_mut};
@@ -18,7 +16,7 @@ use imageproc::rect::Rect;
 
 use super::analyze::FrameFit;
 use super::frames::Frame;
-use super::{Crop, FluoroError};
+use super::Crop;
 
 const BLUE: Rgb<u8> = Rgb([60, 120, 255]);
 const GREEN: Rgb<u8> = Rgb([40, 220, 40]);
@@ -82,101 +80,4 @@ pub fn draw_overlay(frame: &Frame, fit: &FrameFit, crop: Crop) -> RgbImage {
         }
     }
     img
-}
-
-/// An overlay folder being written: frames go into a staging folder beside the destination,
-/// which takes the destination's place in [`finish`](Self::finish). Dropped unfinished, the
-/// staging folder is removed.
-#[derive(Debug)]
-pub struct OverlayFolder {
-    dest: PathBuf,
-    staging: tempfile::TempDir,
-}
-
-fn parent_of(path: &Path) -> &Path {
-    match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    }
-}
-
-impl OverlayFolder {
-    /// Starts an overlay folder at `dest`; an existing non-empty `dest` is replaced only with
-    /// `replace`.
-    ///
-    /// # Errors
-    /// [`FluoroError::OverlayExists`], or [`FluoroError::Write`] when the staging folder cannot
-    /// be created.
-    pub fn create(dest: &Path, replace: bool) -> Result<Self, FluoroError> {
-        let occupied = match std::fs::read_dir(dest) {
-            Ok(mut entries) => entries.next().is_some(),
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
-            Err(_) => true,
-        };
-        if occupied && !replace {
-            return Err(FluoroError::OverlayExists {
-                path: dest.to_path_buf(),
-            });
-        }
-        let staging = tempfile::Builder::new()
-            .prefix(".dlw-staging-")
-            .tempdir_in(parent_of(dest))
-            .map_err(|source| FluoroError::Write {
-                path: dest.to_path_buf(),
-                source,
-            })?;
-        Ok(Self {
-            dest: dest.to_path_buf(),
-            staging,
-        })
-    }
-
-    /// Writes one overlay as `name` (a PNG file name) into the staging folder.
-    ///
-    /// # Errors
-    /// [`FluoroError::Encode`] or [`FluoroError::Write`].
-    pub fn add(&self, name: &str, image: &RgbImage) -> Result<(), FluoroError> {
-        let path = self.staging.path().join(name);
-        image
-            .save_with_format(&path, image::ImageFormat::Png)
-            .map_err(|e| FluoroError::Encode {
-                name: name.to_string(),
-                message: e.to_string(),
-            })
-    }
-
-    /// Moves the finished folder into place, replacing an old one.
-    ///
-    /// # Errors
-    /// [`FluoroError::Write`]; the old folder is then as it was.
-    pub fn finish(self) -> Result<(), FluoroError> {
-        let io = |source| FluoroError::Write {
-            path: self.dest.clone(),
-            source,
-        };
-        // Temporary folders are created private (0700); an output folder is an ordinary one.
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            std::fs::set_permissions(self.staging.path(), std::fs::Permissions::from_mode(0o755))
-                .map_err(io)?;
-        }
-        if std::fs::symlink_metadata(&self.dest).is_err() {
-            std::fs::rename(self.staging.path(), &self.dest).map_err(io)?;
-            let _ = self.staging.keep();
-            return Ok(());
-        }
-        let old = tempfile::Builder::new()
-            .prefix(".dlw-replaced-")
-            .tempdir_in(parent_of(&self.dest))
-            .map_err(io)?;
-        let aside = old.path().join("old");
-        std::fs::rename(&self.dest, &aside).map_err(io)?;
-        if let Err(source) = std::fs::rename(self.staging.path(), &self.dest) {
-            let _ = std::fs::rename(&aside, &self.dest);
-            return Err(io(source));
-        }
-        let _ = self.staging.keep();
-        Ok(())
-    }
 }
