@@ -2,9 +2,10 @@
 //! component → second-moment ellipse.
 //!
 //! A frame with no plausible pin is reported and skipped, not guessed: a mask with no pixel
-//! (`no_pin`), a largest component smaller than `min_area_px` (`too_small`), or one too round
-//! for its axis to mean anything (`a/b < min_axis_ratio`, `too_round`). A pin that touches the
-//! crop's border is fitted but flagged (`edge`): part of it may lie outside the crop.
+//! (`no_pin`), a largest component smaller than `min_area_px` (`too_small`), one that touches
+//! the crop's border (`edge`: the pin is cut off by the crop, or the threshold split the
+//! background, as Otsu does on a frame without a pin), or one too round for its axis to mean
+//! anything (`a/b < min_axis_ratio`, `too_round`).
 
 use super::frames::Frame;
 use super::{largest_component, pin_mask, Crop, Ellipse, FluoroError, Threshold};
@@ -80,6 +81,8 @@ pub enum Skip {
     NoPin,
     /// The largest component is smaller than `min_area_px`.
     TooSmall,
+    /// The largest component touches the crop's border.
+    Edge,
     /// The largest component's `a/b` is below `min_axis_ratio`.
     TooRound,
 }
@@ -90,6 +93,7 @@ impl Skip {
         match self {
             Self::NoPin => "no_pin",
             Self::TooSmall => "too_small",
+            Self::Edge => "edge",
             Self::TooRound => "too_round",
         }
     }
@@ -105,8 +109,6 @@ pub struct FrameFit {
     pub area_px: u64,
     /// Why the frame is skipped; `None` when the pin counts.
     pub skip: Option<Skip>,
-    /// The largest component touches the crop's border.
-    pub edge: bool,
     /// The threshold level used, in the frame's units.
     pub level: f64,
 }
@@ -131,13 +133,14 @@ pub fn analyze_frame(frame: &Frame, settings: &Settings) -> FrameFit {
             ellipse: None,
             area_px: 0,
             skip: Some(Skip::NoPin),
-            edge: false,
             level,
         };
     };
     let ellipse = Ellipse::from_component(&c, f64::from(crop.x), f64::from(crop.y));
     let skip = if c.area_px < u64::from(settings.min_area_px) {
         Some(Skip::TooSmall)
+    } else if c.touches_border {
+        Some(Skip::Edge)
     } else if ellipse.axis_ratio() < settings.min_axis_ratio {
         Some(Skip::TooRound)
     } else {
@@ -147,7 +150,6 @@ pub fn analyze_frame(frame: &Frame, settings: &Settings) -> FrameFit {
         ellipse: Some(ellipse),
         area_px: c.area_px,
         skip,
-        edge: c.touches_border,
         level,
     }
 }

@@ -54,6 +54,8 @@ pub struct PinScene {
     pub photons: f64,
     /// A dense round blob: centre x, centre y, radius (px).
     pub distractor: Option<(f64, f64, f64)>,
+    /// Width of a dark band along the left edge (px), as a collimator leaf leaves; 0 for none.
+    pub collimator_px: f64,
 }
 
 impl PinScene {
@@ -76,6 +78,7 @@ impl PinScene {
             blur_px: s / 400.0 + 0.5,
             photons: 20_000.0,
             distractor: Some((0.82 * s, 0.18 * s, s / 30.0)),
+            collimator_px: 0.0,
         }
     }
 }
@@ -106,7 +109,11 @@ pub fn render_frame(scene: &PinScene, angle_deg: f64, seed: u64) -> Frame {
     };
     let mut img: ImageBuffer<Luma<f32>, Vec<f32>> = ImageBuffer::from_fn(w, h, |x, y| {
         let (fx, fy) = (f64::from(x), f64::from(y));
-        let bg = scene.background * (1.0 + scene.gradient * fx / f64::from(w.max(1)));
+        let mut bg = scene.background * (1.0 + scene.gradient * fx / f64::from(w.max(1)));
+        if fx < scene.collimator_px {
+            // The collimator passes a tenth of the beam.
+            bg *= 0.1;
+        }
         let absorbed = coverage(fx, fy).max(blob(fx, fy));
         Luma([(bg * (1.0 - scene.contrast * absorbed)) as f32])
     });

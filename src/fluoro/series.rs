@@ -36,7 +36,8 @@ pub struct Row {
     pub area_px: u64,
     /// `a/b` of its ellipse, `None` without one.
     pub axis_ratio: Option<f64>,
-    /// Flags: `no_pin`, `too_small`, `too_round` (skipped), `edge` (fitted, touches the crop).
+    /// Why the frame was skipped: `no_pin`, `too_small`, `edge` or `too_round`; empty when
+    /// fitted.
     pub flags: Vec<&'static str>,
 }
 
@@ -99,9 +100,6 @@ impl Series {
                 let mut flags = Vec::new();
                 if let Some(skip) = fit.skip {
                     flags.push(skip.flag());
-                }
-                if fit.edge {
-                    flags.push("edge");
                 }
                 Row {
                     time_s: t,
