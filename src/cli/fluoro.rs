@@ -17,10 +17,10 @@ pub struct Args {
     /// Folder of frames (PNG or TIFF, 8- or 16-bit greyscale), read in file-name order.
     frames: PathBuf,
     /// Frame rate (frames per second); frame k is at start-s + k/fps.
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 2.0)]
     fps: f64,
     /// Time of the first frame (s), to line the frames up with a recording.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
     start_s: f64,
     /// Region searched for the pin, x,y,w,h in pixels from the top-left corner. Crop around
     /// the pin's sweep: Otsu over a whole frame tends to split the background instead.
@@ -38,17 +38,17 @@ pub struct Args {
     smooth: usize,
     /// Baseline: the mean over the first T seconds is subtracted (0: no baseline). Without
     /// it, the mean of the frames before motion is detected (see --motion-deg).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     baseline_s: Option<f64>,
     /// Motion starts at the first frame whose angle departs from the first frame's by more
     /// than this (°); used without --baseline-s.
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 2.0)]
     motion_deg: f64,
     /// Smallest plausible pin (pixels); a smaller largest component is skipped.
     #[arg(long, default_value_t = 20)]
     min_area_px: u32,
     /// Smallest plausible major/minor axis ratio; a rounder component is skipped.
-    #[arg(long, default_value_t = 1.5)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 1.5)]
     min_axis_ratio: f64,
     /// Output CSV: time_s,angle_deg,raw_deg,area_px,axis_ratio,flags.
     #[arg(short = 'o', long = "output")]

@@ -21,7 +21,7 @@ pub struct Args {
     recording: PathBuf,
     /// Frame rate (frames per second); frame k shows the angle at the first sample's time +
     /// k/fps, interpolated.
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 2.0)]
     fps: f64,
     /// Frame width and height (px).
     #[arg(long, default_value_t = 512)]
@@ -31,7 +31,7 @@ pub struct Args {
     bits: u32,
     /// The pin's angle in the image at zero joint angle (°, counter-clockwise as displayed):
     /// the mounting offset `dlw fluoro`'s baseline removes.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
     offset_deg: f64,
     /// Seed of the frames' noise.
     #[arg(long, default_value_t = 1)]
