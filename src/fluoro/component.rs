@@ -4,6 +4,10 @@
 //! The largest component is the pin: thresholding also catches noise specks, other dense objects
 //! (a smaller marker, a wire) and background patches, and the pin is taken to be the largest of
 //! them inside the crop.
+//!
+//! The labelling runs on the bounding box of the mask's pixels only: imageproc allocates a
+//! union-find forest and a label image per pixel of its input, about 25 bytes a pixel, and on a
+//! 1024×1024 frame with a small pin that memory traffic, not the labelling, is the cost.
 
 use image::{GrayImage, Luma};
 use imageproc::region_labelling::{connected_components, Connectivity};
@@ -32,8 +36,10 @@ pub struct Component {
 /// The largest 8-connected component of `mask`'s 255 pixels, `None` when the mask is empty.
 /// Ties go to the lower label (the one met first in row order).
 pub fn largest_component(mask: &GrayImage) -> Option<Component> {
-    let labels = connected_components(mask, Connectivity::Eight, Luma([0u8]));
     let (w, h) = mask.dimensions();
+    let (x0, y0, x1, y1) = bounding_box(mask)?;
+    let boxed = image::imageops::crop_imm(mask, x0, y0, x1 - x0 + 1, y1 - y0 + 1).to_image();
+    let labels = connected_components(&boxed, Connectivity::Eight, Luma([0u8]));
     let mut areas: Vec<u64> = Vec::new();
     for &l in labels.iter() {
         if l == 0 {
@@ -62,13 +68,14 @@ pub fn largest_component(mask: &GrayImage) -> Option<Component> {
             if p[0] != best {
                 continue;
             }
-            let (fx, fy) = (x as f64 - ox, y as f64 - oy);
+            let (x, y) = (x as u32 + x0, y as u32 + y0);
+            let (fx, fy) = (f64::from(x) - ox, f64::from(y) - oy);
             sx += fx;
             sy += fy;
             sxx += fx * fx;
             sxy += fx * fy;
             syy += fy * fy;
-            touches_border |= x == 0 || y == 0 || x as u32 == w - 1 || y as u32 == h - 1;
+            touches_border |= x == 0 || y == 0 || x == w - 1 || y == h - 1;
         }
     }
     let n = area as f64;
@@ -82,6 +89,27 @@ pub fn largest_component(mask: &GrayImage) -> Option<Component> {
         mu02: syy / n - my * my,
         touches_border,
     })
+}
+
+/// The smallest box `(x0, y0, x1, y1)` (inclusive) holding every non-zero pixel, `None` for an
+/// empty mask.
+fn bounding_box(mask: &GrayImage) -> Option<(u32, u32, u32, u32)> {
+    let mut b: Option<(u32, u32, u32, u32)> = None;
+    let width = (mask.width() as usize).max(1);
+    for (y, row) in mask.as_raw().chunks_exact(width).enumerate() {
+        let (Some(first), Some(last)) = (
+            row.iter().position(|&p| p != 0),
+            row.iter().rposition(|&p| p != 0),
+        ) else {
+            continue;
+        };
+        let (y, first, last) = (y as u32, first as u32, last as u32);
+        b = Some(match b {
+            None => (first, y, last, y),
+            Some((x0, y0, x1, _)) => (x0.min(first), y0, x1.max(last), y),
+        });
+    }
+    b
 }
 
 #[cfg(test)]
@@ -108,5 +136,19 @@ mod tests {
         assert!((c.mu02 - 2.0 / 3.0).abs() < 1e-12 && c.mu11.abs() < 1e-12);
         assert!(!c.touches_border);
         assert!(largest_component(&GrayImage::new(5, 5)).is_none());
+        // A component on the mask's last column touches the border, although the labelling
+        // sees only the bounding box.
+        for y in 0..10 {
+            mask.put_pixel(19, y, Luma([255]));
+        }
+        let c = largest_component(&mask).unwrap();
+        assert_eq!(c.area_px, 18, "the bar is still the largest");
+        for y in 0..9 {
+            mask.put_pixel(18, y, Luma([255]));
+        }
+        let c = largest_component(&mask).unwrap();
+        assert_eq!(c.area_px, 19);
+        assert!(c.touches_border);
+        assert!((c.mean_x - (19.0 * 10.0 + 18.0 * 9.0) / 19.0).abs() < 1e-12, "{c:?}");
     }
 }

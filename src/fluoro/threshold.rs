@@ -71,10 +71,14 @@ pub fn pin_mask(image: &Grey16, crop: Crop, threshold: Threshold, invert: bool) 
                 return (mask, f64::from(lo));
             }
             let span = u32::from(hi - lo);
+            // `(v − lo)·255/span` rounded, with the division done once: a 32.32 fixed-point
+            // factor (a division per pixel costs more than the rest of the stretch).
+            let factor = (255u64 << 32) / u64::from(span);
             let out: &mut [u8] = &mut mask;
             for (i, r) in rows.enumerate() {
                 for (o, &v) in out[i * cw..(i + 1) * cw].iter_mut().zip(row(r)) {
-                    *o = ((u32::from(v - lo) * 255 + span / 2) / span) as u8;
+                    let x = (u64::from(v - lo) * factor + (1 << 31)) >> 32;
+                    *o = x.min(255) as u8;
                 }
             }
             let level = imageproc::contrast::otsu_level(&mask);
