@@ -17,6 +17,8 @@
 //! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
 //!   config files;
 //! - [`fixed`]: fixed-point CSV number formatting;
+//! - [`fluoro`]: the joint angle from fluoroscopy frames (the phantom's ground truth), and
+//!   synthetic frames to try it on;
 //! - [`sim`]: the bench simulator (stroke → angle → strain → resistance → voltage → ADC) and
 //!   recording folders.
 //!

@@ -130,12 +130,28 @@ fn fluoroscopy_truth_gives_the_tracker_rmse() {
     ]);
     let tracker = json(&["estimate", "--config", &p("d.toml"), &p("rec"), "--json"]);
     let tracker_rmse = tracker["rmse_deg"].as_f64().unwrap();
+    // With a tracker column, --truth reports the tracker's RMSE as well, unchanged.
+    ok(&["fluoro", &p("frames"), "-o", &p("angles.csv")]);
+    let both = json(&[
+        "estimate",
+        "--config",
+        &p("d.toml"),
+        &p("rec"),
+        "--truth",
+        &p("angles.csv"),
+        "--json",
+    ]);
+    assert_eq!(both["tracker"]["rmse_deg"], tracker["rmse_deg"], "{both}");
+    assert_eq!(both["tracker"]["samples"], 20_000, "{both}");
 
     // Without --truth, a recording without the tracker angle is refused.
     let o = dlw(&["estimate", "--config", &p("d.toml"), &p("phantom")]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("angle_deg column is empty") && err.contains("--truth"), "{err}");
+    assert!(
+        err.contains("angle_deg column is empty") && err.contains("--truth"),
+        "{err}"
+    );
     assert!(!Path::new(&p("phantom/estimates.csv")).exists());
 
     let truth_angles = columns(Path::new(&p("rec/data.csv")), &["time_s", "angle_deg"]);
@@ -162,7 +178,10 @@ fn fluoroscopy_truth_gives_the_tracker_rmse() {
                 .zip(&g[1])
                 .map(|(&t, &a)| a - interp(&truth_angles[0], &truth_angles[1], t)),
         );
-        assert!(fit_rmse < fit_tol_deg, "--smooth {smooth}: RMSE(g − θ) = {fit_rmse}°");
+        assert!(
+            fit_rmse < fit_tol_deg,
+            "--smooth {smooth}: RMSE(g − θ) = {fit_rmse}°"
+        );
 
         let report = json(&[
             "estimate",
@@ -179,7 +198,10 @@ fn fluoroscopy_truth_gives_the_tracker_rmse() {
         let truth_rmse = t["rmse_deg"].as_f64().unwrap();
 
         // The same number from the estimates file, computed here.
-        let est = columns(Path::new(&p("phantom/estimates.csv")), &["time_s", "estimate_deg"]);
+        let est = columns(
+            Path::new(&p("phantom/estimates.csv")),
+            &["time_s", "estimate_deg"],
+        );
         let own = rmse(
             g[0].iter()
                 .zip(&g[1])
@@ -187,9 +209,10 @@ fn fluoroscopy_truth_gives_the_tracker_rmse() {
         );
         assert!((own - truth_rmse).abs() < 1e-3, "{own} vs {truth_rmse}");
         // The tracker-based RMSE at the frame times.
-        let at_frames = rmse(g[0].iter().map(|&t| {
-            interp(&est[0], &est[1], t) - interp(&truth_angles[0], &truth_angles[1], t)
-        }));
+        let at_frames =
+            rmse(g[0].iter().map(|&t| {
+                interp(&est[0], &est[1], t) - interp(&truth_angles[0], &truth_angles[1], t)
+            }));
         assert!(
             (truth_rmse - at_frames).abs() <= fit_rmse + 1e-6,
             "--smooth {smooth}: {truth_rmse}° vs {at_frames}° (fit {fit_rmse}°)"

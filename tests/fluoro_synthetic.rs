@@ -10,11 +10,6 @@ use dlw::fluoro::{
 /// The pin's recovered raw angle must lie this close to the rendered one (°).
 const ANGLE_TOL_DEG: f64 = 0.5;
 
-fn fit_angle(scene: &PinScene, angle_deg: f64, seed: u64, settings: &Settings) -> Option<f64> {
-    let frame = render_frame(scene, angle_deg, seed);
-    analyze_frame(&frame, settings).angle_deg()
-}
-
 /// A sweep from −150° to 150°, past both ±90°, through `Series`: the unwrapped raw angles
 /// follow the rendered ones up to the one multiple of 180° fixed by the first frame.
 fn sweep(scene: &PinScene, settings: &Settings) {
@@ -39,7 +34,9 @@ fn sweep(scene: &PinScene, settings: &Settings) {
     // −150° is the axis at 30°.
     let offset = 180.0;
     for (row, t) in series.rows.iter().zip(&truth) {
-        let raw = row.raw_deg.unwrap_or_else(|| panic!("frame at {t}° skipped: {:?}", row.flags));
+        let raw = row
+            .raw_deg
+            .unwrap_or_else(|| panic!("frame at {t}° skipped: {:?}", row.flags));
         assert!(
             (raw - t - offset).abs() < ANGLE_TOL_DEG,
             "rendered {t}°, recovered {raw}° (expected {}°)",
@@ -74,7 +71,10 @@ fn the_distracting_blob_is_not_taken_for_the_pin() {
     let frame = render_frame(&scene, 33.0, 3);
     let fit = analyze_frame(&frame, &Settings::default());
     let e = fit.ellipse.unwrap();
-    assert!((e.center_x - 100.0).abs() < 1.0 && (e.center_y - 100.0).abs() < 1.0, "{e:?}");
+    assert!(
+        (e.center_x - 100.0).abs() < 1.0 && (e.center_y - 100.0).abs() < 1.0,
+        "{e:?}"
+    );
     assert!((e.angle_deg - 33.0).abs() < ANGLE_TOL_DEG, "{e:?}");
     // With the pin gone on an even background, the blob is the largest component and too
     // round to count.
@@ -99,12 +99,15 @@ fn otsu_needs_the_crop_when_the_frame_has_a_dark_border() {
     // Over the whole frame Otsu separates the collimator band from the rest: the largest dark
     // component is the band (with the pin, if they touch), not the pin.
     let whole = analyze_frame(&frame, &Settings::default());
-    let wrong = whole
-        .angle_deg()
-        .map_or(true, |a| (a - 20.0).abs() > 5.0);
+    let wrong = whole.angle_deg().map_or(true, |a| (a - 20.0).abs() > 5.0);
     assert!(wrong, "{whole:?}");
     let cropped = Settings {
-        crop: Some(Crop { x: 64, y: 40, w: 120, h: 120 }),
+        crop: Some(Crop {
+            x: 64,
+            y: 40,
+            w: 120,
+            h: 120,
+        }),
         ..Settings::default()
     };
     let fit = analyze_frame(&frame, &cropped);
@@ -112,7 +115,10 @@ fn otsu_needs_the_crop_when_the_frame_has_a_dark_border() {
     assert!((a - 20.0).abs() < ANGLE_TOL_DEG, "{fit:?}");
     // The centre is reported in frame coordinates, not the crop's.
     let e = fit.ellipse.unwrap();
-    assert!((e.center_x - 100.0).abs() < 1.0 && (e.center_y - 100.0).abs() < 1.0, "{e:?}");
+    assert!(
+        (e.center_x - 100.0).abs() < 1.0 && (e.center_y - 100.0).abs() < 1.0,
+        "{e:?}"
+    );
 }
 
 #[test]
@@ -156,7 +162,12 @@ fn a_sequence_reproduces_the_smoothing_and_the_baseline() {
     let mut fits: Vec<_> = joint
         .iter()
         .enumerate()
-        .map(|(k, &a)| analyze_frame(&render_frame(&scene, offset + a, 100 + k as u64), &Settings::default()))
+        .map(|(k, &a)| {
+            analyze_frame(
+                &render_frame(&scene, offset + a, 100 + k as u64),
+                &Settings::default(),
+            )
+        })
         .collect();
     // A blank frame (the shutter closed): nothing to threshold.
     let mut empty = scene;
@@ -166,7 +177,10 @@ fn a_sequence_reproduces_the_smoothing_and_the_baseline() {
     empty.photons = 0.0;
     empty.blur_px = 0.0;
     empty.contrast = 0.0;
-    fits.insert(30, analyze_frame(&render_frame(&empty, 0.0, 9), &Settings::default()));
+    fits.insert(
+        30,
+        analyze_frame(&render_frame(&empty, 0.0, 9), &Settings::default()),
+    );
     let settings = SeriesSettings {
         fps: 2.0,
         start_s: 10.0,
@@ -182,7 +196,11 @@ fn a_sequence_reproduces_the_smoothing_and_the_baseline() {
     // Motion: the first frame more than 3° from the first, frame 7 (joint at 4°).
     assert_eq!(series.baseline.end_s, Some(13.5));
     assert_eq!(series.baseline.frames, 7);
-    assert!((series.baseline.mean_deg - offset - 2.0 / 7.0).abs() < 0.2, "{:?}", series.baseline);
+    assert!(
+        (series.baseline.mean_deg - offset - 2.0 / 7.0).abs() < 0.2,
+        "{:?}",
+        series.baseline
+    );
 
     // The expected series from the rendered angles, computed here independently: the centred
     // 2×8 average (weights ½,1,…,1,½ over 9 frames, renormalized at the ends) over the fitted
@@ -193,14 +211,19 @@ fn a_sequence_reproduces_the_smoothing_and_the_baseline() {
     assert_eq!(fitted_rows.len(), rendered.len());
     for (k, row) in fitted_rows.iter().enumerate() {
         let (mut sum, mut w) = (0.0, 0.0);
-        for j in k.saturating_sub(4)..=(k + 4).min(rendered.len() - 1) {
+        let lo = k.saturating_sub(4);
+        let hi = (k + 4).min(rendered.len() - 1);
+        for (j, r) in rendered.iter().enumerate().take(hi + 1).skip(lo) {
             let wj = if j.abs_diff(k) == 4 { 0.5 } else { 1.0 };
-            sum += wj * rendered[j];
+            sum += wj * r;
             w += wj;
         }
         let expected = sum / w - base;
         let got = row.angle_deg.unwrap();
-        assert!((got - expected).abs() < ANGLE_TOL_DEG, "frame {k}: {got} vs {expected}");
+        assert!(
+            (got - expected).abs() < ANGLE_TOL_DEG,
+            "frame {k}: {got} vs {expected}"
+        );
         assert!((row.raw_deg.unwrap() - rendered[k]).abs() < ANGLE_TOL_DEG);
     }
     // The middle of the ramp is not delayed by the smoothing.
@@ -214,5 +237,9 @@ fn a_sequence_reproduces_the_smoothing_and_the_baseline() {
     };
     let s = Series::from_fits(&fits, &fixed, 20, 1.5).unwrap();
     assert_eq!((s.baseline.frames, s.baseline.end_s), (4, Some(12.0)));
-    assert!((s.baseline.mean_deg - offset).abs() < 0.2, "{:?}", s.baseline);
+    assert!(
+        (s.baseline.mean_deg - offset).abs() < 0.2,
+        "{:?}",
+        s.baseline
+    );
 }

@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use dlw::output::write_atomic;
 use dlw::fluoro::read_angles;
+use dlw::output::write_atomic;
 use dlw::replay::{load_config, replay, replay_against_truth, Metrics, TruthMetrics};
 use dlw::sim::Recording;
 use dlw_estimator::FilterConfig;
@@ -167,7 +167,11 @@ fn run_with_truth(
     for w in &result.warnings {
         eprintln!("warning: {w}");
     }
-    println!("{} against {}", args.recording.display(), truth_path.display());
+    println!(
+        "{} against {}",
+        args.recording.display(),
+        truth_path.display()
+    );
     println!(
         "  frames compared     {} ({} outside the recording, {} without an angle)",
         t.frames, t.frames_outside, t.frames_without_angle
@@ -176,7 +180,10 @@ fn run_with_truth(
     println!("  max |error|         {:.3}°", t.max_abs_error_deg);
     println!("  mean error          {:.3}°", t.mean_error_deg);
     match &result.tracker {
-        Some(m) => println!("  RMSE vs tracker     {:.3}° over {} samples", m.rmse_deg, m.samples),
+        Some(m) => println!(
+            "  RMSE vs tracker     {:.3}° over {} samples",
+            m.rmse_deg, m.samples
+        ),
         None => println!("  RMSE vs tracker     — (no tracker angle in the recording)"),
     }
     println!(

@@ -65,7 +65,8 @@ pub struct Args {
 }
 
 fn parse_crop(s: &str) -> Result<Crop, String> {
-    s.parse().map_err(|e: dlw::fluoro::FluoroError| e.to_string())
+    s.parse()
+        .map_err(|e: dlw::fluoro::FluoroError| e.to_string())
 }
 
 /// A skipped frame in the JSON summary.
@@ -106,7 +107,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Some(t) if !(t.is_finite() && t >= 0.0) => {
             anyhow::bail!("--baseline-s {t} is out of range (finite and at least 0)")
         }
-        Some(t) if t == 0.0 => BaselineRule::Off,
+        Some(0.0) => BaselineRule::Off,
         Some(t) => BaselineRule::Seconds(t),
         None if !(args.motion_deg.is_finite() && args.motion_deg > 0.0) => {
             anyhow::bail!(

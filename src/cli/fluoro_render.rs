@@ -49,7 +49,10 @@ pub struct Args {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     if !(args.fps.is_finite() && args.fps > 0.0) {
-        anyhow::bail!("--fps {} is out of range (finite and greater than 0)", args.fps);
+        anyhow::bail!(
+            "--fps {} is out of range (finite and greater than 0)",
+            args.fps
+        );
     }
     if !(32..=8192).contains(&args.size) {
         anyhow::bail!("--size {} is out of range (32 to 8192 px)", args.size);
@@ -82,7 +85,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for k in 0..frames {
         let t = t0 + k as f64 / args.fps;
         let angle = interpolate_at(&s.time_s, &s.angle_deg, t.min(t1)).unwrap_or(s.angle_deg[0]);
-        let frame = render_frame(&scene, args.offset_deg + angle, args.seed.wrapping_add(k as u64));
+        let frame = render_frame(
+            &scene,
+            args.offset_deg + angle,
+            args.seed.wrapping_add(k as u64),
+        );
         let name = format!("frame_{k:05}.png");
         let bytes = png_bytes(&frame).map_err(|message| dlw::fluoro::FluoroError::Encode {
             name: name.clone(),

@@ -98,7 +98,16 @@ mod tests {
     #[test]
     fn windows_by_time_and_by_motion() {
         let t: Vec<f64> = (0..8).map(|k| k as f64 * 0.5).collect();
-        let a = [Some(10.0), Some(10.4), None, Some(9.8), Some(14.0), Some(20.0), Some(25.0), Some(30.0)];
+        let a = [
+            Some(10.0),
+            Some(10.4),
+            None,
+            Some(9.8),
+            Some(14.0),
+            Some(20.0),
+            Some(25.0),
+            Some(30.0),
+        ];
         let b = baseline(&t, &a, BaselineRule::Seconds(1.6)).unwrap();
         assert_eq!((b.frames, b.end_s), (3, Some(2.0)));
         assert!((b.mean_deg - (10.0 + 10.4 + 9.8) / 3.0).abs() < 1e-12);
@@ -107,9 +116,16 @@ mod tests {
         let off = baseline(&t, &a, BaselineRule::Off).unwrap();
         assert_eq!(off.mean_deg, 0.0);
         let none = [None, None, Some(1.0), Some(1.0), None, None, None, None];
-        let err = baseline(&t, &none, BaselineRule::Seconds(1.0)).unwrap_err().to_string();
+        let err = baseline(&t, &none, BaselineRule::Seconds(1.0))
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("first 1 s"), "{err}");
-        let still = baseline(&t, &[Some(1.0); 8], BaselineRule::UntilMotion { threshold_deg: 2.0 }).unwrap();
+        let still = baseline(
+            &t,
+            &[Some(1.0); 8],
+            BaselineRule::UntilMotion { threshold_deg: 2.0 },
+        )
+        .unwrap();
         assert_eq!((still.frames, still.end_s), (8, None));
     }
 }

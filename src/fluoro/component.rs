@@ -149,6 +149,9 @@ mod tests {
         let c = largest_component(&mask).unwrap();
         assert_eq!(c.area_px, 19);
         assert!(c.touches_border);
-        assert!((c.mean_x - (19.0 * 10.0 + 18.0 * 9.0) / 19.0).abs() < 1e-12, "{c:?}");
+        assert!(
+            (c.mean_x - (19.0 * 10.0 + 18.0 * 9.0) / 19.0).abs() < 1e-12,
+            "{c:?}"
+        );
     }
 }

@@ -85,7 +85,15 @@ mod tests {
     #[test]
     fn parses_and_checks_bounds() {
         let c: Crop = "10, 20,100,50".parse().unwrap();
-        assert_eq!(c, Crop { x: 10, y: 20, w: 100, h: 50 });
+        assert_eq!(
+            c,
+            Crop {
+                x: 10,
+                y: 20,
+                w: 100,
+                h: 50
+            }
+        );
         assert!(c.check_inside(110, 70).is_ok());
         let err = c.check_inside(109, 70).unwrap_err().to_string();
         assert!(err.contains("x + w ≤ 109"), "{err}");
@@ -93,7 +101,12 @@ mod tests {
         for bad in ["1,2,3", "1,2,3,4,5", "-1,0,10,10", "0,0,2,10", "a,b,c,d"] {
             assert!(bad.parse::<Crop>().is_err(), "{bad}");
         }
-        let huge = Crop { x: u32::MAX, y: 0, w: 10, h: 10 };
+        let huge = Crop {
+            x: u32::MAX,
+            y: 0,
+            w: 10,
+            h: 10,
+        };
         assert!(huge.check_inside(100, 100).is_err());
     }
 }

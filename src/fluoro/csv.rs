@@ -198,21 +198,32 @@ mod tests {
         assert_eq!(lines[1], "0.000000,0.2500,10.5000,2140,6.412,none");
         assert_eq!(lines[2], "0.500000,,,3,1.000,too_small|edge");
         let t = parse_angles(&text, Path::new("a.csv")).unwrap();
-        assert_eq!((t.time_s, t.angle_deg, t.skipped), (vec![0.0, 1.0], vec![0.25, -3.0], 1));
+        assert_eq!(
+            (t.time_s, t.angle_deg, t.skipped),
+            (vec![0.0, 1.0], vec![0.25, -3.0], 1)
+        );
     }
 
     #[test]
     fn names_bad_lines() {
         let table = [
-            ("time,angle\n0,1\n", "line 1: header \"time,angle\" has no time_s"),
+            (
+                "time,angle\n0,1\n",
+                "line 1: header \"time,angle\" has no time_s",
+            ),
             ("time_s,angle_deg\n0,1,2\n", "line 2: has 3 fields"),
             ("time_s,angle_deg\n0,x\n", "line 2: angle_deg = \"x\""),
-            ("time_s,angle_deg\n0,1\n0,2\n", "line 3: time_s = 0 does not increase"),
+            (
+                "time_s,angle_deg\n0,1\n0,2\n",
+                "line 3: time_s = 0 does not increase",
+            ),
             ("time_s,angle_deg\n0,NaN\n", "not a finite number"),
             ("time_s,angle_deg\n0,\n", "has no frame with an angle"),
         ];
         for (text, needle) in table {
-            let err = parse_angles(text, Path::new("a.csv")).unwrap_err().to_string();
+            let err = parse_angles(text, Path::new("a.csv"))
+                .unwrap_err()
+                .to_string();
             assert!(err.contains(needle), "{text:?}: {err}");
         }
         // Another tool's CSV: extra columns, any order.

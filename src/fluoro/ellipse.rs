@@ -105,7 +105,14 @@ mod tests {
 
     #[test]
     fn folds_axis_angles() {
-        let table = [(0.0, 0.0), (90.0, 90.0), (-90.0, 90.0), (135.0, -45.0), (-100.0, 80.0), (270.0, 90.0)];
+        let table = [
+            (0.0, 0.0),
+            (90.0, 90.0),
+            (-90.0, 90.0),
+            (135.0, -45.0),
+            (-100.0, 80.0),
+            (270.0, 90.0),
+        ];
         for (a, folded) in table {
             assert_relative_eq!(axis_deg(a), folded, epsilon = 1e-12);
         }

@@ -70,9 +70,10 @@ pub fn analyze_folder(
         let fit = analyze_frame(&frame, settings);
         if let Some(folder) = overlay {
             let crop = settings.crop.unwrap_or(Crop::whole(w, h));
-            let stem = path
-                .file_stem()
-                .map_or_else(|| format!("frame_{k:05}"), |s| s.to_string_lossy().into_owned());
+            let stem = path.file_stem().map_or_else(
+                || format!("frame_{k:05}"),
+                |s| s.to_string_lossy().into_owned(),
+            );
             folder.add_png(&format!("{stem}.png"), &draw_overlay(&frame, &fit, crop))?;
         }
         out.names.push(name);

@@ -156,7 +156,10 @@ mod tests {
         assert_eq!(names, ["f_01.tiff", "f_02.TIF", "f_10.png"]);
         std::fs::write(dir.path().join("notes.txt"), b"x").unwrap();
         let err = list_frames(dir.path()).unwrap_err().to_string();
-        assert!(err.contains("notes.txt") && err.contains("not a frame"), "{err}");
+        assert!(
+            err.contains("notes.txt") && err.contains("not a frame"),
+            "{err}"
+        );
         let empty = tempfile::tempdir().unwrap();
         let err = list_frames(empty.path()).unwrap_err().to_string();
         assert!(err.contains("no PNG or TIFF frames"), "{err}");
@@ -166,7 +169,9 @@ mod tests {
     fn decodes_8_and_16_bit_and_names_bad_files() {
         let dir = tempfile::tempdir().unwrap();
         let p8 = dir.path().join("a.png");
-        image::GrayImage::from_pixel(3, 2, Luma([200])).save(&p8).unwrap();
+        image::GrayImage::from_pixel(3, 2, Luma([200]))
+            .save(&p8)
+            .unwrap();
         let f = read_frame(&p8).unwrap();
         assert_eq!((f.bits, f.max_value(), f.dimensions()), (8, 255, (3, 2)));
         assert_eq!(f.image.get_pixel(2, 1)[0], 200);

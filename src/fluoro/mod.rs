@@ -62,14 +62,14 @@ pub use folder::{analyze_folder, FolderFits};
 pub use frames::{list_frames, read_frame, Frame};
 /// Drawing the fit on a frame, and the overlay folder.
 pub use overlay::draw_overlay;
-/// A folder written whole or not at all.
-pub use staged::StagedFolder;
 /// Synthetic frames.
 pub use render::{render_frame, PinScene};
 /// A sequence of frames to a series of angles.
 pub use series::{Row, Series, SeriesSettings};
 /// The centred moving average.
 pub use smooth::moving_average;
+/// A folder written whole or not at all.
+pub use staged::StagedFolder;
 /// Otsu or a fixed threshold.
 pub use threshold::{pin_mask, Threshold};
 /// Unwrapping axis angles across frames.

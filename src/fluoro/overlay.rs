@@ -41,7 +41,8 @@ pub fn draw_overlay(frame: &Frame, fit: &FrameFit, crop: Crop) -> RgbImage {
         for t in 0..thick {
             let (cw, ch) = (crop.w as i32 - 2 * t, crop.h as i32 - 2 * t);
             if cw > 0 && ch > 0 {
-                let r = Rect::at(crop.x as i32 + t, crop.y as i32 + t).of_size(cw as u32, ch as u32);
+                let r =
+                    Rect::at(crop.x as i32 + t, crop.y as i32 + t).of_size(cw as u32, ch as u32);
                 draw_hollow_rect_mut(&mut img, r, BLUE);
             }
         }

@@ -151,7 +151,12 @@ pub fn png_bytes(frame: &Frame) -> Result<Vec<u8>, String> {
         let g: image::GrayImage = ImageBuffer::from_raw(
             w,
             h,
-            frame.image.as_raw().iter().map(|&v| v.min(255) as u8).collect(),
+            frame
+                .image
+                .as_raw()
+                .iter()
+                .map(|&v| v.min(255) as u8)
+                .collect(),
         )
         .expect("one value per pixel");
         g.write_to(&mut out, image::ImageFormat::Png)
@@ -181,6 +186,9 @@ mod tests {
         let noisy = render_frame(&PinScene::standard(200), 30.0, 1);
         assert_eq!(noisy.bits, 16);
         assert_ne!(noisy.image, f.image);
-        assert_eq!(render_frame(&PinScene::standard(200), 30.0, 1).image, noisy.image);
+        assert_eq!(
+            render_frame(&PinScene::standard(200), 30.0, 1).image,
+            noisy.image
+        );
     }
 }

@@ -31,16 +31,21 @@ impl FromStr for Threshold {
         if s == "otsu" {
             return Ok(Self::Otsu);
         }
-        s.parse::<u16>().map(Self::Value).map_err(|_| {
-            format!("threshold {s:?} is neither `otsu` nor a grey level 0..=65535")
-        })
+        s.parse::<u16>()
+            .map(Self::Value)
+            .map_err(|_| format!("threshold {s:?} is neither `otsu` nor a grey level 0..=65535"))
     }
 }
 
 /// The mask (255 = pin) of `crop` and the level used, in the frame's units.
 ///
 /// The crop must lie inside the image (checked by the caller).
-pub fn pin_mask(image: &Grey16, crop: Crop, threshold: Threshold, invert: bool) -> (GrayImage, f64) {
+pub fn pin_mask(
+    image: &Grey16,
+    crop: Crop,
+    threshold: Threshold,
+    invert: bool,
+) -> (GrayImage, f64) {
     let rows = crop.y as usize..(crop.y + crop.h) as usize;
     let cols = crop.x as usize..(crop.x + crop.w) as usize;
     let width = image.width() as usize;
@@ -119,7 +124,12 @@ mod tests {
     #[test]
     fn fixed_level_and_crop() {
         let img = two_level(10, 200);
-        let crop = Crop { x: 2, y: 1, w: 4, h: 2 };
+        let crop = Crop {
+            x: 2,
+            y: 1,
+            w: 4,
+            h: 2,
+        };
         let (mask, level) = pin_mask(&img, crop, Threshold::Value(10), false);
         assert_eq!(level, 10.0);
         assert_eq!(mask.dimensions(), (4, 2));

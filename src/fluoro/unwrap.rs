@@ -32,10 +32,7 @@ mod tests {
     #[test]
     fn a_sweep_past_plus_and_minus_90_stays_continuous() {
         let truth: Vec<f64> = (0..80).map(|k| -130.0 + 4.0 * k as f64).collect();
-        let folded: Vec<Option<f64>> = truth
-            .iter()
-            .map(|&t| Some(axis_deg(t)))
-            .collect();
+        let folded: Vec<Option<f64>> = truth.iter().map(|&t| Some(axis_deg(t))).collect();
         let u = unwrap_axis_deg(&folded);
         // The first frame is folded (−130° → 50°); every later one keeps the same offset.
         let offset = u[0].unwrap() - truth[0];

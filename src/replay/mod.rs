@@ -28,7 +28,9 @@ use crate::sim::Recording;
 /// Estimator config files in TOML or JSON.
 pub use config_file::{config_text, load_config, ConfigFileError, ConfigFormat};
 /// Comparing estimates with a ground truth at other times.
-pub use truth::{compare_with_truth, interpolate_at, replay_against_truth, TruthMetrics, TruthReplay};
+pub use truth::{
+    compare_with_truth, interpolate_at, replay_against_truth, TruthMetrics, TruthReplay,
+};
 
 /// Why a replay could not run.
 #[derive(Debug, thiserror::Error)]
@@ -233,7 +235,11 @@ impl Replay {
 
 /// `time_s,angle_deg,estimate_deg,error_deg,flags`; `angle_deg` and `error_deg` are empty when
 /// the recording has no tracker angle.
-pub(crate) fn estimates_csv(estimate_deg: &[f64], flags: &[Flags], recording: &Recording) -> Vec<u8> {
+pub(crate) fn estimates_csv(
+    estimate_deg: &[f64],
+    flags: &[Flags],
+    recording: &Recording,
+) -> Vec<u8> {
     let s = &recording.samples;
     let mut out = Vec::with_capacity(s.len() * 48 + 64);
     out.extend_from_slice(b"time_s,angle_deg,estimate_deg,error_deg,flags\n");

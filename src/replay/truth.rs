@@ -165,7 +165,15 @@ mod tests {
     fn interpolates_inside_and_refuses_outside() {
         let t = [0.0, 1.0, 2.0];
         let v = [0.0, 10.0, 30.0];
-        let table = [(0.0, Some(0.0)), (0.25, Some(2.5)), (1.0, Some(10.0)), (1.5, Some(20.0)), (2.0, Some(30.0)), (-0.1, None), (2.1, None)];
+        let table = [
+            (0.0, Some(0.0)),
+            (0.25, Some(2.5)),
+            (1.0, Some(10.0)),
+            (1.5, Some(20.0)),
+            (2.0, Some(30.0)),
+            (-0.1, None),
+            (2.1, None),
+        ];
         for (x, want) in table {
             assert_eq!(interpolate_at(&t, &v, x), want, "{x}");
         }
@@ -184,14 +192,23 @@ mod tests {
             skipped: 2,
         };
         let m = compare_with_truth(&t, &est, &truth).unwrap();
-        assert_eq!((m.frames, m.frames_outside, m.frames_without_angle), (4, 1, 2));
-        assert!((m.rmse_deg - 1.0).abs() < 1e-9 && (m.mean_error_deg - 1.0).abs() < 1e-9, "{m:?}");
+        assert_eq!(
+            (m.frames, m.frames_outside, m.frames_without_angle),
+            (4, 1, 2)
+        );
+        assert!(
+            (m.rmse_deg - 1.0).abs() < 1e-9 && (m.mean_error_deg - 1.0).abs() < 1e-9,
+            "{m:?}"
+        );
         let late = TruthAngles {
             time_s: vec![5.0],
             angle_deg: vec![0.0],
             ..truth
         };
         let err = compare_with_truth(&t, &est, &late).unwrap_err().to_string();
-        assert!(err.contains("no ground-truth frame") && err.contains("0..2 s"), "{err}");
+        assert!(
+            err.contains("no ground-truth frame") && err.contains("0..2 s"),
+            "{err}"
+        );
     }
 }

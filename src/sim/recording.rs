@@ -479,7 +479,11 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
                     line,
                     found: words(empty),
                     first_line,
-                    first: if first { "has it empty" } else { "has a number" },
+                    first: if first {
+                        "has it empty"
+                    } else {
+                        "has a number"
+                    },
                 });
             }
             Some(_) => {}
@@ -615,10 +619,16 @@ mod tests {
         assert!(!s.has_tracker_angle());
         let mixed = "time_s,stroke_mm,angle_deg,v1_V\n0,0,,1.5\n0.002,0.1,2,1.6\n";
         let err = parse_data(mixed, &rig(1), path).unwrap_err().to_string();
-        assert!(err.contains("line 3: angle_deg is a number but line 2 has it empty"), "{err}");
+        assert!(
+            err.contains("line 3: angle_deg is a number but line 2 has it empty"),
+            "{err}"
+        );
         let mixed = "time_s,stroke_mm,angle_deg,v1_V\n0,0,1,1.5\n0.002,0.1,,1.6\n";
         let err = parse_data(mixed, &rig(1), path).unwrap_err().to_string();
-        assert!(err.contains("line 3: angle_deg is empty but line 2 has a number"), "{err}");
+        assert!(
+            err.contains("line 3: angle_deg is empty but line 2 has a number"),
+            "{err}"
+        );
         // Every other column keeps its checks.
         let bad = "time_s,stroke_mm,angle_deg,v1_V\n0,,,1.5\n";
         let err = parse_data(bad, &rig(1), path).unwrap_err().to_string();
@@ -628,13 +638,19 @@ mod tests {
 
         let dir = tempfile::tempdir().unwrap();
         let dest = dir.path().join("rec");
-        let rec = Recording { rig: rig(1), samples: s };
+        let rec = Recording {
+            rig: rig(1),
+            samples: s,
+        };
         rec.write(&dest, false).unwrap();
         let text = std::fs::read_to_string(dest.join(DATA_FILE)).unwrap();
         assert_eq!(text.lines().nth(1), Some("0.000000,0.000000,,1.500000"));
         assert_eq!(Recording::read_allowing_empty_angle(&dest).unwrap(), rec);
         let err = Recording::read(&dest).unwrap_err().to_string();
-        assert!(err.contains("angle_deg column is empty") && err.contains("--truth"), "{err}");
+        assert!(
+            err.contains("angle_deg column is empty") && err.contains("--truth"),
+            "{err}"
+        );
     }
 
     #[test]
