@@ -128,6 +128,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if !args.start_s.is_finite() {
         anyhow::bail!("--start-s {} is not a finite time", args.start_s);
     }
+    // The CSV is written last, after the overlay folder is in place: check its folder first so
+    // that a typo there cannot leave overlays without angles.
+    let csv_dir = match args.output.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    if !csv_dir.is_dir() {
+        anyhow::bail!(
+            "cannot write {}: folder {} does not exist",
+            args.output.display(),
+            csv_dir.display()
+        );
+    }
     let overlay = args
         .overlay
         .as_deref()
