@@ -133,7 +133,14 @@ fn fluoro_refuses_bad_frame_folders_and_writes_nothing() {
     // An output CSV in a missing folder is found before any overlay is drawn.
     let lost = out.join("no/such/angles.csv").display().to_string();
     fails(
-        &["fluoro", good.to_str().unwrap(), "-o", &lost, "--overlay", &overlay],
+        &[
+            "fluoro",
+            good.to_str().unwrap(),
+            "-o",
+            &lost,
+            "--overlay",
+            &overlay,
+        ],
         &["folder", "no/such", "does not exist"],
         &out,
         &[],

@@ -361,6 +361,37 @@ mod tests {
     }
 
     #[test]
+    fn a_recording_without_tracker_angle_needs_a_ground_truth() {
+        let mut rec = recording(NotchStyle::Uan, |s| {
+            s.duration_s = Some(2.0);
+            s.adc.enabled = false;
+            s.tracker.enabled = false;
+        });
+        let true_deg = std::mem::take(&mut rec.samples.angle_deg);
+        let cfg = nominal(NotchStyle::Uan, 15.3, 215e3);
+        let err = replay(&cfg, &rec).unwrap_err().to_string();
+        assert!(
+            err.contains("no tracker angle") && err.contains("--truth"),
+            "{err}"
+        );
+        // Frames at 2 Hz from the true angle, offset by 0.5°: the RMSE is the offset.
+        let frames: Vec<usize> = (0..4).map(|k| k * 250).collect();
+        let truth = crate::fluoro::TruthAngles {
+            path: "angles.csv".into(),
+            time_s: frames.iter().map(|&i| rec.samples.time_s[i]).collect(),
+            angle_deg: frames.iter().map(|&i| true_deg[i] + 0.5).collect(),
+            skipped: 0,
+        };
+        let r = replay_against_truth(&cfg, &rec, &truth).unwrap();
+        assert!(r.tracker.is_none());
+        assert_eq!(r.truth.frames, 4);
+        assert!((r.truth.rmse_deg - 0.5).abs() < 1e-6, "{:?}", r.truth);
+        let text = String::from_utf8(r.csv_bytes(&rec)).unwrap();
+        let row: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+        assert_eq!((row[1], row[3]), ("", ""));
+    }
+
+    #[test]
     fn csv_has_a_row_per_sample() {
         let rec = recording(NotchStyle::Uan, |s| s.duration_s = Some(0.01));
         let r = replay(&nominal(NotchStyle::Uan, 15.3, 215e3), &rec).unwrap();
