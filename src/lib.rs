@@ -18,6 +18,8 @@
 //! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
 //!   config files;
 //! - [`fixed`]: fixed-point CSV number formatting;
+//! - [`fluoro`]: the joint angle from fluoroscopy frames (the phantom's ground truth), and
+//!   synthetic frames to try it on;
 //! - [`sim`]: the bench simulator (stroke → angle → strain → resistance → voltage → ADC) and
 //!   recording folders.
 //!
@@ -28,6 +30,7 @@ pub mod design;
 pub mod drawing;
 pub mod fit;
 pub mod fixed;
+pub mod fluoro;
 pub mod job;
 pub mod layout;
 pub mod machine;

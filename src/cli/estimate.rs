@@ -1,10 +1,12 @@
-//! `dlw estimate --config C DIR [--filter none|ma:N|lp:T] [--json] [-o estimates.csv]`.
+//! `dlw estimate --config C DIR [--filter none|ma:N|lp:T] [--truth angles.csv] [--json]
+//! [-o estimates.csv]`.
 
 use std::path::PathBuf;
 
 use anyhow::Context;
+use dlw::fluoro::read_angles;
 use dlw::output::write_atomic;
-use dlw::replay::{load_config, replay, Metrics};
+use dlw::replay::{load_config, replay, replay_against_truth, Metrics, TruthMetrics};
 use dlw::sim::Recording;
 use dlw_estimator::FilterConfig;
 use serde::Serialize;
@@ -31,6 +33,11 @@ pub struct Args {
     /// Estimates CSV (default: estimates.csv in the recording folder).
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
+    /// Ground truth from fluoroscopy (`dlw fluoro`'s angles.csv, or any CSV with time_s and
+    /// angle_deg columns): the estimates are interpolated at its frame times and compared with
+    /// it, in place of the tracker column, which may then be empty.
+    #[arg(long)]
+    truth: Option<PathBuf>,
 }
 
 fn parse_filter(s: &str) -> Result<FilterConfig, String> {
@@ -58,10 +65,28 @@ struct Report {
     warnings: Vec<String>,
 }
 
+/// What `estimate --truth --json` prints; the keys are part of the interface.
+#[derive(Debug, Serialize)]
+struct TruthReport {
+    /// The comparison with the ground truth.
+    truth: TruthMetrics,
+    /// The comparison with the tracker, `null` for a recording without its angle.
+    tracker: Option<Metrics>,
+    flagged_samples: usize,
+    held_samples: usize,
+    filter_delay_samples: f64,
+    filter_delay_s: f64,
+    estimates: PathBuf,
+    warnings: Vec<String>,
+}
+
 pub fn run(args: Args) -> anyhow::Result<()> {
     let mut config = load_config(&args.config)?;
     if let Some(filter) = args.filter {
         config.output_filter = filter;
+    }
+    if let Some(truth) = &args.truth {
+        return run_with_truth(&args, &config, truth);
     }
     let recording = Recording::read(&args.recording)?;
     let result = replay(&config, &recording)
@@ -99,5 +124,76 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
         println!("  estimates           {}", output.display());
     }
+    Ok(())
+}
+
+fn run_with_truth(
+    args: &Args,
+    config: &dlw_estimator::EstimatorConfig,
+    truth_path: &std::path::Path,
+) -> anyhow::Result<()> {
+    let truth = read_angles(truth_path)?;
+    let recording = Recording::read_allowing_empty_angle(&args.recording)?;
+    let result = replay_against_truth(config, &recording, &truth).with_context(|| {
+        format!(
+            "comparing the estimates over {} with {}",
+            args.recording.display(),
+            truth_path.display()
+        )
+    })?;
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| args.recording.join(DEFAULT_OUTPUT));
+    write_atomic(&output, &result.csv_bytes(&recording))?;
+    let t = &result.truth;
+    if args.json {
+        let report = TruthReport {
+            truth: *t,
+            tracker: result.tracker,
+            flagged_samples: result.flagged_samples,
+            held_samples: result.held_samples,
+            filter_delay_samples: result.filter_delay_samples,
+            filter_delay_s: result.filter_delay_s,
+            estimates: output,
+            warnings: result.warnings,
+        };
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).context("serializing the report")?
+        );
+        return Ok(());
+    }
+    for w in &result.warnings {
+        eprintln!("warning: {w}");
+    }
+    println!(
+        "{} against {}",
+        args.recording.display(),
+        truth_path.display()
+    );
+    println!(
+        "  frames compared     {} ({} outside the recording, {} without an angle)",
+        t.frames, t.frames_outside, t.frames_without_angle
+    );
+    println!("  RMSE                {:.3}°", t.rmse_deg);
+    println!("  max |error|         {:.3}°", t.max_abs_error_deg);
+    println!("  mean error          {:.3}°", t.mean_error_deg);
+    match &result.tracker {
+        Some(m) => println!(
+            "  RMSE vs tracker     {:.3}° over {} samples",
+            m.rmse_deg, m.samples
+        ),
+        None => println!("  RMSE vs tracker     — (no tracker angle in the recording)"),
+    }
+    println!(
+        "  filter delay        {} samples ({:.3} s), not compensated in the error",
+        result.filter_delay_samples, result.filter_delay_s
+    );
+    println!(
+        "  flagged samples     {} ({} held)",
+        result.flagged_samples, result.held_samples
+    );
+    println!("  estimates           {}", output.display());
     Ok(())
 }

@@ -8,6 +8,8 @@ mod draw;
 mod estimate;
 mod estimator_config;
 mod fit;
+mod fluoro;
+mod fluoro_render;
 mod import_dxf;
 mod inspect;
 mod program;
@@ -42,6 +44,10 @@ enum Command {
     Estimate(estimate::Args),
     /// Fit linear and PI sensor models to a recording and write an estimator config.
     Fit(fit::Args),
+    /// Measure the joint angle in fluoroscopy frames (the phantom's ground truth).
+    Fluoro(fluoro::Args),
+    /// Render synthetic fluoroscopy frames of a recording's angle, to try `dlw fluoro`.
+    FluoroRender(fluoro_render::Args),
 }
 
 /// Runs the parsed command.
@@ -56,5 +62,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::EstimatorConfig(args) => estimator_config::run(args),
         Command::Estimate(args) => estimate::run(args),
         Command::Fit(args) => fit::run(args),
+        Command::Fluoro(args) => fluoro::run(args),
+        Command::FluoroRender(args) => fluoro_render::run(args),
     }
 }

@@ -10,9 +10,14 @@
 //! `ω·(N − 1)/(2·f_s)` degrees of lag error while it removes noise (by `√N` for white noise);
 //! the report gives the delay so a reader can tell the two apart.
 //!
+//! [`replay_against_truth`] compares the same estimates with a ground truth taken at other
+//! times (fluoroscopy frames, `dlw estimate --truth`), interpolated at the frame times
+//! ([`truth`]).
+//!
 //! [`config_file`] reads and writes estimator configs as TOML or JSON.
 
 mod config_file;
+pub mod truth;
 
 use dlw_estimator::{Estimator, EstimatorConfig, EstimatorError, Flags};
 use serde::Serialize;
@@ -22,6 +27,10 @@ use crate::sim::Recording;
 
 /// Estimator config files in TOML or JSON.
 pub use config_file::{config_text, load_config, ConfigFileError, ConfigFormat};
+/// Comparing estimates with a ground truth at other times.
+pub use truth::{
+    compare_with_truth, interpolate_at, replay_against_truth, TruthMetrics, TruthReplay,
+};
 
 /// Why a replay could not run.
 #[derive(Debug, thiserror::Error)]
@@ -41,6 +50,25 @@ pub enum ReplayError {
     /// The estimator could not be built.
     #[error("cannot build the estimator: {0}")]
     Estimator(#[from] EstimatorError),
+    /// The recording has no tracker angle to compare with.
+    #[error("the recording has no tracker angle (its angle_deg column is empty); compare with a ground truth: --truth angles.csv")]
+    NoTrackerAngle,
+    /// The ground truth and the recording share no time.
+    #[error("no ground-truth frame of {truth} lies within the recording's time span {start_s}..{end_s} s ({frames} frame(s) from {first_s} s to {last_s} s)")]
+    NoOverlap {
+        /// The ground-truth file.
+        truth: String,
+        /// The recording's first time (s).
+        start_s: f64,
+        /// The recording's last time (s).
+        end_s: f64,
+        /// Frames with an angle.
+        frames: usize,
+        /// The first frame's time (s).
+        first_s: f64,
+        /// The last frame's time (s).
+        last_s: f64,
+    },
 }
 
 /// The comparison of the estimates with the recorded angle. The JSON keys are part of the
@@ -82,6 +110,55 @@ pub struct Replay {
 /// [`ReplayError`]: a config the estimator crate refuses, or one that needs a second sensor the
 /// recording does not have.
 pub fn replay(config: &EstimatorConfig, recording: &Recording) -> Result<Replay, ReplayError> {
+    if !recording.samples.has_tracker_angle() {
+        return Err(ReplayError::NoTrackerAngle);
+    }
+    let run = run_estimator(config, recording)?;
+    Ok(Replay {
+        metrics: tracker_metrics(&run, recording),
+        estimate_deg: run.estimate_deg,
+        flags: run.flags,
+        warnings: run.warnings,
+    })
+}
+
+/// The comparison of a run's estimates with the recording's tracker angle, which it must have.
+pub(crate) fn tracker_metrics(run: &Run, recording: &Recording) -> Metrics {
+    let samples = &recording.samples;
+    let (mut sum_sq, mut max_abs) = (0.0f64, 0.0f64);
+    for (e, a) in run.estimate_deg.iter().zip(&samples.angle_deg) {
+        let err = e - a;
+        sum_sq += err * err;
+        max_abs = max_abs.max(err.abs());
+    }
+    let n = samples.len();
+    Metrics {
+        rmse_deg: (sum_sq / n.max(1) as f64).sqrt(),
+        max_abs_error_deg: max_abs,
+        samples: n,
+        flagged_samples: run.flagged,
+        held_samples: run.held,
+        filter_delay_samples: run.delay_samples,
+        filter_delay_s: run.delay_samples / recording.rig.sample_hz,
+    }
+}
+
+/// The estimator's output over a recording, before any comparison.
+#[derive(Debug, Clone)]
+pub(crate) struct Run {
+    pub(crate) estimate_deg: Vec<f64>,
+    pub(crate) flags: Vec<Flags>,
+    pub(crate) flagged: usize,
+    pub(crate) held: usize,
+    pub(crate) delay_samples: f64,
+    pub(crate) warnings: Vec<String>,
+}
+
+/// Runs `config`'s estimator over every sample of `recording`.
+pub(crate) fn run_estimator(
+    config: &EstimatorConfig,
+    recording: &Recording,
+) -> Result<Run, ReplayError> {
     let rig = &recording.rig;
     let samples = &recording.samples;
     let channels = samples.volts.len();
@@ -128,7 +205,6 @@ pub fn replay(config: &EstimatorConfig, recording: &Recording) -> Result<Replay,
     let n = samples.len();
     let mut estimate_deg = Vec::with_capacity(n);
     let mut flags = Vec::with_capacity(n);
-    let (mut sum_sq, mut max_abs) = (0.0f64, 0.0f64);
     let (mut flagged, mut held) = (0, 0);
     for i in 0..n {
         let e = if two {
@@ -136,27 +212,17 @@ pub fn replay(config: &EstimatorConfig, recording: &Recording) -> Result<Replay,
         } else {
             estimator.step(samples.volts[first_column - 1][i])
         };
-        let err = e.angle_deg - samples.angle_deg[i];
-        sum_sq += err * err;
-        max_abs = max_abs.max(err.abs());
         flagged += usize::from(!e.flags.is_empty());
         held += usize::from(e.flags.contains(Flags::HELD));
         estimate_deg.push(e.angle_deg);
         flags.push(e.flags);
     }
-    let delay = estimator.delay_samples();
-    Ok(Replay {
+    Ok(Run {
         estimate_deg,
         flags,
-        metrics: Metrics {
-            rmse_deg: (sum_sq / n.max(1) as f64).sqrt(),
-            max_abs_error_deg: max_abs,
-            samples: n,
-            flagged_samples: flagged,
-            held_samples: held,
-            filter_delay_samples: delay,
-            filter_delay_s: delay / rig.sample_hz,
-        },
+        flagged,
+        held,
+        delay_samples: estimator.delay_samples(),
         warnings,
     })
 }
@@ -170,23 +236,38 @@ impl Replay {
     /// is the recorded angle, `error_deg = estimate_deg − angle_deg` and `flags` the estimator's
     /// flag names joined by `|` (`none` when clean).
     pub fn csv_bytes(&self, recording: &Recording) -> Vec<u8> {
-        let s = &recording.samples;
-        let mut out = Vec::with_capacity(s.len() * 48 + 64);
-        out.extend_from_slice(b"time_s,angle_deg,estimate_deg,error_deg,flags\n");
-        for i in 0..s.len() {
-            push_fixed(&mut out, s.time_s[i], 6);
-            out.push(b',');
-            push_fixed(&mut out, s.angle_deg[i], 4);
-            out.push(b',');
-            push_fixed(&mut out, self.estimate_deg[i], 4);
-            out.push(b',');
-            push_fixed(&mut out, self.estimate_deg[i] - s.angle_deg[i], 4);
-            out.push(b',');
-            out.extend_from_slice(self.flags[i].to_string().as_bytes());
-            out.push(b'\n');
-        }
-        out
+        estimates_csv(&self.estimate_deg, &self.flags, recording)
     }
+}
+
+/// `time_s,angle_deg,estimate_deg,error_deg,flags`; `angle_deg` and `error_deg` are empty when
+/// the recording has no tracker angle.
+pub(crate) fn estimates_csv(
+    estimate_deg: &[f64],
+    flags: &[Flags],
+    recording: &Recording,
+) -> Vec<u8> {
+    let s = &recording.samples;
+    let mut out = Vec::with_capacity(s.len() * 48 + 64);
+    out.extend_from_slice(b"time_s,angle_deg,estimate_deg,error_deg,flags\n");
+    for i in 0..s.len() {
+        push_fixed(&mut out, s.time_s[i], 6);
+        out.push(b',');
+        let angle = s.angle_deg.get(i).copied();
+        if let Some(a) = angle {
+            push_fixed(&mut out, a, 4);
+        }
+        out.push(b',');
+        push_fixed(&mut out, estimate_deg[i], 4);
+        out.push(b',');
+        if let Some(a) = angle {
+            push_fixed(&mut out, estimate_deg[i] - a, 4);
+        }
+        out.push(b',');
+        out.extend_from_slice(flags[i].to_string().as_bytes());
+        out.push(b'\n');
+    }
+    out
 }
 
 #[cfg(test)]
@@ -284,6 +365,37 @@ mod tests {
         // The linear model of the same sensor is degrees off.
         let linear = replay(&nominal(NotchStyle::Uan, 15.3, 215e3), &rec).unwrap();
         assert!(linear.metrics.rmse_deg > 0.5, "{:?}", linear.metrics);
+    }
+
+    #[test]
+    fn a_recording_without_tracker_angle_needs_a_ground_truth() {
+        let mut rec = recording(NotchStyle::Uan, |s| {
+            s.duration_s = Some(2.0);
+            s.adc.enabled = false;
+            s.tracker.enabled = false;
+        });
+        let true_deg = std::mem::take(&mut rec.samples.angle_deg);
+        let cfg = nominal(NotchStyle::Uan, 15.3, 215e3);
+        let err = replay(&cfg, &rec).unwrap_err().to_string();
+        assert!(
+            err.contains("no tracker angle") && err.contains("--truth"),
+            "{err}"
+        );
+        // Frames at 2 Hz from the true angle, offset by 0.5°: the RMSE is the offset.
+        let frames: Vec<usize> = (0..4).map(|k| k * 250).collect();
+        let truth = crate::fluoro::TruthAngles {
+            path: "angles.csv".into(),
+            time_s: frames.iter().map(|&i| rec.samples.time_s[i]).collect(),
+            angle_deg: frames.iter().map(|&i| true_deg[i] + 0.5).collect(),
+            skipped: 0,
+        };
+        let r = replay_against_truth(&cfg, &rec, &truth).unwrap();
+        assert!(r.tracker.is_none());
+        assert_eq!(r.truth.frames, 4);
+        assert!((r.truth.rmse_deg - 0.5).abs() < 1e-6, "{:?}", r.truth);
+        let text = String::from_utf8(r.csv_bytes(&rec)).unwrap();
+        let row: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+        assert_eq!((row[1], row[3]), ("", ""));
     }
 
     #[test]

@@ -11,7 +11,12 @@
 //! Reading refuses, naming the file, line and value: a wrong header, a row with missing or extra
 //! fields, a field that is not a number or not finite, a time that does not increase, and a
 //! voltage at or beyond a rail (`≤ 0` or `≥ supply_v`), which no finite sensor resistance
-//! explains. Writing builds the folder under a temporary name next to the destination and
+//! explains.
+//!
+//! A recording without a tracker (the phantom demonstration, whose ground truth comes from
+//! fluoroscopy) leaves the `angle_deg` field empty in every row. [`Recording::read`] refuses
+//! such a recording, so every reader that needs the tracker angle keeps its check;
+//! [`Recording::read_allowing_empty_angle`] reads it, with an empty `Samples::angle_deg`. Writing builds the folder under a temporary name next to the destination and
 //! renames it into place, so a failure never leaves a partial recording.
 
 use std::path::{Path, PathBuf};
@@ -137,6 +142,26 @@ pub enum RecordingError {
         /// The rig's supply.
         supply_v: f64,
     },
+    /// The `angle_deg` column is empty in some rows and not in others.
+    #[error("{path} line {line}: angle_deg is {found} but line {first_line} {first} (the column must be empty in every row, for a recording without a tracker, or in none)")]
+    MixedAngle {
+        /// The data file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// `empty` or `a number`.
+        found: &'static str,
+        /// The first data line.
+        first_line: usize,
+        /// What the first data line has, in words.
+        first: &'static str,
+    },
+    /// The `angle_deg` column is empty and the reader needs the tracker angle.
+    #[error("{path}: the angle_deg column is empty (a recording without a tracker angle); compare its estimates with a ground truth instead: dlw estimate --truth angles.csv")]
+    NoTrackerAngle {
+        /// The data file.
+        path: PathBuf,
+    },
     /// The data file has a header but no rows.
     #[error("{path} has no data rows")]
     NoRows {
@@ -201,7 +226,9 @@ pub struct Samples {
     pub time_s: Vec<f64>,
     /// `stroke_mm`: tendon stroke (mm).
     pub stroke_mm: Vec<f64>,
-    /// `angle_deg`: the angle the EM tracker recorded (°).
+    /// `angle_deg`: the angle the EM tracker recorded (°). Empty, while the other columns have
+    /// rows, for a recording without a tracker (read with
+    /// [`Recording::read_allowing_empty_angle`]).
     pub angle_deg: Vec<f64>,
     /// `v1_V`, `v2_V`: one vector of divider voltages (V) per sensor.
     pub volts: Vec<Vec<f64>>,
@@ -226,6 +253,11 @@ impl Samples {
     /// Whether there are no rows.
     pub fn is_empty(&self) -> bool {
         self.time_s.is_empty()
+    }
+
+    /// Whether the recording has the tracker's angle (its `angle_deg` column is not empty).
+    pub fn has_tracker_angle(&self) -> bool {
+        self.angle_deg.len() == self.time_s.len()
     }
 }
 
@@ -284,11 +316,29 @@ impl Rig {
 }
 
 impl Recording {
-    /// Reads and checks a recording folder.
+    /// Reads and checks a recording folder, which must have the tracker's angle.
     ///
     /// # Errors
-    /// [`RecordingError`] naming the file, the line and the value.
+    /// [`RecordingError`] naming the file, the line and the value;
+    /// [`RecordingError::NoTrackerAngle`] when the `angle_deg` column is empty.
     pub fn read(dir: &Path) -> Result<Self, RecordingError> {
+        let rec = Self::read_allowing_empty_angle(dir)?;
+        if !rec.samples.has_tracker_angle() {
+            return Err(RecordingError::NoTrackerAngle {
+                path: dir.join(DATA_FILE),
+            });
+        }
+        Ok(rec)
+    }
+
+    /// Reads and checks a recording folder whose `angle_deg` column may be empty in every row
+    /// (a recording without a tracker); `samples.angle_deg` is then empty. Every other check
+    /// of [`read`](Self::read) applies.
+    ///
+    /// # Errors
+    /// [`RecordingError`] naming the file, the line and the value;
+    /// [`RecordingError::MixedAngle`] when the column is empty in some rows only.
+    pub fn read_allowing_empty_angle(dir: &Path) -> Result<Self, RecordingError> {
         let rig_path = dir.join(RIG_FILE);
         let rig_text = read_text(&rig_path)?;
         let rig: Rig = toml::from_str(&rig_text).map_err(|e| RecordingError::RigParse {
@@ -332,7 +382,8 @@ impl Recording {
     }
 
     /// `data.csv` as bytes: fixed decimals (time and stroke to 1e-6, angle to 1e-4°, voltage to
-    /// 1 µV), `.` as decimal point, `\n` line ends.
+    /// 1 µV), `.` as decimal point, `\n` line ends; empty `angle_deg` fields when the samples
+    /// have no tracker angle.
     pub fn csv_bytes(&self) -> Vec<u8> {
         let s = &self.samples;
         let channels = s.volts.len();
@@ -344,7 +395,9 @@ impl Recording {
             out.push(b',');
             push_fixed(&mut out, s.stroke_mm[i], 6);
             out.push(b',');
-            push_fixed(&mut out, s.angle_deg[i], 4);
+            if let Some(&a) = s.angle_deg.get(i) {
+                push_fixed(&mut out, a, 4);
+            }
             for v in &s.volts {
                 out.push(b',');
                 push_fixed(&mut out, v[i], 6);
@@ -379,6 +432,8 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
     let mut samples = Samples::with_capacity(channels, text.len() / (30 + 9 * channels));
     let mut row = [0.0f64; 5];
     let mut blank = None;
+    // Whether the first data row's angle_deg is empty, and its line.
+    let mut angle_empty: Option<(usize, bool)> = None;
     for (i, raw) in lines {
         let line = i + 1;
         let text = raw.trim_end_matches('\r');
@@ -397,8 +452,11 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
             });
         }
         let mut n = 0;
+        let mut empty = false;
         for field in text.split(',') {
-            if n < columns.len() {
+            if n == 2 && field.is_empty() {
+                empty = true;
+            } else if n < columns.len() {
                 row[n] = parse_field(field, line, &columns[n], path)?;
             }
             n += 1;
@@ -411,6 +469,24 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
                 expected: columns.len(),
                 header: expected,
             });
+        }
+        let words = |e: bool| if e { "empty" } else { "a number" };
+        match angle_empty {
+            None => angle_empty = Some((line, empty)),
+            Some((first_line, first)) if first != empty => {
+                return Err(RecordingError::MixedAngle {
+                    path: path.to_path_buf(),
+                    line,
+                    found: words(empty),
+                    first_line,
+                    first: if first {
+                        "has it empty"
+                    } else {
+                        "has a number"
+                    },
+                });
+            }
+            Some(_) => {}
         }
         if let Some(&previous_s) = samples.time_s.last() {
             if row[0] <= previous_s {
@@ -437,7 +513,9 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
         }
         samples.time_s.push(row[0]);
         samples.stroke_mm.push(row[1]);
-        samples.angle_deg.push(row[2]);
+        if !empty {
+            samples.angle_deg.push(row[2]);
+        }
     }
     if samples.is_empty() {
         return Err(RecordingError::NoRows {
@@ -530,6 +608,49 @@ mod tests {
         let two = "time_s,stroke_mm,angle_deg,v1_V,v2_V\n0,0,0,1,6\n";
         let err = parse_data(two, &rig(2), path).unwrap_err().to_string();
         assert!(err.contains("v2_V = 6 V"), "{err}");
+    }
+
+    #[test]
+    fn an_empty_angle_column_is_read_only_when_allowed() {
+        let path = Path::new("data.csv");
+        let empty = "time_s,stroke_mm,angle_deg,v1_V\n0,0,,1.5\n0.002,0.1,,1.6\n";
+        let s = parse_data(empty, &rig(1), path).unwrap();
+        assert_eq!((s.len(), s.angle_deg.len()), (2, 0));
+        assert!(!s.has_tracker_angle());
+        let mixed = "time_s,stroke_mm,angle_deg,v1_V\n0,0,,1.5\n0.002,0.1,2,1.6\n";
+        let err = parse_data(mixed, &rig(1), path).unwrap_err().to_string();
+        assert!(
+            err.contains("line 3: angle_deg is a number but line 2 has it empty"),
+            "{err}"
+        );
+        let mixed = "time_s,stroke_mm,angle_deg,v1_V\n0,0,1,1.5\n0.002,0.1,,1.6\n";
+        let err = parse_data(mixed, &rig(1), path).unwrap_err().to_string();
+        assert!(
+            err.contains("line 3: angle_deg is empty but line 2 has a number"),
+            "{err}"
+        );
+        // Every other column keeps its checks.
+        let bad = "time_s,stroke_mm,angle_deg,v1_V\n0,,,1.5\n";
+        let err = parse_data(bad, &rig(1), path).unwrap_err().to_string();
+        assert!(err.contains("stroke_mm = \"\""), "{err}");
+        let rail = "time_s,stroke_mm,angle_deg,v1_V\n0,0,,5\n";
+        assert!(parse_data(rail, &rig(1), path).is_err());
+
+        let dir = tempfile::tempdir().unwrap();
+        let dest = dir.path().join("rec");
+        let rec = Recording {
+            rig: rig(1),
+            samples: s,
+        };
+        rec.write(&dest, false).unwrap();
+        let text = std::fs::read_to_string(dest.join(DATA_FILE)).unwrap();
+        assert_eq!(text.lines().nth(1), Some("0.000000,0.000000,,1.500000"));
+        assert_eq!(Recording::read_allowing_empty_angle(&dest).unwrap(), rec);
+        let err = Recording::read(&dest).unwrap_err().to_string();
+        assert!(
+            err.contains("angle_deg column is empty") && err.contains("--truth"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -1,0 +1,113 @@
+//! `dlw fluoro-render --recording REC [--fps 2] [--size 512] [--offset-deg 0] -o FRAMES`:
+//! synthetic fluoroscopy frames of a recording's angle, for trying `dlw fluoro` without an
+//! X-ray machine.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use dlw::fluoro::render::{png_bytes, PinScene};
+use dlw::fluoro::{render_frame, StagedFolder};
+use dlw::replay::interpolate_at;
+use dlw::sim::Recording;
+
+/// The most frames one run writes.
+const MAX_FRAMES: usize = 100_000;
+
+/// Arguments of `dlw fluoro-render`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Recording folder whose angle_deg column the pin follows.
+    #[arg(long)]
+    recording: PathBuf,
+    /// Frame rate (frames per second); frame k shows the angle at the first sample's time +
+    /// k/fps, interpolated.
+    #[arg(long, allow_hyphen_values = true, default_value_t = 2.0)]
+    fps: f64,
+    /// Frame width and height (px).
+    #[arg(long, default_value_t = 512)]
+    size: u32,
+    /// Bits per pixel: 8 or 16.
+    #[arg(long, default_value_t = 16)]
+    bits: u32,
+    /// The pin's angle in the image at zero joint angle (°, counter-clockwise as displayed):
+    /// the mounting offset `dlw fluoro`'s baseline removes.
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
+    offset_deg: f64,
+    /// Seed of the frames' noise.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Noise-free, unblurred frames without the distracting blob.
+    #[arg(long)]
+    clean: bool,
+    /// Output folder of PNG frames (must not exist or be empty, unless --force).
+    #[arg(short = 'o', long = "output")]
+    output: PathBuf,
+    /// Replace an existing output folder.
+    #[arg(long)]
+    force: bool,
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    if !(args.fps.is_finite() && args.fps > 0.0) {
+        anyhow::bail!(
+            "--fps {} is out of range (finite and greater than 0)",
+            args.fps
+        );
+    }
+    if !(32..=8192).contains(&args.size) {
+        anyhow::bail!("--size {} is out of range (32 to 8192 px)", args.size);
+    }
+    if args.bits != 8 && args.bits != 16 {
+        anyhow::bail!("--bits {} is out of range (8 or 16)", args.bits);
+    }
+    if !args.offset_deg.is_finite() {
+        anyhow::bail!("--offset-deg {} is not a finite angle", args.offset_deg);
+    }
+    let rec = Recording::read(&args.recording)?;
+    let s = &rec.samples;
+    let (t0, t1) = (s.time_s[0], s.time_s[s.len() - 1]);
+    let frames = ((t1 - t0) * args.fps).floor() as usize + 1;
+    if frames > MAX_FRAMES {
+        anyhow::bail!(
+            "{frames} frames ({} s at {} fps) is more than {MAX_FRAMES}; lower --fps or shorten the recording",
+            t1 - t0,
+            args.fps
+        );
+    }
+    let mut scene = PinScene::standard(args.size);
+    scene.bits = args.bits;
+    if args.clean {
+        scene.blur_px = 0.0;
+        scene.photons = 0.0;
+        scene.distractor = None;
+    }
+    let folder = StagedFolder::create(&args.output, args.force)?;
+    for k in 0..frames {
+        let t = t0 + k as f64 / args.fps;
+        let angle = interpolate_at(&s.time_s, &s.angle_deg, t.min(t1)).unwrap_or(s.angle_deg[0]);
+        let frame = render_frame(
+            &scene,
+            args.offset_deg + angle,
+            args.seed.wrapping_add(k as u64),
+        );
+        let name = format!("frame_{k:05}.png");
+        let bytes = png_bytes(&frame).map_err(|message| dlw::fluoro::FluoroError::Encode {
+            name: name.clone(),
+            message,
+        })?;
+        folder.add_bytes(&name, &bytes)?;
+    }
+    folder
+        .finish()
+        .with_context(|| format!("writing frames {}", args.output.display()))?;
+    println!(
+        "wrote {}: {frames} frames ({}×{} px, {}-bit) at {} fps from {t0} s, pin at the recording's angle + {}°",
+        args.output.display(),
+        args.size,
+        args.size,
+        args.bits,
+        args.fps,
+        args.offset_deg
+    );
+    Ok(())
+}
