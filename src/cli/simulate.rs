@@ -99,8 +99,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .true_angle_deg
         .iter()
         .fold(0.0f64, |m, a| m.max(a.abs()));
+    let correlated = match (sc.adc.correlated.enabled, sc.tracker.correlated.enabled) {
+        (true, true) => ", correlated ADC and tracker noise",
+        (true, false) => ", correlated ADC noise",
+        (false, true) => ", correlated tracker noise",
+        (false, false) => "",
+    };
     println!(
-        "wrote {}: {} samples ({} s at {} Hz), {} protocol, seed {}, peak angle {:.2}°",
+        "wrote {}: {} samples ({} s at {} Hz), {} protocol, seed {}{correlated}, peak angle {:.2}°",
         args.output.display(),
         plan.samples,
         sc.duration_s.unwrap_or(0.0),
