@@ -21,11 +21,12 @@
 //! [adc.correlated]             # slow, correlated ADC noise on top of the white noise
 //! ```
 //!
-//! **An effect table that is present is on** unless it says `enabled = false`: `[plant.relaxation]`
-//! with only a `fraction` switches relaxation on. A table that is absent keeps its documented
-//! default (off for every effect; on for `[adc]` and `[tracker]`). In serde terms: each table's
-//! `enabled` field defaults to `true` (`#[serde(default = "present")]`) when the table is read, while the enclosing
-//! struct's `Default` (used when the table is missing) has it off.
+//! **An effect table that is present is on** unless it says `enabled = false`:
+//! `[plant.relaxation]` with only a `fraction` switches relaxation on. A table that is absent
+//! keeps its documented default (off for every effect and for correlated noise; on for `[adc]`
+//! and `[tracker]`). In serde terms: each table's `enabled` field defaults to `true`
+//! (`#[serde(default = "present")]`) when the table is read, while the enclosing struct's
+//! `Default`, used when the table is missing, has it off.
 //!
 //! The defaults, where they come from, and what each effect does, are in the doc of each table's
 //! type and in `docs/simulator.md`.
