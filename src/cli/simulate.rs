@@ -24,8 +24,8 @@ pub struct Args {
     /// Seed of every random stream (noise, drift, the random pattern); overrides the scenario's.
     #[arg(long)]
     seed: Option<u64>,
-    /// Recording length (s); defaults to the protocol's (1000 s characterization, 3000 s the
-    /// others, a CSV profile's last time).
+    /// Recording length (s); defaults to the protocol's: 10 s at rest, then 1000 s
+    /// characterization or 3000 s of the others; a CSV profile's last time.
     #[arg(long)]
     duration_s: Option<f64>,
     /// `realistic` switches the correlated ADC and tracker noise on (`[adc.correlated]`,

@@ -118,7 +118,7 @@ fn present() -> bool {
 /// | key | default | meaning |
 /// |---|---|---|
 /// | `protocol` | none (the CLI's `--protocol`) | which stroke profile to run |
-/// | `duration_s` | the protocol's (1000 s characterization, 3000 s others, the CSV's last time) | recording length |
+/// | `duration_s` | the protocol's (10 s at rest plus 1000 s characterization, 3000 s others; the CSV's last time) | recording length |
 /// | `seed` | 0 | seeds every random stream (noise, drift, the random protocol) |
 /// | `sample_hz` | 500 | the paper's DAQ rate |
 /// | `supply_v` | 5 | divider supply `V+` |
