@@ -79,9 +79,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         scenario.duration_s = args.duration_s;
     }
     if let Some(noise) = args.noise {
-        let on = noise == NoisePreset::Realistic;
-        scenario.adc.correlated.enabled = on;
-        scenario.tracker.correlated.enabled = on;
+        scenario.set_correlated_noise(noise == NoisePreset::Realistic);
     }
     let plan = sim::plan(&design, scenario, args.profile)?;
     let run = plan

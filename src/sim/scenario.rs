@@ -679,6 +679,13 @@ impl Scenario {
         Ok(self)
     }
 
+    /// Switches the correlated ADC and tracker noise on or off (`--noise realistic` / `white`),
+    /// keeping their parameters.
+    pub fn set_correlated_noise(&mut self, on: bool) {
+        self.adc.correlated.enabled = on;
+        self.tracker.correlated.enabled = on;
+    }
+
     /// The sensors, in order (one for UAN, two for BSN once resolved).
     pub fn sensors(&self) -> impl Iterator<Item = &SensorParams> {
         std::iter::once(&self.sensor1).chain(self.sensor2.as_ref())
