@@ -566,7 +566,7 @@ impl Default for TrackerParams {
 /// | key | default | why |
 /// |---|---|---|
 /// | `enabled` | false (the table absent); true when present | old recordings keep their noise |
-/// | `sigma_deg` | 0.2 | comparable to the white 0.3°: an NDI Aurora's specified 0.30° RMS is mostly field distortion that changes as the tip sensor moves through the field, and the system's own filtering of its 40 Hz measurements; at 500 Hz both show as error that wanders rather than jitters |
+/// | `sigma_deg` | 0.2 | comparable to the white 0.3°: an NDI Aurora's specified 0.30° RMS is mostly field distortion that changes as the tip sensor moves through the field, and the system's own filtering of its ~40 Hz measurements; at 500 Hz both show as error that wanders rather than jitters (modelled as wandering with time, not position) |
 /// | `tau_s` | 1 | a second: the time the joint takes to move the sensor through a different part of the field on the protocols' 1-10 s ramps |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
