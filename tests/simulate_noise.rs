@@ -87,7 +87,10 @@ fn old_seeds_give_the_same_white_noise() {
             "2",
         ],
     );
-    assert!(c == std::fs::read(golden("custom-joint-c-drift.csv")).unwrap());
+    assert!(
+        c == std::fs::read(golden("custom-joint-c-drift.csv")).unwrap(),
+        "the ADC, tracker or drift streams changed"
+    );
     let no_rest = dir.path().join("no-rest.toml");
     std::fs::write(&no_rest, "[protocols]\nrest_start_s = 0.0\n").unwrap();
     let d = simulate(
@@ -106,7 +109,10 @@ fn old_seeds_give_the_same_white_noise() {
             &no_rest.display().to_string(),
         ],
     );
-    assert!(d == std::fs::read(golden("random-joint-d.csv")).unwrap());
+    assert!(
+        d == std::fs::read(golden("random-joint-d.csv")).unwrap(),
+        "the random pattern, the ADC or the tracker stream changed"
+    );
 }
 
 /// The tracker's correlated error alone, on a joint at rest for 600 s: standard deviation σ and
