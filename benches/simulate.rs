@@ -33,6 +33,14 @@ fn bench(c: &mut Criterion) {
     let cases = [
         // The default: linear sensor, ADC and tracker noise.
         ("run_3000s_linear_default", scenario(|_| {})),
+        // The same with correlated ADC and tracker noise (`--noise realistic`).
+        (
+            "run_3000s_linear_realistic_noise",
+            scenario(|s| {
+                s.adc.correlated.enabled = true;
+                s.tracker.correlated.enabled = true;
+            }),
+        ),
         // PI sensor (N = 10) with every plant and sensor effect on.
         (
             "run_3000s_pi_all_effects",

@@ -48,7 +48,8 @@ const SUPPLY_V: f64 = 5.0;
 /// The protocols' peak strain (the simulator's default amplitude).
 const PEAK_STRAIN: f64 = 0.015;
 
-/// A noise-only scenario (linear sensor, no plant or sensor effect) plus `extra` TOML.
+/// A white-noise-only scenario (linear sensor, no plant or sensor effect, no correlated noise:
+/// its tables are absent, so off) plus `extra` TOML.
 fn scenario(noise: Noise, extra: &str) -> String {
     format!(
         "seed = 11\n[adc]\nenabled = true\nbits = {ADC_BITS}\nmin_v = -10.0\nmax_v = 10.0\nnoise_v = {}\n[tracker]\nenabled = true\nnoise_deg = {}\n{extra}",
@@ -83,7 +84,7 @@ struct LinearSensor {
 ///
 /// and the RMSE² is the mean of `var(e(θ))` over the samples' angles, which lie in
 /// `[0, θ_peak]` (the protocols stroke between 0 and the amplitude that reaches 1.5 % strain).
-/// So `min_θ var ≤ RMSE² ≤ max_θ var` up to sampling error. With 15 000 samples the relative
+/// So `min_θ var ≤ RMSE² ≤ max_θ var` up to sampling error. With 20 000 samples the relative
 /// standard error of an RMS is about `1/√(2n)` = 0.6 %, and the second-order terms of the
 /// inverse are of order `σ_v/V ≈ 0.2 %`; the bounds get a 10 % margin for both.
 fn rmse_bounds(design: &Design, sensors: &[LinearSensor], noise: Noise) -> (f64, f64) {
@@ -117,8 +118,9 @@ fn rmse_bounds(design: &Design, sensors: &[LinearSensor], noise: Noise) -> (f64,
     (0.9 * lo.sqrt(), 1.1 * hi.sqrt())
 }
 
-/// Simulates 30 s of the random protocol with `scenario_text`, writes the nominal config with
-/// `config_args` and returns `estimate --json`'s report.
+/// Simulates 40 s of the random protocol (10 s at rest, then 30 s of motion) with
+/// `scenario_text`, writes the nominal config with `config_args` and returns `estimate --json`'s
+/// report.
 fn simulate_and_estimate(
     dir: &Path,
     design: &str,
@@ -136,7 +138,7 @@ fn simulate_and_estimate(
         "--protocol",
         "random",
         "--duration-s",
-        "30",
+        "40",
         "--scenario",
         &scenario.display().to_string(),
         "-o",
@@ -150,9 +152,9 @@ fn simulate_and_estimate(
     dlw(&args);
     let o = dlw(&["estimate", "--config", &config, &rec_s, "--json"]);
     let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(report["samples"], 15_000);
+    assert_eq!(report["samples"], 20_000);
     let csv = std::fs::read_to_string(rec.join("estimates.csv")).unwrap();
-    assert_eq!(csv.lines().count(), 15_001);
+    assert_eq!(csv.lines().count(), 20_001);
     report
 }
 

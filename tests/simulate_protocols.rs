@@ -89,7 +89,63 @@ fn every_protocol_writes_a_recording() {
             let mut args = vec!["--duration-s", "12.5"];
             args.extend_from_slice(extra);
             ok(&simulate(&design(design_file), protocol, &out, &args));
-            check_recording(&out, channels, 6250);
+            let text = check_recording(&out, channels, 6250);
+            if protocol != "custom" {
+                starts_at_rest(&text, 10.0);
+            }
+        }
+    }
+}
+
+/// Every row up to `rest_s` has zero stroke, and the joint moves within a second after.
+fn starts_at_rest(csv: &str, rest_s: f64) {
+    let rows: Vec<(f64, f64)> = csv
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let mut f = l.split(',').map(|x| x.parse::<f64>().unwrap());
+            (f.next().unwrap(), f.next().unwrap())
+        })
+        .collect();
+    let still = rows.iter().take_while(|(t, _)| *t <= rest_s);
+    assert_eq!(still.clone().count(), (rest_s * 500.0) as usize + 1);
+    assert!(
+        still.clone().all(|(_, s)| *s == 0.0),
+        "moves before {rest_s} s"
+    );
+    assert!(
+        rows.iter()
+            .any(|(t, s)| *t > rest_s && *t < rest_s + 1.0 && *s > 0.0),
+        "does not move after {rest_s} s"
+    );
+}
+
+/// `protocols.rest_start_s` sets the rest; 0 starts moving at once.
+#[test]
+fn the_rest_at_the_start_is_a_scenario_key() {
+    let dir = tempfile::tempdir().unwrap();
+    for rest in [0.0, 3.0, 25.0] {
+        let scenario = dir.path().join("s.toml");
+        std::fs::write(&scenario, format!("[protocols]\nrest_start_s = {rest:?}\n")).unwrap();
+        let out = dir.path().join(format!("rec-{rest}"));
+        ok(&simulate(
+            &design("joint-a.toml"),
+            "relaxation",
+            &out,
+            &[
+                "--scenario",
+                &scenario.display().to_string(),
+                "--duration-s",
+                "30",
+            ],
+        ));
+        let text = check_recording(&out, 1, 15_000);
+        if rest > 0.0 {
+            starts_at_rest(&text, rest);
+        } else {
+            let second_row = text.lines().nth(2).unwrap();
+            let stroke: f64 = second_row.split(',').nth(1).unwrap().parse().unwrap();
+            assert!(stroke > 0.0, "{second_row}");
         }
     }
 }
@@ -100,9 +156,10 @@ fn default_durations_are_the_protocols() {
     let out = dir.path().join("char");
     let o = simulate(&design("joint-a.toml"), "characterization", &out, &[]);
     ok(&o);
-    check_recording(&out, 1, 500_000);
+    // The paper's 5 × 200 s after 10 s at rest.
+    check_recording(&out, 1, 505_000);
     let text = std::fs::read_to_string(out.join("rig.toml")).unwrap();
-    assert!(text.contains("duration_s = 1000.0"), "{text}");
+    assert!(text.contains("duration_s = 1010.0"), "{text}");
     // A CSV profile runs to its last time.
     let profile = dir.path().join("p.csv");
     std::fs::write(&profile, "time_s,stroke_mm\n0,0\n3,1\n").unwrap();

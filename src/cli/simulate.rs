@@ -1,4 +1,5 @@
-//! `dlw simulate --design D --protocol P [--scenario S.toml] [--seed N] [--duration-s T] -o DIR`.
+//! `dlw simulate --design D --protocol P [--scenario S.toml] [--seed N] [--duration-s T]
+//! [--noise white|realistic] -o DIR`.
 
 use std::path::PathBuf;
 
@@ -16,17 +17,22 @@ pub struct Args {
     /// --profile). Overrides the scenario's `protocol`.
     #[arg(long, value_parser = parse_protocol)]
     protocol: Option<ProtocolKind>,
-    /// Scenario file (TOML): which effects are on, with their parameters. Without one, only ADC
-    /// and EM-tracker noise are on.
+    /// Scenario file (TOML): which effects are on, with their parameters. Without one, only
+    /// white ADC and EM-tracker noise are on.
     #[arg(long)]
     scenario: Option<PathBuf>,
     /// Seed of every random stream (noise, drift, the random pattern); overrides the scenario's.
     #[arg(long)]
     seed: Option<u64>,
-    /// Recording length (s); defaults to the protocol's (1000 s characterization, 3000 s the
-    /// others, a CSV profile's last time).
+    /// Recording length (s); defaults to the protocol's: 10 s at rest, then 1000 s
+    /// characterization or 3000 s of the others; a CSV profile's last time.
     #[arg(long)]
     duration_s: Option<f64>,
+    /// `realistic` switches the correlated ADC and tracker noise on (`[adc.correlated]`,
+    /// `[tracker.correlated]`, with the scenario's or the default parameters); `white` switches
+    /// it off. Without the flag the scenario decides (default: white only).
+    #[arg(long, value_enum)]
+    noise: Option<NoisePreset>,
     /// Stroke profile CSV (`time_s,stroke_mm`) for `--protocol custom`.
     #[arg(long)]
     profile: Option<PathBuf>,
@@ -36,6 +42,15 @@ pub struct Args {
     /// Replace an existing output folder.
     #[arg(long)]
     force: bool,
+}
+
+/// The `--noise` presets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum NoisePreset {
+    /// White ADC and tracker noise only.
+    White,
+    /// White plus correlated (first-order autoregressive) ADC and tracker noise.
+    Realistic,
 }
 
 fn parse_protocol(s: &str) -> Result<ProtocolKind, String> {
@@ -63,6 +78,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if args.duration_s.is_some() {
         scenario.duration_s = args.duration_s;
     }
+    if let Some(noise) = args.noise {
+        scenario.set_correlated_noise(noise == NoisePreset::Realistic);
+    }
     let plan = sim::plan(&design, scenario, args.profile)?;
     let run = plan
         .run()
@@ -79,8 +97,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .true_angle_deg
         .iter()
         .fold(0.0f64, |m, a| m.max(a.abs()));
+    let correlated = match (sc.adc.correlated.enabled, sc.tracker.correlated.enabled) {
+        (true, true) => ", correlated ADC and tracker noise",
+        (true, false) => ", correlated ADC noise",
+        (false, true) => ", correlated tracker noise",
+        (false, false) => "",
+    };
     println!(
-        "wrote {}: {} samples ({} s at {} Hz), {} protocol, seed {}, peak angle {:.2}°",
+        "wrote {}: {} samples ({} s at {} Hz), {} protocol, seed {}{correlated}, peak angle {:.2}°",
         args.output.display(),
         plan.samples,
         sc.duration_s.unwrap_or(0.0),

@@ -12,7 +12,7 @@
 //! Strain and voltage use `dlw_geometry`, the code the planner and the runtime estimator use, so
 //! a simulated joint is read with exactly the geometry it was simulated with. Each effect
 //! (backlash, relaxation, the notch limit, saturation, drift, rate dependence, creep, ADC and
-//! tracker noise) is switched on in the [`Scenario`] with its parameters. Every random draw comes
+//! tracker noise, white and correlated) is switched on in the [`Scenario`] with its parameters. Every random draw comes
 //! from a ChaCha stream of the scenario's seed, one stream per source, so a seed gives the same
 //! recording on every platform.
 //!
@@ -39,6 +39,7 @@
 //! [`SimError`]: a scenario value out of range, an unreadable stroke profile, or a scenario that
 //! drives a sensor to a non-physical resistance or a divider to a rail.
 
+mod correlated;
 mod measure;
 mod pi_default;
 mod plant;
@@ -54,6 +55,8 @@ use dlw_geometry::Divider;
 
 use crate::design::Design;
 
+/// Correlated (first-order autoregressive) measurement noise.
+pub use correlated::Ar1;
 /// The divider, ADC and EM tracker models.
 pub use measure::{Adc, Tracker};
 /// Default PI sensor models from the paper's Table III.
@@ -64,6 +67,7 @@ pub use plant::Plant;
 pub use protocol::{
     Characterization, CustomProtocol, Knot, ProtocolError, ProtocolKind, ProtocolParams,
     RandomProtocol, RateDependenceProtocol, RelaxationProtocol, Sampler, StrokeProfile,
+    DEFAULT_REST_START_S,
 };
 /// Recording folders: reading, checking and writing.
 pub use recording::{
@@ -73,8 +77,9 @@ pub use recording::{
 pub use rng::{streams, Stream};
 /// The scenario file: every effect, switchable, with documented defaults.
 pub use scenario::{
-    AdcParams, Backlash, Creep, Drift, NotchLimit, PlantParams, RateDependence, Relaxation,
-    Saturation, Scenario, ScenarioError, SensorModelKind, SensorParams, TrackerParams,
+    AdcCorrelated, AdcParams, Backlash, Creep, Drift, NotchLimit, PlantParams, RateDependence,
+    RateForm, Relaxation, Saturation, Scenario, ScenarioError, SensorModelKind, SensorParams,
+    TrackerCorrelated, TrackerParams, SIGNED_RATE_LEAD_S,
 };
 /// Strain → resistance with saturation, drift, rate dependence and creep.
 pub use sensor::Sensor;
@@ -233,11 +238,11 @@ impl Plan {
                     fixed_ohm: p.divider_ohm.unwrap_or(f64::NAN),
                     supply_v: sc.supply_v,
                 };
-                let adc = Adc::new(&sc.adc, Stream::new(sc.seed, streams::ADC + i));
+                let adc = Adc::for_channel(&sc.adc, sc.seed, i, dt_s);
                 Ok((sensor, divider, adc))
             })
             .collect::<Result<_, ScenarioError>>()?;
-        let mut tracker = Tracker::new(&sc.tracker, Stream::new(sc.seed, streams::TRACKER));
+        let mut tracker = Tracker::for_seed(&sc.tracker, sc.seed, dt_s);
         let mut stroke = self.profile.sampler();
         let n = self.samples;
         let mut out = Samples::with_capacity(channels.len(), n);
@@ -383,6 +388,8 @@ mod tests {
         let design = test_design(NotchStyle::Uan);
         let mut sc = scenario(ProtocolKind::Characterization, 100.0);
         sc.sensor1.gauge_factor = Some(-200.0);
+        // Without ADC noise the voltage cannot reach the rail before the resistance reaches 0.
+        sc.adc.enabled = false;
         let err = plan(&design, sc, None)
             .unwrap()
             .run()

@@ -3,16 +3,18 @@
 //!
 //! A profile is a list of knots `(time_s, stroke_mm)` joined by straight lines (the lead screw
 //! runs at constant speed between knots), held constant before the first and after the last.
-//! A built-in protocol generates one repetition and repeats it until the duration is covered;
-//! its natural duration is `repeats` repetitions.
+//! A built-in protocol starts with the joint at rest, zero stroke for `rest_start_s` (10 s by
+//! default), as a bench recording does: the still segment is where a noise model can be frozen.
+//! Then it generates one repetition and repeats it until the duration is covered; its natural
+//! duration is the rest plus `repeats` repetitions.
 //!
 //! | protocol | one repetition (defaults) | natural duration |
 //! |---|---|---|
-//! | `characterization` | 5 triangle cycles of amplitude A/5, 2A/5 … A at constant stroke speed (the largest rises in 30 s), 4 s rest after each: 200 s | 5 × 200 s = 1000 s |
-//! | `rate-dependence` | 5 triangle cycles of amplitude A rising (and falling) in 10, 20, 30, 40, 50 s, equal rests filling 600 s | 5 × 600 s = 3000 s |
-//! | `relaxation` | a staircase up to A in 4 steps and back down, each step a 2 s ramp then a hold: 8 × 75 s = 600 s | 3000 s |
-//! | `random` | seeded ramps of 1-10 s to uniform random strokes in [0, A], each held 0-5 s, back to 0 at 600 s | 3000 s |
-//! | `custom` | the CSV's knots, not repeated | the CSV's last time |
+//! | `characterization` | 5 triangle cycles of amplitude A/5, 2A/5 … A at constant stroke speed (the largest rises in 30 s), 4 s rest after each: 200 s | 10 s + 5 × 200 s = 1010 s |
+//! | `rate-dependence` | 5 triangle cycles of amplitude A rising (and falling) in 10, 20, 30, 40, 50 s, equal rests filling 600 s | 10 s + 5 × 600 s = 3010 s |
+//! | `relaxation` | a staircase up to A in 4 steps and back down, each step a 2 s ramp then a hold: 8 × 75 s = 600 s | 3010 s |
+//! | `random` | seeded ramps of 1-10 s to uniform random strokes in [0, A], each held 0-5 s, back to 0 at 600 s | 3010 s |
+//! | `custom` | the CSV's knots, not repeated (no rest is added: the file says how it starts) | the CSV's last time |
 //!
 //! The amplitude `A` defaults to the stroke that gives the paper's ~1.5 % peak strain for the
 //! design at the plant's nominal gain: `A = θ(ε = 1.5 %)/gain`, with `θ(ε)` from the design's
@@ -105,6 +107,7 @@ impl ProtocolKind {
 /// |---|---|
 /// | `peak_strain` | 0.015 (the paper's ~1.5 %) |
 /// | `amplitude_mm` | from `peak_strain`, the geometry and the plant gain |
+/// | `rest_start_s` | 10: zero stroke before the first repetition of a built-in protocol |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ProtocolParams {
@@ -112,6 +115,10 @@ pub struct ProtocolParams {
     pub peak_strain: f64,
     /// Largest stroke (mm); `None` means derived from `peak_strain`.
     pub amplitude_mm: Option<f64>,
+    /// Time at rest (zero stroke) before a built-in protocol's first repetition (s); 0 starts
+    /// moving at once, as the protocols did before this key existed. Not applied to `custom`
+    /// profiles.
+    pub rest_start_s: f64,
     /// `characterization`.
     pub characterization: Characterization,
     /// `rate-dependence`.
@@ -130,6 +137,7 @@ impl Default for ProtocolParams {
         Self {
             peak_strain: 0.015,
             amplitude_mm: None,
+            rest_start_s: DEFAULT_REST_START_S,
             characterization: Characterization::default(),
             rate_dependence: RateDependenceProtocol::default(),
             relaxation: RelaxationProtocol::default(),
@@ -138,6 +146,11 @@ impl Default for ProtocolParams {
         }
     }
 }
+
+/// The default `protocols.rest_start_s` (s): long enough to hold several correlation times of
+/// the slowest default noise (`[adc.correlated] tau_s = 2`), short next to the protocols'
+/// 200-600 s repetitions, and about what a person does between starting the logger and the motor.
+pub const DEFAULT_REST_START_S: f64 = 10.0;
 
 /// `[protocols.characterization]`: `cycles` triangle cycles of amplitude `A·k/cycles`,
 /// `k = 1..cycles`, all at the stroke speed that lifts the largest in `full_rise_s`, each
@@ -288,6 +301,13 @@ impl ProtocolParams {
         positive("random.min_ramp_s", m.min_ramp_s);
         positive("random.repeat_s", m.repeat_s);
         positive("random.repeats", f64::from(m.repeats));
+        if !(self.rest_start_s.is_finite() && self.rest_start_s >= 0.0) {
+            fail(
+                "rest_start_s".into(),
+                self.rest_start_s,
+                "must be finite and at least 0",
+            );
+        }
         if !(c.rest_s.is_finite() && c.rest_s >= 0.0) {
             fail(
                 "characterization.rest_s".into(),
@@ -381,14 +401,21 @@ impl StrokeProfile {
             ProtocolKind::Custom => return Err(ProtocolError::NoProfile),
         };
         let period_s = one.last().map_or(0.0, |k| k.time_s);
-        let natural_duration_s = period_s * f64::from(repeats);
+        let rest_s = params.rest_start_s;
+        let natural_duration_s = rest_s + period_s * f64::from(repeats);
         let cover_s = duration_s.unwrap_or(natural_duration_s);
-        let count = (cover_s / period_s).ceil().max(1.0) as usize;
-        let mut knots = Vec::with_capacity(one.len() * count);
+        let count = ((cover_s - rest_s) / period_s).ceil().max(1.0) as usize;
+        let mut knots = Vec::with_capacity(one.len() * count + 1);
+        if rest_s > 0.0 {
+            knots.push(Knot {
+                time_s: 0.0,
+                stroke_mm: 0.0,
+            });
+        }
         for rep in 0..count {
-            let offset = period_s * rep as f64;
-            // Each repetition starts where the last ended (zero stroke), so its first knot is
-            // the previous one's last.
+            let offset = rest_s + period_s * rep as f64;
+            // Each repetition starts at zero stroke, where the previous one ended, so its first
+            // knot is the previous one's last.
             let skip = usize::from(rep > 0);
             knots.extend(one.iter().skip(skip).map(|k| Knot {
                 time_s: k.time_s + offset,
@@ -662,11 +689,12 @@ mod tests {
     #[test]
     fn natural_durations_match_the_paper() {
         use ProtocolKind::*;
+        // The paper's 5 repetitions (1000 s, 3000 s) after 10 s at rest.
         let table = [
-            (Characterization, 1000.0),
-            (RateDependence, 3000.0),
-            (Relaxation, 3000.0),
-            (Random, 3000.0),
+            (Characterization, 1010.0),
+            (RateDependence, 3010.0),
+            (Relaxation, 3010.0),
+            (Random, 3010.0),
         ];
         for (kind, dur) in table {
             let p = build(kind, None);
@@ -682,14 +710,15 @@ mod tests {
     #[test]
     fn characterization_cycles_grow_and_share_one_speed() {
         let p = build(ProtocolKind::Characterization, None);
-        let peaks: Vec<f64> = p.knots()[..16]
+        let peaks: Vec<f64> = p.knots()[..17]
             .iter()
             .map(|k| k.stroke_mm)
             .filter(|&s| s > 0.0)
             .collect();
         assert_eq!(peaks, vec![0.4, 0.8, 1.2, 1.6, 2.0]);
-        // First cycle rises 0.4 mm in 6 s, the last 2 mm in 30 s.
-        assert_relative_eq!(p.knots()[1].time_s, 6.0);
+        // After the 10 s rest, the first cycle rises 0.4 mm in 6 s, the last 2 mm in 30 s.
+        assert_relative_eq!(p.knots()[1].time_s, 10.0);
+        assert_relative_eq!(p.knots()[2].time_s, 16.0);
     }
 
     #[test]
@@ -710,9 +739,10 @@ mod tests {
         let p = build(ProtocolKind::Characterization, None);
         let mut s = p.sampler();
         assert_eq!(s.at(0.0), 0.0);
-        assert_relative_eq!(s.at(3.0), 0.2, epsilon = 1e-12);
-        assert_relative_eq!(s.at(6.0), 0.4, epsilon = 1e-12);
-        assert_relative_eq!(s.at(9.0), 0.2, epsilon = 1e-12);
+        assert_eq!(s.at(10.0), 0.0);
+        assert_relative_eq!(s.at(13.0), 0.2, epsilon = 1e-12);
+        assert_relative_eq!(s.at(16.0), 0.4, epsilon = 1e-12);
+        assert_relative_eq!(s.at(19.0), 0.2, epsilon = 1e-12);
         assert_eq!(s.at(1e9), 0.0);
     }
 
@@ -731,6 +761,53 @@ mod tests {
         let mut s = p.sampler();
         let first = s.at(123.4);
         assert_relative_eq!(s.at(723.4), first, epsilon = 1e-9);
+    }
+
+    /// Every built-in protocol holds zero stroke for `rest_start_s` and moves right after; the
+    /// rest only delays the pattern (the knots with a rest are those without, shifted), and the
+    /// random pattern's draws do not change.
+    #[test]
+    fn every_built_in_protocol_starts_at_rest() {
+        use ProtocolKind::*;
+        for kind in [Characterization, RateDependence, Relaxation, Random] {
+            let with = |rest: f64| {
+                let params = ProtocolParams {
+                    rest_start_s: rest,
+                    ..ProtocolParams::default()
+                };
+                let mut rng = Stream::new(1, 0);
+                StrokeProfile::built_in(kind, &params, 2.0, None, &mut rng).unwrap()
+            };
+            let p = with(DEFAULT_REST_START_S);
+            let mut s = p.sampler();
+            for i in 0..=1000 {
+                assert_eq!(
+                    s.at(i as f64 * 0.01),
+                    0.0,
+                    "{kind:?} at {}",
+                    i as f64 * 0.01
+                );
+            }
+            assert!(s.at(10.5) > 0.0, "{kind:?} does not move after the rest");
+            let none = with(0.0);
+            assert!(none.sampler().at(0.5) > 0.0, "{kind:?}");
+            assert_relative_eq!(
+                p.natural_duration_s(),
+                none.natural_duration_s() + 10.0,
+                epsilon = 1e-9
+            );
+            assert_eq!(
+                p.knots()[0],
+                Knot {
+                    time_s: 0.0,
+                    stroke_mm: 0.0
+                }
+            );
+            for (a, b) in p.knots()[1..].iter().zip(none.knots()) {
+                assert_relative_eq!(a.time_s, b.time_s + 10.0, epsilon = 1e-9);
+                assert_eq!(a.stroke_mm, b.stroke_mm, "{kind:?}");
+            }
+        }
     }
 
     #[test]

@@ -9,7 +9,8 @@ use rand_chacha::ChaCha8Rng;
 use rand_core::{RngCore, SeedableRng};
 use rand_distr::{Distribution, StandardNormal};
 
-/// The stream numbers in use; a new source of randomness takes a new number.
+/// The stream numbers in use; a new source of randomness takes a new number, so that the
+/// existing sources keep their draws (old seeds give the same recordings).
 pub mod streams {
     /// The random protocol's pattern.
     pub const PROTOCOL: u64 = 0;
@@ -19,6 +20,10 @@ pub mod streams {
     pub const ADC: u64 = 2;
     /// Baseline drift of sensor 1; sensor 2 uses the next number.
     pub const DRIFT: u64 = 4;
+    /// Correlated ADC noise of sensor 1; sensor 2 uses the next number.
+    pub const ADC_CORRELATED: u64 = 6;
+    /// The EM tracker's correlated error.
+    pub const TRACKER_CORRELATED: u64 = 8;
 }
 
 /// One seeded random stream.

@@ -10,15 +10,23 @@
 //! ```toml
 //! protocol = "random"          # characterization | rate-dependence | relaxation | random | custom
 //! seed = 7
-//! [plant.relaxation]
-//! enabled = true
+//! [plant.relaxation]          # present, so on
 //! fraction = 0.08
 //! [sensor1]
 //! gauge_factor = 22.0
 //! r0_ohm = 77.2e3
-//! [sensor1.drift]
-//! enabled = true
+//! [sensor1.drift]              # on, with its defaults
+//! [sensor1.creep]
+//! enabled = false              # present but switched off
+//! [adc.correlated]             # slow, correlated ADC noise on top of the white noise
 //! ```
+//!
+//! **An effect table that is present is on** unless it says `enabled = false`:
+//! `[plant.relaxation]` with only a `fraction` switches relaxation on. A table that is absent
+//! keeps its documented default (off for every effect and for correlated noise; on for `[adc]`
+//! and `[tracker]`). In serde terms: each table's `enabled` field defaults to `true`
+//! (`#[serde(default = "present")]`) when the table is read, while the enclosing struct's
+//! `Default`, used when the table is missing, has it off.
 //!
 //! The defaults, where they come from, and what each effect does, are in the doc of each table's
 //! type and in `docs/simulator.md`.
@@ -100,12 +108,17 @@ pub enum ScenarioError {
     },
 }
 
+/// The `enabled` of an effect table that is present in the file but does not say: on.
+fn present() -> bool {
+    true
+}
+
 /// A whole scenario (the top level of the file).
 ///
 /// | key | default | meaning |
 /// |---|---|---|
 /// | `protocol` | none (the CLI's `--protocol`) | which stroke profile to run |
-/// | `duration_s` | the protocol's (1000 s characterization, 3000 s others, the CSV's last time) | recording length |
+/// | `duration_s` | the protocol's (10 s at rest plus 1000 s characterization, 3000 s others; the CSV's last time) | recording length |
 /// | `seed` | 0 | seeds every random stream (noise, drift, the random protocol) |
 /// | `sample_hz` | 500 | the paper's DAQ rate |
 /// | `supply_v` | 5 | divider supply `V+` |
@@ -191,7 +204,8 @@ impl Default for PlantParams {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Backlash {
-    /// Switch.
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
     pub enabled: bool,
     /// Total dead band (mm), twice the play radius.
     pub width_mm: f64,
@@ -211,7 +225,8 @@ impl Default for Backlash {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Relaxation {
-    /// Switch.
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
     pub enabled: bool,
     /// Share of the elastic angle lost once fully relaxed, in `[0, 1)`.
     pub fraction: f64,
@@ -234,7 +249,8 @@ impl Default for Relaxation {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct NotchLimit {
-    /// Switch.
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
     pub enabled: bool,
 }
 
@@ -264,7 +280,7 @@ pub enum SensorModelKind {
 /// | `continuous_pi` | none | none | |
 /// | `saturation` | off, `strain = 0.02` | same | the paper's conclusion: saturation below 2 % |
 /// | `drift` | off, 0 Ω/s, 20 Ω/√s | 0 Ω/s, 0.7 Ω/√s | the spread of R0 over 3000 s (Section IV-A2): 1.10 kΩ (A), 0.038 kΩ (C) |
-/// | `rate` | off, 0.1 per decade, 1e-3 /s, 1 s | same | illustrative (the paper found no correlation) |
+/// | `rate` | off, `log`, 0.1 per decade, 1e-3 /s, 1 s; `signed`: 0.05 s·R0·GF | same | illustrative (the paper found no correlation) |
 /// | `creep` | off, 0.03, 30 s | same | illustrative (Section IV-A3: the resistance barely changed during holds) |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -314,7 +330,8 @@ impl Default for SensorParams {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Saturation {
-    /// Switch.
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
     pub enabled: bool,
     /// Saturation strain `ε_s` (fraction).
     pub strain: f64,
@@ -334,7 +351,8 @@ impl Default for Saturation {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Drift {
-    /// Switch.
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
     pub enabled: bool,
     /// Linear drift (Ω/s).
     pub rate_ohm_per_s: f64,
@@ -352,28 +370,59 @@ impl Default for Drift {
     }
 }
 
-/// Rate dependence (`[sensorN.rate]`): the resistance change is scaled by
-/// `1 + per_decade·log10(1 + |ε̇|/reference_rate_per_s)`, with `|ε̇|` smoothed by a first-order
-/// low-pass of time constant `smoothing_s`.
+/// How the strain rate changes the resistance (`[sensorN.rate] form`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RateForm {
+    /// The sensitivity grows with the logarithm of the rate's magnitude, the same for loading and
+    /// unloading: `ΔR·(1 + per_decade·log10(1 + |ε̇|/reference_rate_per_s))`.
+    #[default]
+    Log,
+    /// A signed term linear in the strain rate: `ΔR + ohm_per_strain_per_s·ε̇`, so loading reads
+    /// high and unloading low (a viscous, Kelvin-Voigt-like lead), a loop whose width grows with
+    /// speed.
+    Signed,
+}
+
+/// Rate dependence (`[sensorN.rate]`), of one of two forms, both driven by the strain rate the
+/// sensor feels smoothed by a first-order low-pass of time constant `smoothing_s`:
+///
+/// - `form = "log"` (the default): the resistance change is scaled by
+///   `1 + per_decade·log10(1 + |ε̇|/reference_rate_per_s)`;
+/// - `form = "signed"`: `ohm_per_strain_per_s·ε̇` is added, with the sign of the rate.
+///
+/// The keys of the other form are kept (and recorded) but not used.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RateDependence {
-    /// Switch.
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
     pub enabled: bool,
-    /// Relative sensitivity change per decade of strain rate.
+    /// `log` or `signed`.
+    pub form: RateForm,
+    /// `log`: relative sensitivity change per decade of strain rate.
     pub per_decade: f64,
-    /// Strain rate at which the gain is `1 + per_decade·log10(2)` (1/s).
+    /// `log`: strain rate at which the gain is `1 + per_decade·log10(2)` (1/s).
     pub reference_rate_per_s: f64,
-    /// Smoothing of the strain rate (s).
+    /// `signed`: resistance added per unit of strain rate (Ω per 1/s, that is Ω·s); `None`
+    /// means 0.05 s times the sensor's linear sensitivity `R0·GF`, as if the sensor read the
+    /// strain 50 ms ahead.
+    pub ohm_per_strain_per_s: Option<f64>,
+    /// Smoothing of the strain rate (s), both forms.
     pub smoothing_s: f64,
 }
+
+/// The signed rate form's default lead (s): `ohm_per_strain_per_s = SIGNED_RATE_LEAD_S·R0·GF`.
+pub const SIGNED_RATE_LEAD_S: f64 = 0.05;
 
 impl Default for RateDependence {
     fn default() -> Self {
         Self {
             enabled: false,
+            form: RateForm::Log,
             per_decade: 0.1,
             reference_rate_per_s: 1e-3,
+            ohm_per_strain_per_s: None,
             smoothing_s: 1.0,
         }
     }
@@ -384,7 +433,8 @@ impl Default for RateDependence {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Creep {
-    /// Switch.
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
     pub enabled: bool,
     /// Relative growth of the resistance change once settled.
     pub fraction: f64,
@@ -402,7 +452,8 @@ impl Default for Creep {
     }
 }
 
-/// The DAQ's ADC (`[adc]`): Gaussian noise `noise_v` (RMS) on the voltage, then quantization to
+/// The DAQ's ADC (`[adc]`): Gaussian white noise `noise_v` (RMS) and, when switched on, correlated
+/// noise on the voltage, then quantization to
 /// `bits` over `[min_v, max_v]` (readings beyond the range clip to it).
 ///
 /// | key | default | source |
@@ -411,10 +462,12 @@ impl Default for Creep {
 /// | `bits` | 16 | a National Instruments DAQ (the paper's) |
 /// | `min_v`, `max_v` | −10, 10 | its ±10 V range: 0.305 mV per code |
 /// | `noise_v` | 0.005 | illustrative: the paper calls the noise "high" and filters over 500 samples |
+/// | `correlated` | off | [`AdcCorrelated`]: slow noise with a correlation time of seconds |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct AdcParams {
-    /// Switch: off records the exact divider voltage.
+    /// Switch: off records the exact divider voltage (and no noise at all).
+    #[serde(default = "present")]
     pub enabled: bool,
     /// Resolution (bits), 1 to 32.
     pub bits: u32,
@@ -422,8 +475,10 @@ pub struct AdcParams {
     pub min_v: f64,
     /// Upper end of the input range (V).
     pub max_v: f64,
-    /// RMS voltage noise before quantization (V).
+    /// RMS white voltage noise before quantization (V).
     pub noise_v: f64,
+    /// Slow, correlated voltage noise on top of the white noise.
+    pub correlated: AdcCorrelated,
 }
 
 impl Default for AdcParams {
@@ -434,23 +489,65 @@ impl Default for AdcParams {
             min_v: -10.0,
             max_v: 10.0,
             noise_v: 0.005,
+            correlated: AdcCorrelated::default(),
         }
     }
 }
 
-/// The EM tracker (`[tracker]`): the recorded angle is the true angle plus Gaussian noise.
+/// Correlated ADC noise (`[adc.correlated]`): a first-order autoregressive (sampled
+/// Ornstein-Uhlenbeck) voltage `c` added to each channel before quantization, with stationary
+/// standard deviation `sigma_v` and correlation time `tau_s`:
+/// `c[k+1] = φ·c[k] + sigma_v·√(1 − φ²)·n[k]`, `φ = e^(−Δt/τ)`, `c[0] ~ N(0, sigma_v²)`; each
+/// channel has its own stream. Its lag-`k` autocorrelation is `e^(−k·Δt/τ)`.
+///
+/// | key | default | why |
+/// |---|---|---|
+/// | `enabled` | false (the table absent); true when present | old recordings keep their noise |
+/// | `sigma_v` | 0.002 | 0.4 × the white 5 mV: the slow wander of a divider on a USB-powered 5 V supply (0.1 % of 5 V at the 2.5 V midpoint is 2.5 mV) and of a carbon-composite sensor's 1/f noise, well above a 16-bit NI DAQ's own offset drift |
+/// | `tau_s` | 2 | seconds: slower than any filter the paper uses (1 s), faster than the drift's minutes |
+///
+/// The values are illustrative, chosen from the sources above rather than measured on the
+/// paper's bench; see `docs/simulator.md`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AdcCorrelated {
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
+    pub enabled: bool,
+    /// Stationary RMS of the correlated voltage (V).
+    pub sigma_v: f64,
+    /// Correlation time (s).
+    pub tau_s: f64,
+}
+
+impl Default for AdcCorrelated {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            sigma_v: 0.002,
+            tau_s: 2.0,
+        }
+    }
+}
+
+/// The EM tracker (`[tracker]`): the recorded angle is the true angle plus Gaussian white noise
+/// and, when switched on, a correlated error.
 ///
 /// | key | default | source |
 /// |---|---|---|
 /// | `enabled` | true | |
 /// | `noise_deg` | 0.3 | NDI Aurora's specified orientation accuracy, 0.30° RMS |
+/// | `correlated` | off | [`TrackerCorrelated`]: slow error with a correlation time of seconds |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct TrackerParams {
-    /// Switch: off records the true angle.
+    /// Switch: off records the true angle (and no noise at all).
+    #[serde(default = "present")]
     pub enabled: bool,
-    /// RMS angle noise (°).
+    /// RMS white angle noise (°).
     pub noise_deg: f64,
+    /// Slow, correlated angle error on top of the white noise.
+    pub correlated: TrackerCorrelated,
 }
 
 impl Default for TrackerParams {
@@ -458,6 +555,37 @@ impl Default for TrackerParams {
         Self {
             enabled: true,
             noise_deg: 0.3,
+            correlated: TrackerCorrelated::default(),
+        }
+    }
+}
+
+/// Correlated tracker error (`[tracker.correlated]`): the same first-order autoregressive
+/// process as [`AdcCorrelated`], in degrees, added to the recorded angle.
+///
+/// | key | default | why |
+/// |---|---|---|
+/// | `enabled` | false (the table absent); true when present | old recordings keep their noise |
+/// | `sigma_deg` | 0.2 | comparable to the white 0.3°: an NDI Aurora's specified 0.30° RMS is mostly field distortion that changes as the tip sensor moves through the field, and the system's own filtering of its ~40 Hz measurements; at 500 Hz both show as error that wanders rather than jitters (modelled as wandering with time, not position) |
+/// | `tau_s` | 1 | a second: the time the joint takes to move the sensor through a different part of the field on the protocols' 1-10 s ramps |
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TrackerCorrelated {
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
+    pub enabled: bool,
+    /// Stationary RMS of the correlated angle error (°).
+    pub sigma_deg: f64,
+    /// Correlation time (s).
+    pub tau_s: f64,
+}
+
+impl Default for TrackerCorrelated {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            sigma_deg: 0.2,
+            tau_s: 1.0,
         }
     }
 }
@@ -551,6 +679,13 @@ impl Scenario {
         Ok(self)
     }
 
+    /// Switches the correlated ADC and tracker noise on or off (`--noise realistic` / `white`),
+    /// keeping their parameters.
+    pub fn set_correlated_noise(&mut self, on: bool) {
+        self.adc.correlated.enabled = on;
+        self.tracker.correlated.enabled = on;
+    }
+
     /// The sensors, in order (one for UAN, two for BSN once resolved).
     pub fn sensors(&self) -> impl Iterator<Item = &SensorParams> {
         std::iter::once(&self.sensor1).chain(self.sensor2.as_ref())
@@ -584,6 +719,10 @@ impl Scenario {
             c.finite(&k("rate.per_decade"), s.rate.per_decade);
             c.positive(&k("rate.reference_rate_per_s"), s.rate.reference_rate_per_s);
             c.positive(&k("rate.smoothing_s"), s.rate.smoothing_s);
+            c.finite(
+                &k("rate.ohm_per_strain_per_s"),
+                s.rate.ohm_per_strain_per_s.unwrap_or(f64::NAN),
+            );
             c.finite(&k("creep.fraction"), s.creep.fraction);
             c.positive(&k("creep.tau_s"), s.creep.tau_s);
         }
@@ -611,7 +750,12 @@ impl Scenario {
             c.fail("adc.max_v".into(), a.max_v, "finite and above adc.min_v");
         }
         c.non_negative("adc.noise_v", a.noise_v);
-        c.non_negative("tracker.noise_deg", self.tracker.noise_deg);
+        c.non_negative("adc.correlated.sigma_v", a.correlated.sigma_v);
+        c.positive("adc.correlated.tau_s", a.correlated.tau_s);
+        let t = &self.tracker;
+        c.non_negative("tracker.noise_deg", t.noise_deg);
+        c.non_negative("tracker.correlated.sigma_deg", t.correlated.sigma_deg);
+        c.positive("tracker.correlated.tau_s", t.correlated.tau_s);
         self.protocols
             .check(&mut |key, value, limit| c.fail(format!("protocols.{key}"), value, limit));
         c.finish()
@@ -630,6 +774,10 @@ fn resolve_sensor(
     s.drift
         .random_walk_ohm_per_sqrt_s
         .get_or_insert(d.random_walk_ohm_per_sqrt_s);
+    let sensitivity_ohm = s.r0_ohm.unwrap_or(f64::NAN) * s.gauge_factor.unwrap_or(f64::NAN);
+    s.rate
+        .ohm_per_strain_per_s
+        .get_or_insert(SIGNED_RATE_LEAD_S * sensitivity_ohm);
     match s.model {
         SensorModelKind::Linear => {}
         SensorModelKind::Pi if s.pi.is_some() => {}
@@ -723,8 +871,13 @@ mod tests {
 
     #[test]
     fn resolved_scenario_round_trips_through_toml() {
-        let s: Scenario = toml::from_str("seed = 9\n[sensor1]\nmodel = \"pi\"\n").unwrap();
+        let s: Scenario = toml::from_str(
+            "seed = 9\n[sensor1]\nmodel = \"pi\"\n[sensor1.rate]\nform = \"signed\"\n[adc.correlated]\nsigma_v = 0.003\n[tracker.correlated]\n[protocols]\nrest_start_s = 4.0\n",
+        )
+        .unwrap();
         let r = s.resolve(&test_design(NotchStyle::Bsn)).unwrap();
+        assert_eq!(r.sensor1.rate.form, RateForm::Signed);
+        assert!(r.adc.correlated.enabled && r.tracker.correlated.enabled);
         let text = toml::to_string(&r).unwrap();
         let back: Scenario = toml::from_str(&text).unwrap();
         assert_eq!(back, r);
@@ -748,6 +901,21 @@ mod tests {
             ("[adc]\nbits = 40", "adc.bits"),
             ("[adc]\nmax_v = -20.0", "adc.max_v"),
             ("[tracker]\nnoise_deg = -1.0", "tracker.noise_deg"),
+            ("[adc.correlated]\ntau_s = 0.0", "adc.correlated.tau_s"),
+            ("[adc.correlated]\nsigma_v = -0.1", "adc.correlated.sigma_v"),
+            (
+                "[tracker.correlated]\nsigma_deg = -1.0",
+                "tracker.correlated.sigma_deg",
+            ),
+            (
+                "[tracker.correlated]\ntau_s = -2.0",
+                "tracker.correlated.tau_s",
+            ),
+            (
+                "[sensor1.rate]\nform = \"signed\"\nohm_per_strain_per_s = nan",
+                "sensor1.rate.ohm_per_strain_per_s",
+            ),
+            ("[protocols]\nrest_start_s = -1.0", "protocols.rest_start_s"),
         ];
         for (text, key) in table {
             let s: Scenario = toml::from_str(text).unwrap();
@@ -757,6 +925,74 @@ mod tests {
                 .to_string();
             assert!(err.contains(key), "{text}: {err}");
         }
+    }
+
+    /// Every effect table: absent keeps the default (off; on for `[adc]` and `[tracker]`),
+    /// present is on, present with `enabled = false` is off.
+    #[test]
+    fn a_present_effect_table_is_on_unless_it_says_off() {
+        type Switch = fn(&Scenario) -> bool;
+        let tables: [(&str, bool, Switch); 14] = [
+            ("[plant.backlash]", false, |s| s.plant.backlash.enabled),
+            ("[plant.relaxation]\nfraction = 0.1", false, |s| {
+                s.plant.relaxation.enabled
+            }),
+            ("[plant.notch_limit]", false, |s| {
+                s.plant.notch_limit.enabled
+            }),
+            ("[sensor1.saturation]\nstrain = 0.01", false, |s| {
+                s.sensor1.saturation.enabled
+            }),
+            ("[sensor1.drift]\nrate_ohm_per_s = 3.0", false, |s| {
+                s.sensor1.drift.enabled
+            }),
+            ("[sensor1.rate]\nform = \"signed\"", false, |s| {
+                s.sensor1.rate.enabled
+            }),
+            ("[sensor1.creep]", false, |s| s.sensor1.creep.enabled),
+            ("[sensor2.drift]", false, |s| {
+                s.sensor2.as_ref().is_some_and(|p| p.drift.enabled)
+            }),
+            ("[adc]\nnoise_v = 0.001", true, |s| s.adc.enabled),
+            ("[adc.correlated]", false, |s| s.adc.correlated.enabled),
+            ("[tracker]\nnoise_deg = 0.1", true, |s| s.tracker.enabled),
+            ("[tracker.correlated]\ntau_s = 3.0", false, |s| {
+                s.tracker.correlated.enabled
+            }),
+            ("[sensor2.rate]", false, |s| {
+                s.sensor2.as_ref().is_some_and(|p| p.rate.enabled)
+            }),
+            ("[sensor2.saturation]", false, |s| {
+                s.sensor2.as_ref().is_some_and(|p| p.saturation.enabled)
+            }),
+        ];
+        let bsn = test_design(NotchStyle::Bsn);
+        let parse = |text: &str| -> Scenario {
+            toml::from_str::<Scenario>(text)
+                .unwrap()
+                .resolve(&bsn)
+                .unwrap()
+        };
+        let absent = parse("");
+        for (table, default, on) in tables {
+            assert_eq!(on(&absent), default, "{table} absent");
+            assert!(on(&parse(table)), "{table} present");
+            assert!(
+                !on(&parse(&format!("{table}\nenabled = false\n"))),
+                "{table} with enabled = false"
+            );
+            assert!(
+                on(&parse(&format!("{table}\nenabled = true\n"))),
+                "{table} with enabled = true"
+            );
+        }
+        // A table switched on keeps the other keys' defaults and the keys given.
+        let r = parse("[plant.relaxation]\nfraction = 0.1\n");
+        assert_eq!(
+            (r.plant.relaxation.fraction, r.plant.relaxation.tau_s),
+            (0.1, 20.0)
+        );
+        assert!(!r.plant.backlash.enabled && !r.sensor1.drift.enabled);
     }
 
     #[test]

@@ -7,9 +7,12 @@
 //! 2. **Model**: linear, Eq. 6, `R = R0·(1 + GF·ε)`; or the generalized PI model (Eqs. 8-11)
 //!    or its continuous variant, run forward by the estimator crate (`GeneralizedPi`,
 //!    `ContinuousPi`): the very code whose inverse the estimator uses.
-//! 3. **Rate dependence** (switchable): the change `ΔR = R − R_ref` (`R_ref`: the model at zero
-//!    strain) is scaled by `1 + k·log10(1 + r̄/r_ref)`, `r̄` being `|dε/dt|` through a first-order
-//!    low-pass.
+//! 3. **Rate dependence** (switchable), on the change `ΔR = R − R_ref` (`R_ref`: the model at
+//!    zero strain), in one of two forms:
+//!    - `log`: `ΔR` is scaled by `1 + k·log10(1 + r̄/r_ref)`, `r̄` being `|dε/dt|` through a
+//!      first-order low-pass: faster reads more sensitive, loading and unloading alike;
+//!    - `signed`: `c·ṙ` is added, `ṙ` being the signed `dε/dt` through the same low-pass and
+//!      `c` in Ω·s: loading reads high, unloading low.
 //! 4. **Creep** (switchable): `c ← c + (φ·ΔR − c)·(1 − e^(−Δt/τ))` is added, so a held strain's
 //!    resistance change grows by `φ` with time constant `τ`.
 //! 5. **Baseline drift** (switchable): `rate·t + W(t)` is added, `W` a Gaussian random walk with
@@ -18,7 +21,7 @@
 use dlw_estimator::{ContinuousPi, GeneralizedPi};
 
 use super::rng::Stream;
-use super::scenario::{ScenarioError, SensorModelKind, SensorParams};
+use super::scenario::{RateForm, ScenarioError, SensorModelKind, SensorParams};
 
 /// One sensor's strain → resistance model, stepped once per sample.
 #[derive(Debug, Clone)]
@@ -41,8 +44,10 @@ enum Model {
 
 #[derive(Debug, Clone)]
 struct Rate {
+    form: RateForm,
     per_decade: f64,
     reference_per_s: f64,
+    ohm_per_strain_per_s: f64,
     alpha: f64,
     inv_dt: f64,
     previous_strain: Option<f64>,
@@ -120,8 +125,10 @@ impl Sensor {
                 .enabled
                 .then_some(params.saturation.strain),
             rate: params.rate.enabled.then(|| Rate {
+                form: params.rate.form,
                 per_decade: params.rate.per_decade,
                 reference_per_s: params.rate.reference_rate_per_s,
+                ohm_per_strain_per_s: params.rate.ohm_per_strain_per_s.unwrap_or(0.0),
                 alpha: alpha(params.rate.smoothing_s),
                 inv_dt: 1.0 / dt_s,
                 previous_strain: None,
@@ -152,12 +159,19 @@ impl Sensor {
         }
         let mut change = self.model.step(felt) - self.reference_ohm;
         if let Some(r) = &mut self.rate {
-            let rate = r
-                .previous_strain
-                .map_or(0.0, |p| (felt - p).abs() * r.inv_dt);
+            let rate = r.previous_strain.map_or(0.0, |p| (felt - p) * r.inv_dt);
             r.previous_strain = Some(felt);
-            r.smoothed_per_s += (rate - r.smoothed_per_s) * r.alpha;
-            change *= 1.0 + r.per_decade * (1.0 + r.smoothed_per_s / r.reference_per_s).log10();
+            match r.form {
+                RateForm::Log => {
+                    r.smoothed_per_s += (rate.abs() - r.smoothed_per_s) * r.alpha;
+                    change *=
+                        1.0 + r.per_decade * (1.0 + r.smoothed_per_s / r.reference_per_s).log10();
+                }
+                RateForm::Signed => {
+                    r.smoothed_per_s += (rate - r.smoothed_per_s) * r.alpha;
+                    change += r.ohm_per_strain_per_s * r.smoothed_per_s;
+                }
+            }
         }
         let mut ohm = self.reference_ohm + change;
         if let Some(c) = &mut self.creep {
@@ -294,6 +308,61 @@ mod tests {
             max_relative = 1e-3
         );
         assert!(fast > slow + 0.05 * change, "{fast} vs {slow}");
+    }
+
+    /// The signed form adds `c·ε̇` once the low-pass has settled: up on loading, down by the
+    /// same amount on unloading at the same speed, nothing when held; the log form reads high
+    /// both ways.
+    #[test]
+    fn signed_rate_form_follows_the_sign_of_the_rate() {
+        let c = 2e5;
+        let (a, _) = params(NotchStyle::Uan, |p| {
+            p.rate.enabled = true;
+            p.rate.form = RateForm::Signed;
+            p.rate.ohm_per_strain_per_s = Some(c);
+            p.rate.smoothing_s = 0.1;
+        });
+        let mut s = sensor(&a, 1);
+        let rate = 2e-3;
+        let linear = |e: f64| 215e3 * (1.0 + 15.3 * e);
+        // Load to 1 % in 5 s (50 time constants of the low-pass), hold 5 s, unload in 5 s.
+        let n = (5.0 / DT) as usize;
+        let mut strain = 0.0;
+        let mut up = 0.0;
+        for _ in 0..n {
+            strain += rate * DT;
+            up = s.step(strain) - linear(strain);
+        }
+        let mut held = 0.0;
+        for _ in 0..n {
+            held = s.step(strain) - linear(strain);
+        }
+        let mut down = 0.0;
+        for _ in 0..n {
+            strain -= rate * DT;
+            down = s.step(strain) - linear(strain);
+        }
+        assert_relative_eq!(up, c * rate, max_relative = 1e-9);
+        assert!(held.abs() < 1e-6 * c * rate, "{held}");
+        assert_relative_eq!(down, -c * rate, max_relative = 1e-9);
+    }
+
+    #[test]
+    fn signed_rate_default_is_a_50_ms_lead_of_the_linear_sensitivity() {
+        let s = Scenario::default()
+            .resolve(&crate::sim::test_design(NotchStyle::Bsn))
+            .unwrap();
+        assert_relative_eq!(
+            s.sensor1.rate.ohm_per_strain_per_s.unwrap(),
+            0.05 * 74.0e3 * 1.28,
+            max_relative = 1e-12
+        );
+        let s2 = s.sensor2.unwrap();
+        assert_relative_eq!(
+            s2.rate.ohm_per_strain_per_s.unwrap(),
+            0.05 * 88.9e3 * 0.680,
+            max_relative = 1e-12
+        );
     }
 
     #[test]
