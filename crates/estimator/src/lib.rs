@@ -15,6 +15,8 @@
 //! - [`ContinuousPi`], [`ContinuousPiInverse`]: a continuous variant with loading and unloading
 //!   envelopes inside the plays, which does not jump at reversals;
 //! - [`MovingAverage`], [`LowPass`], [`Filter`]: streaming filters to trade noise for delay;
+//! - [`Pid`]: a discrete PID controller with output limits, anti-windup and the derivative on
+//!   the measurement, to close the loop on the estimated angle (Section IV-C);
 //! - [`Estimator`]: all of it from an [`EstimatorConfig`], for one sensor (Eq. 3) or both
 //!   sensors of a BSN joint (Eq. 7), returning an [`Estimate`] with [`Flags`].
 //!
@@ -85,6 +87,7 @@ mod linear;
 mod low_pass;
 mod moving_average;
 mod pi;
+mod pid;
 mod pi_model;
 mod play;
 #[cfg(test)]
@@ -121,6 +124,8 @@ pub use low_pass::LowPass;
 pub use moving_average::{MovingAverage, MAX_MOVING_AVERAGE};
 /// The PI operator (weighted sum of plays) and its exact inverse (Eqs. 11-13, corrected).
 pub use pi::{InversePiOperator, PiOperator};
+/// A discrete PID controller (anti-windup, derivative on the measurement) and its settings.
+pub use pid::{AntiWindup, Pid, PidConfig};
 /// The paper's generalized PI model with tanh input, forward and inverse (Eqs. 10-14).
 pub use pi_model::{GeneralizedPi, PiConfig, PiInverse};
 /// The play operator (Eqs. 8-9).
