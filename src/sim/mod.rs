@@ -65,8 +65,9 @@ pub use pi_default::{PiCharacteristics, JOINT_A_PI, JOINT_C_PI};
 pub use plant::Plant;
 /// Stroke profiles of the paper's protocols and from CSV.
 pub use protocol::{
-    Characterization, CustomProtocol, Knot, ProtocolError, ProtocolKind, ProtocolParams,
-    RandomProtocol, RateDependenceProtocol, RelaxationProtocol, Sampler, StrokeProfile,
+    parse_series, Characterization, CustomProtocol, Knot, ProtocolError, ProtocolKind,
+    ProtocolParams, RandomProtocol, RateDependenceProtocol, RelaxationProtocol, Sampler,
+    StrokeProfile,
 };
 /// Recording folders: reading, checking and writing.
 pub use recording::{

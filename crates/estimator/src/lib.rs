@@ -87,8 +87,8 @@ mod linear;
 mod low_pass;
 mod moving_average;
 mod pi;
-mod pid;
 mod pi_model;
+mod pid;
 mod play;
 #[cfg(test)]
 #[path = "../tests/common/table_one.rs"]
@@ -124,10 +124,10 @@ pub use low_pass::LowPass;
 pub use moving_average::{MovingAverage, MAX_MOVING_AVERAGE};
 /// The PI operator (weighted sum of plays) and its exact inverse (Eqs. 11-13, corrected).
 pub use pi::{InversePiOperator, PiOperator};
-/// A discrete PID controller (anti-windup, derivative on the measurement) and its settings.
-pub use pid::{AntiWindup, Pid, PidConfig};
 /// The paper's generalized PI model with tanh input, forward and inverse (Eqs. 10-14).
 pub use pi_model::{GeneralizedPi, PiConfig, PiInverse};
+/// A discrete PID controller (anti-windup, derivative on the measurement) and its settings.
+pub use pid::{AntiWindup, Pid, PidConfig};
 /// The play operator (Eqs. 8-9).
 pub use play::PlayOperator;
 /// The direction-switched tanh input and its inverse (Eqs. 10 and 14).

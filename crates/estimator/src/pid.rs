@@ -212,7 +212,8 @@ impl Pid {
             None => 0.0,
         };
         self.previous_measurement = Some(measurement);
-        self.derivative = bounded(self.derivative + self.alpha * (raw_derivative - self.derivative));
+        self.derivative =
+            bounded(self.derivative + self.alpha * (raw_derivative - self.derivative));
         let increment = bounded(self.ki_dt * error);
         let candidate = bounded(self.integral + increment);
         self.integral = match c.anti_windup {
