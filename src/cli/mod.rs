@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 mod build;
+mod control;
 mod draw;
 mod estimate;
 mod estimator_config;
@@ -39,6 +40,8 @@ enum Command {
     EstimatorConfig(estimator_config::Args),
     /// Run the runtime estimator over a recording and report its error.
     Estimate(estimate::Args),
+    /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI).
+    Control(control::Args),
 }
 
 /// Runs the parsed command.
@@ -52,5 +55,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Simulate(args) => simulate::run(args),
         Command::EstimatorConfig(args) => estimator_config::run(args),
         Command::Estimate(args) => estimate::run(args),
+        Command::Control(args) => control::run(args),
     }
 }

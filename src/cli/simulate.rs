@@ -38,7 +38,7 @@ pub struct Args {
     force: bool,
 }
 
-fn parse_protocol(s: &str) -> Result<ProtocolKind, String> {
+pub(super) fn parse_protocol(s: &str) -> Result<ProtocolKind, String> {
     ProtocolKind::from_name(s).ok_or_else(|| {
         let names: Vec<&str> = ProtocolKind::ALL.iter().map(|(_, n)| *n).collect();
         format!(

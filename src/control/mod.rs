@@ -25,6 +25,15 @@
 //!   simulated ADC voltage(s), one sample behind the command (the DAQ delivers sample `i − 1`
 //!   when stroke `i` is computed).
 //!
+//! **Stability.** The simulated plant has no actuator dynamics: the paper's low-level motor
+//! control (Fig. 9 (c)) is taken as ideal, reaching each commanded stroke within the sample.
+//! With the one-sample measurement delay, a proportional loop gain `K_p·m_t` at or above 1
+//! (the paper's gains: 0.1 mm/° · 35.49 °/mm = 3.55) then makes the loop oscillate at the
+//! sample rate and diverge, unless the sensed angle is filtered: a moving average of `N`
+//! samples has no gain at that frequency, and the paper's estimation procedure filters
+//! (Section IV-B). [`Control::new`] warns about an unfiltered config at such gains, and
+//! [`Control::run`] about a correction that sat at its limit.
+//!
 //! [`Control::new`] validates everything; [`Control::run`] simulates both schemes and computes
 //! Table VI ([`SchemeMetrics`]); [`report`] turns the result into `report.html`, its figures and
 //! `control.csv`.
@@ -167,6 +176,8 @@ pub struct ControlRun {
     pub traces: [Trace; 2],
     /// Their metrics, in the same order.
     pub metrics: [SchemeMetrics; 2],
+    /// Things the user should know about the result (a saturated, diverging loop).
+    pub warnings: Vec<String>,
 }
 
 impl Control {
@@ -230,6 +241,17 @@ impl Control {
             sc.supply_v,
             "the scenario",
         ));
+        let loop_gain = gains.kp_mm_per_deg * mt;
+        let unfiltered = config.input_filter == dlw_estimator::FilterConfig::None
+            && config.output_filter == dlw_estimator::FilterConfig::None;
+        if unfiltered && loop_gain >= 1.0 {
+            warnings.push(format!(
+                "K_p·m_t = {loop_gain:.2} ≥ 1 with an unfiltered sensed angle: the simulated plant reaches \
+                 each stroke within the sample, so with the one-sample measurement delay the loop \
+                 oscillates and diverges; filter the sensed angle (e.g. --filter ma:50, as the \
+                 paper's estimation procedure does) or lower K_p"
+            ));
+        }
         if config.joint != dlw_estimator::JointConfig::from_joint(&design.joint) {
             warnings.push(format!(
                 "the config's joint geometry differs from design {:?}: the estimator converts strain to angle with the config's",
@@ -261,7 +283,8 @@ impl Control {
     }
 
     /// Simulates both schemes (from the same seed, so both see the same noise) and computes
-    /// Table VI.
+    /// Table VI. A closed loop whose correction sat at a limit for more than a tenth of the
+    /// samples gets a warning in [`ControlRun::warnings`].
     ///
     /// # Errors
     /// [`ControlError::Sim`] when a scheme drives a sensor out of its physical range.
@@ -272,7 +295,21 @@ impl Control {
             SchemeMetrics::of(&traces[0], &self.desired.angle_deg),
             SchemeMetrics::of(&traces[1], &self.desired.angle_deg),
         ];
-        Ok(ControlRun { traces, metrics })
+        let mut warnings = Vec::new();
+        let n = self.desired.angle_deg.len();
+        let saturated = metrics[1].saturated_samples;
+        if saturated * 10 > n {
+            warnings.push(format!(
+                "the closed loop's PID correction was at its limit (±{:.3} mm) for {saturated} of {n} samples: \
+                 the loop is unstable or cannot reach the desired angle",
+                self.pid.output_max
+            ));
+        }
+        Ok(ControlRun {
+            traces,
+            metrics,
+            warnings,
+        })
     }
 }
 

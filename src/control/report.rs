@@ -63,6 +63,9 @@ pub fn page(control: &Control, run: &ControlRun) -> Page {
          with the same seed, so they see the same noise. {} samples, {} s at {} Hz, seed {}.",
         control.desired.description, n, duration_s, hz, sc.seed
     ));
+    for w in control.warnings.iter().chain(&run.warnings) {
+        page.text(format!("Warning: {w}."));
+    }
     page.heading("Table VI: RMSE of each scheme");
     let mut t = Table::new([
         "RMSE (°)",
@@ -145,8 +148,9 @@ pub fn page(control: &Control, run: &ControlRun) -> Page {
     page.figure(
         "tracking-error",
         error_chart(control, run),
-        "Actual − desired angle of both schemes over the whole run: open loop drifts with the \
-         plant's relaxation and backlash; the closed loop's integral removes the drift.",
+        "True angle − desired angle of both schemes over the whole run (the simulator's true \
+         angle, without the tracker's noise, so that the drift is visible): open loop drifts with \
+         the plant's relaxation and backlash, which the closed loop's integral removes.",
     );
     page.figure(
         "stroke",
@@ -191,10 +195,10 @@ fn angle_chart(control: &Control, trace: &super::Trace, window: usize) -> Chart 
 fn error_chart(control: &Control, run: &ControlRun) -> Chart {
     let hz = control.desired.scenario.sample_hz;
     let d = &control.desired.angle_deg;
-    let mut chart = Chart::new("Tracking error", "time (s)", "actual − desired (°)");
+    let mut chart = Chart::new("Tracking error", "time (s)", "true angle − desired (°)");
     for (trace, color) in run.traces.iter().zip([PALETTE[3], PALETTE[2]]) {
         let points = trace
-            .actual_deg
+            .true_deg
             .iter()
             .zip(d)
             .enumerate()
@@ -269,7 +273,9 @@ fn estimator_summary(control: &Control) -> String {
     use dlw_estimator::{FilterConfig, ModelConfig};
     let c = &control.config;
     let model = |m: &ModelConfig| match m {
-        ModelConfig::Linear(l) => format!("linear, GF {}, R₀ {} Ω", l.gauge_factor, l.r0_ohm),
+        ModelConfig::Linear(l) => {
+            format!("linear, GF {}, R₀ {} kΩ", l.gauge_factor, l.r0_ohm / 1e3)
+        }
         ModelConfig::Pi(p) => format!("PI, N = {}", p.weights.len()),
         ModelConfig::ContinuousPi(p) => format!("continuous PI, N = {}", p.weights.len()),
     };
