@@ -384,3 +384,57 @@ fn bad_input_is_refused_and_writes_nothing() {
     assert!(!s.path("out/keep.txt").exists());
     assert!(s.path("out/control.csv").exists());
 }
+
+/// A BSN joint read through both sensors (Eq. 7): the closed loop works the same way.
+#[test]
+fn two_sensor_joint_closes_the_loop_on_both_sensors() {
+    let s = Setup::new();
+    let o = dlw(&[
+        "estimator-config",
+        &shipped_design("joint-c.toml"),
+        "--gauge-factor",
+        "1.28",
+        "--r0-ohm",
+        "74e3",
+        "--second-gauge-factor",
+        "0.68",
+        "--second-r0-ohm",
+        "88.9e3",
+        "--second-divider-ohm",
+        "102.5e3",
+        "-o",
+        &s.p("c.toml"),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (design, config, out, scenario) = (
+        shipped_design("joint-c.toml"),
+        s.p("c.toml"),
+        s.p("out"),
+        s.p("relaxing.toml"),
+    );
+    let o = dlw(&[
+        "control",
+        "--design",
+        &design,
+        "--config",
+        &config,
+        "--scenario",
+        &scenario,
+        "--protocol",
+        "random",
+        "--duration-s",
+        "150",
+        "--filter",
+        "ma:200",
+        "-o",
+        &out,
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(r["design"], "Joint C");
+    assert_eq!(r["warnings"].as_array().unwrap().len(), 0, "{r}");
+    let open = rmse(&r, "open_loop", "actual_vs_desired_rmse_deg");
+    let closed = rmse(&r, "closed_loop", "actual_vs_desired_rmse_deg");
+    assert!(closed < 0.7 * open, "closed {closed}° vs open {open}°: {r}");
+}

@@ -124,7 +124,9 @@ pub fn page(control: &Control, run: &ControlRun) -> Page {
          moves the actual angle towards the sensed one and the sensed one towards the desired.",
     );
     page.heading("Setup");
-    page.table(setup_table(control, run));
+    for line in setup_lines(control, run) {
+        page.text(line);
+    }
     page.heading("Fig. 10: desired, actual and sensed angle");
     let window_s = duration_s.min(WINDOW_S);
     let window = ((window_s * hz).round() as usize).clamp(1, n.max(1));
@@ -222,15 +224,16 @@ fn stroke_chart(control: &Control, run: &ControlRun, window: usize) -> Chart {
     chart
 }
 
-fn setup_table(control: &Control, run: &ControlRun) -> Table {
+/// The setup as "setting: value" paragraphs (long values read badly in a right-aligned table).
+fn setup_lines(control: &Control, run: &ControlRun) -> Vec<String> {
     let sc = &control.desired.scenario;
     let g = &control.gains;
-    let mut t = Table::new(["setting", "value"]);
-    let mut row = |k: &str, v: String| t.row([k.to_string(), v]);
-    row("design", control.design.file.name.clone());
-    row("bench effects", effects(sc));
+    let mut lines = Vec::new();
+    let mut row = |k: &str, v: String| lines.push(format!("{k}: {v}."));
+    row("Design", control.design.file.name.clone());
+    row("Bench effects", effects(sc));
     row(
-        "m_t (feed-forward)",
+        "Feed-forward m_t",
         format!(
             "{} °/mm ({})",
             control.mt_deg_per_mm,
@@ -254,7 +257,7 @@ fn setup_table(control: &Control, run: &ControlRun) -> Table {
             control.pid.output_max, control.pid.dt_s
         ),
     );
-    row("estimator", estimator_summary(control));
+    row("Estimator", estimator_summary(control));
     for trace in &run.traces {
         let m = if trace.scheme == Scheme::OpenLoop {
             &run.metrics[0]
@@ -262,11 +265,11 @@ fn setup_table(control: &Control, run: &ControlRun) -> Table {
             &run.metrics[1]
         };
         row(
-            &format!("{}: held / saturated samples", trace.scheme.title()),
+            &format!("{}, held / saturated samples", trace.scheme.title()),
             format!("{} / {}", m.held_samples, m.saturated_samples),
         );
     }
-    t
+    lines
 }
 
 fn estimator_summary(control: &Control) -> String {
@@ -331,8 +334,9 @@ fn effects(sc: &Scenario) -> String {
     }
     if sc.adc.enabled {
         on.push(format!(
-            "ADC {} bits, {} V noise",
-            sc.adc.bits, sc.adc.noise_v
+            "ADC {} bits, {} mV noise",
+            sc.adc.bits,
+            sc.adc.noise_v * 1e3
         ));
     }
     if sc.tracker.enabled {
