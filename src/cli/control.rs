@@ -224,19 +224,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             control.gains.kd_mm_s_per_deg
         );
         println!("  RMSE (°)             open loop   closed loop   (paper: open, closed)");
-        let rows: [(&str, fn(&dlw::control::SchemeMetrics) -> f64, usize); 3] = [
-            ("sensed vs actual ", |m| m.sensed_vs_actual_rmse_deg, 0),
-            ("actual vs desired", |m| m.actual_vs_desired_rmse_deg, 1),
-            ("sensed vs desired", |m| m.sensed_vs_desired_rmse_deg, 2),
+        let names = [
+            "sensed vs actual ",
+            "actual vs desired",
+            "sensed vs desired",
         ];
+        let (open, closed) = (run.metrics[0].table_vi(), run.metrics[1].table_vi());
         let paper = dlw::control::PAPER_TABLE_VI.map(|(a, b, c)| [a, b, c]);
-        for (name, f, k) in rows {
+        for (k, name) in names.iter().enumerate() {
             println!(
                 "  {name}    {:>9.2}   {:>11.2}   ({:.2}, {:.2})",
-                f(&run.metrics[0]),
-                f(&run.metrics[1]),
-                paper[0][k],
-                paper[1][k]
+                open[k], closed[k], paper[0][k], paper[1][k]
             );
         }
         for (scheme, m) in Scheme::BOTH.iter().zip(&run.metrics) {

@@ -29,6 +29,16 @@ pub struct SchemeMetrics {
 }
 
 impl SchemeMetrics {
+    /// Table VI's three RMSEs in its order: sensed vs actual, actual vs desired, sensed vs
+    /// desired (°).
+    pub fn table_vi(&self) -> [f64; 3] {
+        [
+            self.sensed_vs_actual_rmse_deg,
+            self.actual_vs_desired_rmse_deg,
+            self.sensed_vs_desired_rmse_deg,
+        ]
+    }
+
     /// The metrics of `trace` against `desired_deg`.
     pub fn of(trace: &Trace, desired_deg: &[f64]) -> Self {
         let max_abs = trace

@@ -432,6 +432,22 @@ mod tests {
         assert_eq!(pid, state);
     }
 
+    /// TOML with the optional keys left out gets the documented defaults; unknown keys are
+    /// refused.
+    #[cfg(feature = "serde")]
+    #[test]
+    fn config_reads_from_toml() {
+        let text =
+            "kp = 0.1\nki = 0.1\nkd = 0.0\ndt_s = 0.002\noutput_min = -1.0\noutput_max = 1.0\n";
+        let c: PidConfig = toml::from_str(text).unwrap();
+        assert_eq!(c, PidConfig::paper(0.002, 1.0));
+        let back: PidConfig = toml::from_str(&toml::to_string(&c).unwrap()).unwrap();
+        assert_eq!(back, c);
+        let none: PidConfig = toml::from_str(&format!("{text}anti_windup = \"none\"\n")).unwrap();
+        assert_eq!(none.anti_windup, AntiWindup::None);
+        assert!(toml::from_str::<PidConfig>(&format!("{text}k = 1.0\n")).is_err());
+    }
+
     fn any_finite() -> impl Strategy<Value = f64> {
         prop_oneof![
             -1e3..1e3f64,
