@@ -4,7 +4,9 @@
 use std::path::{Path, PathBuf};
 
 use crate::design::Design;
-use crate::sim::{self, parse_series, ProtocolError, Scenario, SimError, MAX_SAMPLES};
+use crate::sim::{
+    self, parse_series, ProtocolError, ProtocolKind, Scenario, SimError, MAX_SAMPLES,
+};
 
 use super::ControlError;
 
@@ -44,8 +46,13 @@ impl Desired {
     ) -> Result<Self, ControlError> {
         match source {
             DesiredSource::Protocol => {
-                if scenario.protocol.is_none() {
-                    return Err(ControlError::NoDesired);
+                match scenario.protocol {
+                    None => return Err(ControlError::NoDesired),
+                    // `--profile` is the desired angle here, not a stroke profile.
+                    Some(ProtocolKind::Custom) if scenario.protocols.custom.profile.is_none() => {
+                        return Err(ControlError::CustomWithoutStroke)
+                    }
+                    _ => {}
                 }
                 let plan = sim::plan(design, scenario, None)?;
                 let hz = plan.scenario.sample_hz;

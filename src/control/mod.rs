@@ -77,6 +77,9 @@ pub enum ControlError {
     /// Neither a desired profile nor a protocol was given.
     #[error("no desired angle: pass --profile FILE.csv (time_s,angle_deg) or --protocol NAME, or set protocol in the scenario")]
     NoDesired,
+    /// Protocol `custom` without a stroke profile in the scenario.
+    #[error("protocol custom needs a stroke profile in the scenario (protocols.custom.profile); for a desired-angle CSV pass --profile without --protocol")]
+    CustomWithoutStroke,
     /// The desired profile could not be read.
     #[error("cannot read desired-angle profile {path}")]
     ProfileRead {
