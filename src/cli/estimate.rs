@@ -40,7 +40,7 @@ pub struct Args {
     truth: Option<PathBuf>,
 }
 
-fn parse_filter(s: &str) -> Result<FilterConfig, String> {
+pub(super) fn parse_filter(s: &str) -> Result<FilterConfig, String> {
     let bad = || format!("unknown filter {s:?} (expected none, ma:N or lp:T)");
     let config = match s.split_once(':') {
         None if s == "none" => FilterConfig::None,

@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 mod build;
+mod control;
 mod draw;
 mod estimate;
 mod estimator_config;
@@ -48,6 +49,8 @@ enum Command {
     Fluoro(fluoro::Args),
     /// Render synthetic fluoroscopy frames of a recording's angle, to try `dlw fluoro`.
     FluoroRender(fluoro_render::Args),
+    /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI).
+    Control(control::Args),
 }
 
 /// Runs the parsed command.
@@ -64,5 +67,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Fit(args) => fit::run(args),
         Command::Fluoro(args) => fluoro::run(args),
         Command::FluoroRender(args) => fluoro_render::run(args),
+        Command::Control(args) => control::run(args),
     }
 }

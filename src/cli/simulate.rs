@@ -53,7 +53,7 @@ enum NoisePreset {
     Realistic,
 }
 
-fn parse_protocol(s: &str) -> Result<ProtocolKind, String> {
+pub(super) fn parse_protocol(s: &str) -> Result<ProtocolKind, String> {
     ProtocolKind::from_name(s).ok_or_else(|| {
         let names: Vec<&str> = ProtocolKind::ALL.iter().map(|(_, n)| *n).collect();
         format!(

@@ -179,27 +179,12 @@ pub(crate) fn run_estimator(
             "the recording has {channels} voltage columns; the config reads only v{first_column}_V"
         ));
     }
-    let sensors = std::iter::once(&config.sensor).chain(config.second_sensor.as_ref());
-    for (place, s) in sensors.enumerate() {
-        let i = if two { place } else { first_column - 1 };
-        let rig_ohm = rig.divider_ohm[i];
-        if !close(s.divider_ohm, rig_ohm) {
-            warnings.push(format!(
-                "sensor {} divider_ohm is {} Ω in the config but {} Ω in rig.toml",
-                i + 1,
-                s.divider_ohm,
-                rig_ohm
-            ));
-        }
-        if !close(s.supply_v, rig.supply_v) {
-            warnings.push(format!(
-                "sensor {} supply_v is {} V in the config but {} V in rig.toml",
-                i + 1,
-                s.supply_v,
-                rig.supply_v
-            ));
-        }
-    }
+    warnings.extend(divider_warnings(
+        config,
+        &rig.divider_ohm,
+        rig.supply_v,
+        "rig.toml",
+    ));
     // About 100 KiB of filter buffers: on the heap.
     let mut estimator = Box::new(Estimator::new(config)?);
     let n = samples.len();
@@ -225,6 +210,48 @@ pub(crate) fn run_estimator(
         delay_samples: estimator.delay_samples(),
         warnings,
     })
+}
+
+/// Warnings for each configured sensor whose divider resistor or supply differs from the
+/// bench's (`divider_ohm[i]` for sensor `i + 1`, `supply_v`, as written in `source`, e.g.
+/// `rig.toml`): the estimator would then read a wrong resistance.
+pub fn divider_warnings(
+    config: &EstimatorConfig,
+    divider_ohm: &[f64],
+    supply_v: f64,
+    source: &str,
+) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let sensors = std::iter::once(&config.sensor).chain(config.second_sensor.as_ref());
+    let two = config.second_sensor.is_some();
+    for (place, s) in sensors.enumerate() {
+        // A one-sensor config reads the column of its plane.
+        let i = if two {
+            place
+        } else {
+            config.first_plane().column() as usize - 1
+        };
+        let Some(&rig_ohm) = divider_ohm.get(i) else {
+            break;
+        };
+        if !close(s.divider_ohm, rig_ohm) {
+            warnings.push(format!(
+                "sensor {} divider_ohm is {} Ω in the config but {} Ω in {source}",
+                i + 1,
+                s.divider_ohm,
+                rig_ohm
+            ));
+        }
+        if !close(s.supply_v, supply_v) {
+            warnings.push(format!(
+                "sensor {} supply_v is {} V in the config but {} V in {source}",
+                i + 1,
+                s.supply_v,
+                supply_v
+            ));
+        }
+    }
+    warnings
 }
 
 fn close(a: f64, b: f64) -> bool {

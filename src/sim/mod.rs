@@ -17,7 +17,9 @@
 //! recording on every platform.
 //!
 //! Plan, then run: [`plan`] resolves the scenario against the design and builds the stroke
-//! profile; [`Plan::run`] generates the samples in memory; [`Recording::write`] writes them.
+//! profile; [`Plan::run`] generates the samples in memory, stepping a [`Bench`] (the chain
+//! above, one sample at a time, which a controller can also drive); [`Recording::write`]
+//! writes them.
 //!
 //! # Examples
 //! ```
@@ -39,6 +41,7 @@
 //! [`SimError`]: a scenario value out of range, an unreadable stroke profile, or a scenario that
 //! drives a sensor to a non-physical resistance or a divider to a rail.
 
+mod bench;
 mod correlated;
 mod measure;
 mod pi_default;
@@ -51,10 +54,10 @@ mod sensor;
 
 use std::path::PathBuf;
 
-use dlw_geometry::Divider;
-
 use crate::design::Design;
 
+/// The bench stepped one sample at a time (shared by `Plan::run` and closed-loop control).
+pub use bench::{Bench, Reading};
 /// Correlated (first-order autoregressive) measurement noise.
 pub use correlated::Ar1;
 /// The divider, ADC and EM tracker models.
@@ -65,9 +68,9 @@ pub use pi_default::{PiCharacteristics, JOINT_A_PI, JOINT_C_PI};
 pub use plant::Plant;
 /// Stroke profiles of the paper's protocols and from CSV.
 pub use protocol::{
-    Characterization, CustomProtocol, Knot, ProtocolError, ProtocolKind, ProtocolParams,
-    RandomProtocol, RateDependenceProtocol, RelaxationProtocol, Sampler, StrokeProfile,
-    DEFAULT_REST_START_S,
+    parse_series, Characterization, CustomProtocol, Knot, ProtocolError, ProtocolKind,
+    ProtocolParams, RandomProtocol, RateDependenceProtocol, RelaxationProtocol, Sampler,
+    StrokeProfile, DEFAULT_REST_START_S,
 };
 /// Recording folders: reading, checking and writing.
 pub use recording::{
@@ -224,60 +227,23 @@ impl Plan {
     /// leaves the physical range.
     pub fn run(&self) -> Result<Run, SimError> {
         let sc = &self.scenario;
-        let joint = &self.design.joint;
-        let dt_s = 1.0 / sc.sample_hz;
-        let mut plant = Plant::new(&sc.plant, joint, dt_s);
-        let mut channels: Vec<(Sensor, Divider, Adc)> = sc
-            .sensors()
-            .enumerate()
-            .map(|(i, p)| {
-                let i = i as u64;
-                let drift = Stream::new(sc.seed, streams::DRIFT + i);
-                let sensor = Sensor::new(p, i as usize + 1, dt_s, drift)?;
-                let divider = Divider {
-                    fixed_ohm: p.divider_ohm.unwrap_or(f64::NAN),
-                    supply_v: sc.supply_v,
-                };
-                let adc = Adc::for_channel(&sc.adc, sc.seed, i, dt_s);
-                Ok((sensor, divider, adc))
-            })
-            .collect::<Result<_, ScenarioError>>()?;
-        let mut tracker = Tracker::for_seed(&sc.tracker, sc.seed, dt_s);
+        let mut bench = Bench::new(sc, &self.design.joint)?;
+        let channels = bench.channels();
         let mut stroke = self.profile.sampler();
         let n = self.samples;
-        let mut out = Samples::with_capacity(channels.len(), n);
+        let mut out = Samples::with_capacity(channels, n);
         let mut true_angle_deg = Vec::with_capacity(n);
         for i in 0..n {
             let time_s = i as f64 / sc.sample_hz;
             let stroke_mm = stroke.at(time_s);
-            let angle_rad = plant.step(stroke_mm);
-            let strain = joint.strain(angle_rad);
-            for (c, (sensor, divider, adc)) in channels.iter_mut().enumerate() {
-                let ohm = sensor.step(strain);
-                if !(ohm.is_finite() && ohm > 0.0) {
-                    return Err(SimError::Resistance {
-                        sensor: c + 1,
-                        time_s,
-                        ohm,
-                        strain,
-                    });
-                }
-                let volts = adc.read(divider.voltage(ohm));
-                if !(volts > 0.0 && volts < sc.supply_v) {
-                    return Err(SimError::Rail {
-                        sensor: c + 1,
-                        time_s,
-                        volts,
-                        supply_v: sc.supply_v,
-                    });
-                }
-                out.volts[c].push(volts);
+            let reading = bench.step(time_s, stroke_mm)?;
+            for (column, volts) in out.volts.iter_mut().zip(reading.volts) {
+                column.push(volts);
             }
-            let angle_deg = angle_rad.to_degrees();
-            true_angle_deg.push(angle_deg);
+            true_angle_deg.push(reading.angle_rad.to_degrees());
             out.time_s.push(time_s);
             out.stroke_mm.push(stroke_mm);
-            out.angle_deg.push(tracker.read(angle_deg));
+            out.angle_deg.push(reading.tracked_deg);
         }
         Ok(Run {
             samples: out,
@@ -325,7 +291,7 @@ pub(crate) fn test_design(style: dlw_geometry::NotchStyle) -> Design {
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
-    use dlw_geometry::NotchStyle;
+    use dlw_geometry::{Divider, NotchStyle};
 
     fn scenario(kind: ProtocolKind, duration_s: f64) -> Scenario {
         Scenario {

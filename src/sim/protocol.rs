@@ -452,82 +452,11 @@ impl StrokeProfile {
     }
 
     fn parse_csv(text: &str) -> Result<Self, ProtocolError> {
-        let bad = |line: usize, reason: String| ProtocolError::Line {
-            path: PathBuf::new(),
-            line,
-            reason,
-        };
-        let mut lines = text.lines().enumerate();
-        match lines.next() {
-            Some((_, h)) if h.trim_end_matches('\r') == "time_s,stroke_mm" => {}
-            Some((_, h)) => {
-                return Err(bad(
-                    1,
-                    format!("header is {h:?}, expected \"time_s,stroke_mm\""),
-                ))
-            }
-            None => {
-                return Err(ProtocolError::Empty {
-                    path: PathBuf::new(),
-                })
-            }
-        }
-        let mut knots: Vec<Knot> = Vec::new();
-        for (i, raw) in lines {
-            let line = i + 1;
-            let row = raw.trim_end_matches('\r');
-            if row.is_empty() {
-                continue;
-            }
-            let fields: Vec<&str> = row.split(',').collect();
-            if fields.len() != 2 {
-                return Err(bad(
-                    line,
-                    format!("has {} fields, expected 2 (time_s,stroke_mm)", fields.len()),
-                ));
-            }
-            let num = |name: &str, s: &str| -> Result<f64, ProtocolError> {
-                let v: f64 = s
-                    .trim()
-                    .parse()
-                    .map_err(|_| bad(line, format!("{name} = {s:?} is not a number")))?;
-                if !v.is_finite() {
-                    return Err(bad(line, format!("{name} = {v} is not finite")));
-                }
-                Ok(v)
-            };
-            let time_s = num("time_s", fields[0])?;
-            let stroke_mm = num("stroke_mm", fields[1])?;
-            if time_s < 0.0 {
-                return Err(bad(line, format!("time_s = {time_s} is negative")));
-            }
-            if let Some(prev) = knots.last() {
-                if time_s <= prev.time_s {
-                    return Err(bad(
-                        line,
-                        format!(
-                            "time_s = {time_s} does not increase (previous row: {})",
-                            prev.time_s
-                        ),
-                    ));
-                }
-            }
-            knots.push(Knot { time_s, stroke_mm });
-        }
-        let natural_duration_s = match knots.last() {
-            Some(k) if k.time_s > 0.0 => k.time_s,
-            Some(_) => {
-                return Err(bad(
-                    2,
-                    "the profile ends at time 0, so it has no duration".into(),
-                ))
-            }
-            None => {
-                return Err(ProtocolError::Empty {
-                    path: PathBuf::new(),
-                })
-            }
-        };
+        let knots: Vec<Knot> = parse_series(text, "stroke_mm")?
+            .into_iter()
+            .map(|(time_s, stroke_mm)| Knot { time_s, stroke_mm })
+            .collect();
+        let natural_duration_s = knots.last().map_or(0.0, |k| k.time_s);
         Ok(Self {
             knots,
             natural_duration_s,
@@ -557,6 +486,81 @@ impl StrokeProfile {
             knots: &self.knots,
             next: 0,
         }
+    }
+}
+
+/// Parses a two-column time series: the header `time_s,<value_column>`, then rows of finite
+/// numbers with non-negative, strictly increasing times, ending after time 0. Blank lines are
+/// skipped. Used for stroke profiles (`stroke_mm`) and desired-angle profiles (`angle_deg`).
+///
+/// # Errors
+/// [`ProtocolError::Line`] (with an empty path, for the caller to fill in) naming the line and
+/// the value, or [`ProtocolError::Empty`] when there is no data row.
+pub fn parse_series(text: &str, value_column: &str) -> Result<Vec<(f64, f64)>, ProtocolError> {
+    let bad = |line: usize, reason: String| ProtocolError::Line {
+        path: PathBuf::new(),
+        line,
+        reason,
+    };
+    let header = format!("time_s,{value_column}");
+    let mut lines = text.lines().enumerate();
+    match lines.next() {
+        Some((_, h)) if h.trim_end_matches('\r') == header => {}
+        Some((_, h)) => return Err(bad(1, format!("header is {h:?}, expected {header:?}"))),
+        None => {
+            return Err(ProtocolError::Empty {
+                path: PathBuf::new(),
+            })
+        }
+    }
+    let mut rows: Vec<(f64, f64)> = Vec::new();
+    for (i, raw) in lines {
+        let line = i + 1;
+        let row = raw.trim_end_matches('\r');
+        if row.is_empty() {
+            continue;
+        }
+        let fields: Vec<&str> = row.split(',').collect();
+        if fields.len() != 2 {
+            return Err(bad(
+                line,
+                format!("has {} fields, expected 2 ({header})", fields.len()),
+            ));
+        }
+        let num = |name: &str, s: &str| -> Result<f64, ProtocolError> {
+            let v: f64 = s
+                .trim()
+                .parse()
+                .map_err(|_| bad(line, format!("{name} = {s:?} is not a number")))?;
+            if !v.is_finite() {
+                return Err(bad(line, format!("{name} = {v} is not finite")));
+            }
+            Ok(v)
+        };
+        let time_s = num("time_s", fields[0])?;
+        let value = num(value_column, fields[1])?;
+        if time_s < 0.0 {
+            return Err(bad(line, format!("time_s = {time_s} is negative")));
+        }
+        if let Some(&(prev, _)) = rows.last() {
+            if time_s <= prev {
+                return Err(bad(
+                    line,
+                    format!("time_s = {time_s} does not increase (previous row: {prev})"),
+                ));
+            }
+        }
+        rows.push((time_s, value));
+    }
+    match rows.last() {
+        Some(&(t, _)) if t > 0.0 => Ok(rows),
+        Some(_) => Err(bad(
+            2,
+            "the profile ends at time 0, so it has no duration".into(),
+        )),
+        None => Err(ProtocolError::Empty {
+            path: PathBuf::new(),
+        }),
     }
 }
 

@@ -22,6 +22,13 @@ pub enum EstimatorError {
         /// The value given.
         value: f64,
     },
+    /// A parameter that must not be negative is negative.
+    Negative {
+        /// Parameter name as written in config files.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// A parameter that must not be zero is zero.
     Zero {
         /// Parameter name as written in config files.
@@ -127,6 +134,7 @@ impl fmt::Display for EstimatorError {
             Self::Geometry(e) => e.fmt(f),
             Self::NotFinite { name, value } => write!(f, "{name} = {value} is not a finite number"),
             Self::NotPositive { name, value } => write!(f, "{name} = {value} must be greater than 0"),
+            Self::Negative { name, value } => write!(f, "{name} = {value} must be at least 0"),
             Self::Zero { name } => write!(f, "{name} = 0 must not be 0"),
             Self::TooMany { name, count, max } => {
                 write!(f, "{name} has {count} entries, at most {max} are supported")

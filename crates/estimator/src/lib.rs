@@ -15,6 +15,8 @@
 //! - [`ContinuousPi`], [`ContinuousPiInverse`]: a continuous variant with loading and unloading
 //!   envelopes inside the plays, which does not jump at reversals;
 //! - [`MovingAverage`], [`LowPass`], [`Filter`]: streaming filters to trade noise for delay;
+//! - [`Pid`]: a discrete PID controller with output limits, anti-windup and the derivative on
+//!   the measurement, to close the loop on the estimated angle (Section IV-C);
 //! - [`Estimator`]: all of it from an [`EstimatorConfig`], for one sensor (Eq. 3) or both
 //!   sensors of a BSN joint (Eq. 7), returning an [`Estimate`] with [`Flags`].
 //!
@@ -86,6 +88,7 @@ mod low_pass;
 mod moving_average;
 mod pi;
 mod pi_model;
+mod pid;
 mod play;
 #[cfg(test)]
 #[path = "../tests/common/table_one.rs"]
@@ -123,6 +126,8 @@ pub use moving_average::{MovingAverage, MAX_MOVING_AVERAGE};
 pub use pi::{InversePiOperator, PiOperator};
 /// The paper's generalized PI model with tanh input, forward and inverse (Eqs. 10-14).
 pub use pi_model::{GeneralizedPi, PiConfig, PiInverse};
+/// A discrete PID controller (anti-windup, derivative on the measurement) and its settings.
+pub use pid::{AntiWindup, Pid, PidConfig};
 /// The play operator (Eqs. 8-9).
 pub use play::PlayOperator;
 /// The direction-switched tanh input and its inverse (Eqs. 10 and 14).
