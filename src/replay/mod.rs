@@ -351,7 +351,7 @@ mod tests {
         let mut cfg = nominal(NotchStyle::Bsn, 1.28, 74e3);
         let err = replay(&cfg, &uan).unwrap_err().to_string();
         assert!(
-            err.contains("2 sensors") && err.contains("1 voltage column"),
+            err.contains("2 sensor(s)") && err.contains("1 voltage column"),
             "{err}"
         );
         let bsn = recording(NotchStyle::Bsn, |_| {});
