@@ -10,7 +10,7 @@ use common::shipped_design;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-/// Characterization length (s): five cycles of 80 s each, after the simulator's lead-in.
+/// Characterization length (s): ten cycles (the protocol runs five per 200 s).
 const CHAR_S: &str = "400";
 /// Random-protocol length (s) for the second recordings.
 const RANDOM_S: &str = "300";
@@ -257,7 +257,7 @@ fn check_report(dir: &Path, sensors: usize) {
         let texts: Vec<String> = doc
             .descendants()
             .filter(|n| n.has_tag_name("text"))
-            .filter_map(|n| n.text().map(str::to_owned))
+            .filter_map(|n| n.text().map(|t| t.trim().to_owned()))
             .collect();
         assert!(
             !texts.iter().any(|t| t.contains("NaN")),
@@ -271,7 +271,7 @@ fn check_report(dir: &Path, sensors: usize) {
             "no SVG titled {want:?}; texts: {titles:?}"
         );
     }
-    for want in ["linear fit", "cycle 1"] {
+    for want in ["linear fit", "PI fit", "continuous PI fit", "cycle 1"] {
         assert!(titles.iter().any(|t| t == want), "no legend {want:?}");
     }
     assert!(html.contains("GF"), "no parameter table");
@@ -318,8 +318,15 @@ fn second_generator_pi_beats_linear_and_continuous_pi_runs() {
 fn bsn_two_sensors_beat_either_alone_and_every_model_runs() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let char = simulate(d, "char", "joint-c.toml", "characterization", 7, None);
-    let random = simulate(d, "random", "joint-c.toml", "random", 8, None);
+    // Eq. 7 weighs the two sensors' strains equally, so it beats the better sensor alone only
+    // when the other is not much noisier (for independent noise, less than √3 times in angle).
+    // The default scenario's compression sensor has GF 0.68 against 1.28 (Table V), about 1.8
+    // times the angle noise, and there the two-sensor estimate lands between the two (measured
+    // 1.03°, 1.77°, both 1.08°). Here sensor 2 is as sensitive as sensor 1, so the test sees
+    // whether the fitted two-sensor config combines the planes right.
+    let matched = "[sensor2]\ngauge_factor = 1.28\nr0_ohm = 74000.0\n";
+    let char = simulate(d, "char", "joint-c.toml", "characterization", 7, Some(matched));
+    let random = simulate(d, "random", "joint-c.toml", "random", 8, Some(matched));
     let mut rmse = Vec::new();
     for sensor in ["1", "2", "both"] {
         let config = d.join(format!("linear-{sensor}.toml"));
