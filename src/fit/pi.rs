@@ -26,6 +26,11 @@ use super::FitError;
 /// Multipliers `k` of the initial slope `a₂ = k·m_c/a₁` tried, the paper's first.
 pub const SLOPE_RESTARTS: [f64; 3] = [0.5, 1.0, 2.0];
 
+/// Evaluations each restart may spend, per parameter plus one (the crate's `patience`). On a
+/// nearly linear sensor (Joint C) the optimizer needs more than 100 to converge, and a restart
+/// that runs out is discarded however good its residual.
+pub const PATIENCE: usize = 500;
+
 /// The optimizer stops when a step reduces the sum of squares by less than this fraction…
 pub const FTOL: f64 = 1e-9;
 /// …or moves the parameters by less than this fraction of their size…
@@ -95,7 +100,7 @@ pub fn fit_plays(
             .with_ftol(FTOL)
             .with_xtol(XTOL)
             .with_gtol(GTOL)
-            .with_patience(100)
+            .with_patience(PATIENCE)
             .minimize(problem);
         evaluations += report.number_of_evaluations;
         let converged = report.termination.was_successful()
