@@ -39,7 +39,13 @@ fn main() -> anyhow::Result<()> {
         samples: p.run()?.samples,
     };
     let prefilter = Prefilter::MovingAverage(100);
-    let all = observe(&recording, &design.joint, SensorPlane::PlusYs, prefilter, Some(1))?;
+    let all = observe(
+        &recording,
+        &design.joint,
+        SensorPlane::PlusYs,
+        prefilter,
+        Some(1),
+    )?;
     println!(
         "{duration} s, {} samples, {} prefiltered samples for evaluation",
         recording.samples.time_s.len(),
@@ -53,10 +59,19 @@ fn main() -> anyhow::Result<()> {
             decimation,
         };
         let clock = Instant::now();
-        let fit = fit_sensor(&recording, &design.joint, SensorPlane::PlusYs, &options, &|_| {})?;
+        let fit = fit_sensor(
+            &recording,
+            &design.joint,
+            SensorPlane::PlusYs,
+            &options,
+            &|_| {},
+        )?;
         let seconds = clock.elapsed().as_secs_f64();
         let pi = fit.pi.as_ref().map_err(|e| anyhow::anyhow!("{e}"))?;
-        let cpi = fit.continuous_pi.as_ref().map_err(|e| anyhow::anyhow!("{e}"));
+        let cpi = fit
+            .continuous_pi
+            .as_ref()
+            .map_err(|e| anyhow::anyhow!("{e}"));
         println!(
             "decimation {:>4} ({} samples fitted, {seconds:.2} s): PI RMSE on all samples {:.2} Ω (on fitted {:.2} Ω); continuous PI {}",
             fit.observations.decimation,

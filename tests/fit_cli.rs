@@ -43,7 +43,11 @@ fn simulate(
     scenario: Option<&str>,
 ) -> PathBuf {
     let out = dir.join(name);
-    let duration = if protocol == "random" { RANDOM_S } else { CHAR_S };
+    let duration = if protocol == "random" {
+        RANDOM_S
+    } else {
+        CHAR_S
+    };
     let seed = seed.to_string();
     let mut args = vec![
         "simulate".to_owned(),
@@ -125,7 +129,8 @@ fn f(v: &toml::Value, path: &[&str]) -> f64 {
     for k in path {
         v = &v[*k];
     }
-    v.as_float().unwrap_or_else(|| panic!("{path:?} is not a float: {v}"))
+    v.as_float()
+        .unwrap_or_else(|| panic!("{path:?} is not a float: {v}"))
 }
 
 #[test]
@@ -176,7 +181,10 @@ const PI_SENSOR: &str = "[sensor1]\nmodel = \"pi\"\n";
 /// fitted slope dR/dθ.
 fn noise_floor_ohm(rec: &Path, design: &str, report: &serde_json::Value, n: f64) -> f64 {
     let sc = scenario_of(rec);
-    let (noise_v, noise_deg) = (f(&sc, &["adc", "noise_v"]), f(&sc, &["tracker", "noise_deg"]));
+    let (noise_v, noise_deg) = (
+        f(&sc, &["adc", "noise_v"]),
+        f(&sc, &["tracker", "noise_deg"]),
+    );
     let rig: toml::Value = std::fs::read_to_string(rec.join("rig.toml"))
         .unwrap()
         .parse()
@@ -203,7 +211,14 @@ fn noise_floor_ohm(rec: &Path, design: &str, report: &serde_json::Value, n: f64)
 fn pi_sensor_fit_within_noise_and_pi_config_beats_linear_on_a_random_recording() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let char = simulate(d, "char", "joint-a.toml", "characterization", 5, Some(PI_SENSOR));
+    let char = simulate(
+        d,
+        "char",
+        "joint-a.toml",
+        "characterization",
+        5,
+        Some(PI_SENSOR),
+    );
     let random = simulate(d, "random", "joint-a.toml", "random", 6, Some(PI_SENSOR));
     let (lin, pi) = (d.join("linear.toml"), d.join("pi.toml"));
     fit("joint-a.toml", &char, &lin, &["--model", "linear"]);
@@ -216,10 +231,7 @@ fn pi_sensor_fit_within_noise_and_pi_config_beats_linear_on_a_random_recording()
     );
     let models = report["sensors"][0]["models"].as_array().unwrap();
     let rmse = |m: &str| {
-        models
-            .iter()
-            .find(|x| x["model"] == m)
-            .unwrap()["rmse_ohm"]
+        models.iter().find(|x| x["model"] == m).unwrap()["rmse_ohm"]
             .as_f64()
             .unwrap()
     };
@@ -230,7 +242,11 @@ fn pi_sensor_fit_within_noise_and_pi_config_beats_linear_on_a_random_recording()
         rmse("pi"),
         rmse("continuous-pi")
     );
-    assert!(rmse("pi") < 2.0 * floor, "PI RMSE {} vs noise {floor}", rmse("pi"));
+    assert!(
+        rmse("pi") < 2.0 * floor,
+        "PI RMSE {} vs noise {floor}",
+        rmse("pi")
+    );
     assert!(rmse("pi") < rmse("linear"));
     let (e_lin, e_pi) = (estimate(&lin, &random, d), estimate(&pi, &random, d));
     eprintln!("PI sensor, random recording: angle RMSE linear {e_lin:.3}°, PI {e_pi:.3}°");
@@ -259,10 +275,7 @@ fn check_report(dir: &Path, sensors: usize) {
             .filter(|n| n.has_tag_name("text"))
             .filter_map(|n| n.text().map(|t| t.trim().to_owned()))
             .collect();
-        assert!(
-            !texts.iter().any(|t| t.contains("NaN")),
-            "{name} shows NaN"
-        );
+        assert!(!texts.iter().any(|t| t.contains("NaN")), "{name} shows NaN");
         titles.extend(texts);
     }
     for want in ["Resistance against strain", "Residual"] {
@@ -295,7 +308,10 @@ fn second_generator_pi_beats_linear_and_continuous_pi_runs() {
     );
     fit("joint-a.toml", &char, &cpi, &["--model", "continuous-pi"]);
     for m in report["sensors"][0]["models"].as_array().unwrap() {
-        eprintln!("second generator: {} RMSE {} Ω, BIC {}", m["model"], m["rmse_ohm"], m["bic"]);
+        eprintln!(
+            "second generator: {} RMSE {} Ω, BIC {}",
+            m["model"], m["rmse_ohm"], m["bic"]
+        );
     }
     eprintln!("second generator --validate: {}", report["validation"]);
     let (e_lin, e_pi, e_cpi) = (
@@ -310,7 +326,11 @@ fn second_generator_pi_beats_linear_and_continuous_pi_runs() {
     assert!(e_cpi.is_finite());
     // --validate runs the same estimator: its numbers agree with dlw estimate's.
     let v = report["validation"].as_array().unwrap();
-    let val = |m: &str| v.iter().find(|x| x["model"] == m).unwrap()["rmse_deg"].as_f64().unwrap();
+    let val = |m: &str| {
+        v.iter().find(|x| x["model"] == m).unwrap()["rmse_deg"]
+            .as_f64()
+            .unwrap()
+    };
     assert!((val("linear") - e_lin).abs() < 1e-6 && (val("pi") - e_pi).abs() < 1e-6);
 }
 
@@ -325,7 +345,14 @@ fn bsn_two_sensors_beat_either_alone_and_every_model_runs() {
     // 1.03°, 1.77°, both 1.08°). Here sensor 2 is as sensitive as sensor 1, so the test sees
     // whether the fitted two-sensor config combines the planes right.
     let matched = "[sensor2]\ngauge_factor = 1.28\nr0_ohm = 74000.0\n";
-    let char = simulate(d, "char", "joint-c.toml", "characterization", 7, Some(matched));
+    let char = simulate(
+        d,
+        "char",
+        "joint-c.toml",
+        "characterization",
+        7,
+        Some(matched),
+    );
     let random = simulate(d, "random", "joint-c.toml", "random", 8, Some(matched));
     let mut rmse = Vec::new();
     for sensor in ["1", "2", "both"] {
@@ -352,7 +379,12 @@ fn bsn_two_sensors_beat_either_alone_and_every_model_runs() {
     // The PI models, for two sensors (Joint C) and one (the sensor-2 config on v2_V).
     for (model, sensor) in [("pi", "both"), ("continuous-pi", "2")] {
         let config = d.join(format!("{model}-{sensor}.toml"));
-        fit("joint-c.toml", &char, &config, &["--model", model, "--sensor", sensor]);
+        fit(
+            "joint-c.toml",
+            &char,
+            &config,
+            &["--model", model, "--sensor", sensor],
+        );
         let e = estimate(&config, &random, d);
         eprintln!("Joint C {model} --sensor {sensor}: angle RMSE {e:.3}°");
         assert!(e.is_finite() && e < 10.0, "{model} {sensor}: {e}°");
@@ -408,22 +440,83 @@ fn bad_input_is_refused_with_a_clear_error_and_no_config() {
         40.0 * if u < 0.5 { u } else { 1.0 - u }
     };
     let still = hand_recording(d, "still", 2000, |_| (5.0, sensor(5.0)));
-    fails(&still, d, "joint-a.toml", &["--model", "linear"], &["no motion", "°"]);
+    fails(
+        &still,
+        d,
+        "joint-a.toml",
+        &["--model", "linear"],
+        &["no motion", "°"],
+    );
     let ramp = hand_recording(d, "ramp", 2000, |t| (t, sensor(t)));
-    fails(&ramp, d, "joint-a.toml", &["--model", "pi"], &["cycles", "pi"]);
+    fails(
+        &ramp,
+        d,
+        "joint-a.toml",
+        &["--model", "pi"],
+        &["cycles", "pi"],
+    );
     let flat = hand_recording(d, "flat", 6000, |t| (tri(t), 3.0));
-    fails(&flat, d, "joint-a.toml", &["--model", "linear"], &["does not increase"]);
+    fails(
+        &flat,
+        d,
+        "joint-a.toml",
+        &["--model", "linear"],
+        &["does not increase"],
+    );
     let falling = hand_recording(d, "falling", 6000, |t| (tri(t), sensor(-tri(t))));
-    fails(&falling, d, "joint-a.toml", &["--model", "linear"], &["does not increase"]);
+    fails(
+        &falling,
+        d,
+        "joint-a.toml",
+        &["--model", "linear"],
+        &["does not increase"],
+    );
     let rail = hand_recording(d, "rail", 6000, |t| {
-        (tri(t), if t > 30.0 && t < 31.0 { 4.9999 } else { sensor(tri(t)) })
+        (
+            tri(t),
+            if t > 30.0 && t < 31.0 {
+                4.9999
+            } else {
+                sensor(tri(t))
+            },
+        )
     });
-    fails(&rail, d, "joint-a.toml", &["--model", "linear"], &["rail", "v1_V"]);
+    fails(
+        &rail,
+        d,
+        "joint-a.toml",
+        &["--model", "linear"],
+        &["rail", "v1_V"],
+    );
     let good = hand_recording(d, "good", 6000, |t| (tri(t), sensor(tri(t))));
-    fails(&good, d, "joint-a.toml", &["--order", "1"], &["--order 1", "16"]);
-    fails(&good, d, "joint-a.toml", &["--order", "17"], &["--order 17", "16"]);
-    fails(&good, d, "joint-a.toml", &["--sensor", "2"], &["BSN", "UAN"]);
-    fails(&good, d, "joint-a.toml", &["--prefilter", "ma:0"], &["ma:0"]);
+    fails(
+        &good,
+        d,
+        "joint-a.toml",
+        &["--order", "1"],
+        &["--order 1", "16"],
+    );
+    fails(
+        &good,
+        d,
+        "joint-a.toml",
+        &["--order", "17"],
+        &["--order 17", "16"],
+    );
+    fails(
+        &good,
+        d,
+        "joint-a.toml",
+        &["--sensor", "2"],
+        &["BSN", "UAN"],
+    );
+    fails(
+        &good,
+        d,
+        "joint-a.toml",
+        &["--prefilter", "ma:0"],
+        &["ma:0"],
+    );
     // The same recording with good arguments fits (the errors above are the arguments').
     let config = d.join("good.toml");
     fit("joint-a.toml", &good, &config, &["--model", "linear"]);

@@ -77,7 +77,11 @@ pub fn fit_plays(
     ohm: &[f64],
     points: &Characteristic,
 ) -> Result<PlayFit, FitError> {
-    let span = points.peak_ohm - points.center_ohm;
+    // Eq. 15's a₁ = R_peak − R_c assumes R_c near the bottom of the loop. A BSN compression
+    // sensor (plane −y_s) rests at its largest strain, so its first loading phase ends at rest
+    // and R_c can sit near the top: take the larger side of the loop around R_c.
+    let low = ohm.iter().copied().fold(f64::INFINITY, f64::min);
+    let span = (points.peak_ohm - points.center_ohm).max(points.center_ohm - low);
     if !(span > 0.0 && points.center_slope_ohm > 0.0) {
         return Err(FitError::NotIncreasing {
             slope_ohm_per_strain: points.center_slope_ohm,

@@ -123,7 +123,8 @@ impl Noise {
         }
     }
     fn next(&mut self, rng: &mut Rng) -> f64 {
-        self.state = self.phi * self.state + (1.0 - self.phi * self.phi).sqrt() * self.ar * rng.normal();
+        self.state =
+            self.phi * self.state + (1.0 - self.phi * self.phi).sqrt() * self.ar * rng.normal();
         self.state + self.white * rng.normal()
     }
 }
@@ -152,7 +153,8 @@ fn angle(path: Path, peak_deg: f64, phases: [f64; 3], t: f64) -> Option<f64> {
             if t > duration {
                 return None;
             }
-            let w = |period: f64, phase: f64| (2.0 * std::f64::consts::PI * t / period + phase).sin();
+            let w =
+                |period: f64, phase: f64| (2.0 * std::f64::consts::PI * t / period + phase).sin();
             let x = 0.5
                 + 0.25 * w(77.0, phases[0])
                 + 0.15 * w(32.0, phases[1])
