@@ -183,9 +183,9 @@ pub fn write_recording(design: &FsPath, path: Path, seed: u64, out: &FsPath) {
     };
     let mut rng = Rng::new(seed);
     let phases = [
-        rng.uniform() * 6.283,
-        rng.uniform() * 6.283,
-        rng.uniform() * 6.283,
+        rng.uniform() * std::f64::consts::TAU,
+        rng.uniform() * std::f64::consts::TAU,
+        rng.uniform() * std::f64::consts::TAU,
     ];
     let mut v_noise = Noise::new(WHITE_V, AR_V, &mut rng);
     let mut a_noise = Noise::new(WHITE_DEG, AR_DEG, &mut rng);
