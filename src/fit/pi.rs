@@ -26,6 +26,11 @@ use super::FitError;
 /// Multipliers `k` of the initial slope `a₂ = k·m_c/a₁` tried, the paper's first.
 pub const SLOPE_RESTARTS: [f64; 3] = [0.5, 1.0, 2.0];
 
+/// Evaluations each restart may spend, per parameter plus one (the crate's `patience`). On a
+/// nearly linear sensor (Joint C) the optimizer needs more than 100 to converge, and a restart
+/// that runs out is discarded however good its residual.
+pub const PATIENCE: usize = 500;
+
 /// The optimizer stops when a step reduces the sum of squares by less than this fraction…
 pub const FTOL: f64 = 1e-9;
 /// …or moves the parameters by less than this fraction of their size…
@@ -72,7 +77,11 @@ pub fn fit_plays(
     ohm: &[f64],
     points: &Characteristic,
 ) -> Result<PlayFit, FitError> {
-    let span = points.peak_ohm - points.center_ohm;
+    // Eq. 15's a₁ = R_peak − R_c assumes R_c near the bottom of the loop. A BSN compression
+    // sensor (plane −y_s) rests at its largest strain, so its first loading phase ends at rest
+    // and R_c can sit near the top: take the larger side of the loop around R_c.
+    let low = ohm.iter().copied().fold(f64::INFINITY, f64::min);
+    let span = (points.peak_ohm - points.center_ohm).max(points.center_ohm - low);
     if !(span > 0.0 && points.center_slope_ohm > 0.0) {
         return Err(FitError::NotIncreasing {
             slope_ohm_per_strain: points.center_slope_ohm,
@@ -95,7 +104,7 @@ pub fn fit_plays(
             .with_ftol(FTOL)
             .with_xtol(XTOL)
             .with_gtol(GTOL)
-            .with_patience(100)
+            .with_patience(PATIENCE)
             .minimize(problem);
         evaluations += report.number_of_evaluations;
         let converged = report.termination.was_successful()

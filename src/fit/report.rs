@@ -149,7 +149,7 @@ fn sensor_section(page: &mut Page, fit: &SensorFit) {
             format!("{:.4}", c.center_strain * 100.0),
         ]);
         params.row([
-            "m_c (kΩ)".to_owned(),
+            "m_c (kΩ per unit strain)".to_owned(),
             format!("{:.1}", c.center_slope_ohm / 1e3),
         ]);
         params.row(["R_peak (kΩ)".to_owned(), format!("{:.3}", c.peak_ohm / 1e3)]);
@@ -159,8 +159,9 @@ fn sensor_section(page: &mut Page, fit: &SensorFit) {
         ]);
     }
     for (label, result, color) in [
-        ("PI", &fit.pi, (148, 0, 211)),
-        ("continuous PI", &fit.continuous_pi, (214, 39, 40)),
+        // Dark colours outside the cycles' palette, so a fit is not mistaken for a cycle.
+        ("PI", &fit.pi, (60, 0, 120)),
+        ("continuous PI", &fit.continuous_pi, (0, 95, 95)),
     ] {
         let Ok(pi) = result else { continue };
         let model = pi.predict(&obs.strain);

@@ -24,3 +24,4 @@ pub fn shipped_design(name: &str) -> String {
         .display()
         .to_string()
 }
+pub mod second_generator;
