@@ -53,7 +53,7 @@ pub fn characteristic(
     while start + w <= load.end() + 1 {
         let (x, y) = (&strain[start..start + w], &ohm[start..start + w]);
         if let Some(slope) = slope(x, y) {
-            if best.is_none_or(|b| slope > b.0) {
+            if best.map_or(true, |b| slope > b.0) {
                 let n = w as f64;
                 best = Some((slope, y.iter().sum::<f64>() / n, x.iter().sum::<f64>() / n));
             }

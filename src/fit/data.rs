@@ -170,6 +170,7 @@ pub fn observe(
         decimation: step,
     };
     let sign = plane.sign();
+    #[allow(clippy::needless_range_loop)] // four columns walk together by index
     for i in 0..n {
         let strain = sign * joint.strain(s.angle_deg[i].to_radians());
         let ohm = divider.resistance(volts[i]).unwrap_or(f64::NAN);

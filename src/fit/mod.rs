@@ -17,6 +17,9 @@
 //! resistance, a voltage at a rail) or a fit that did not converge. No NaN leaves a fit:
 //! every fitted number is checked before a config is built.
 
+// `!(x > 0.0)` is how a fit refuses NaN along with the out-of-range values, on purpose.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 mod characteristic;
 mod cycles;
 mod data;

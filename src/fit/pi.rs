@@ -118,7 +118,7 @@ pub fn fit_plays(
             last_reason = format!("{:?}", report.termination);
             continue;
         }
-        if best.as_ref().is_none_or(|b| rmse < b.rmse_ohm) {
+        if best.as_ref().map_or(true, |b| rmse < b.rmse_ohm) {
             let theta: Vec<f64> = problem.theta.iter().copied().collect();
             let values = model.unpack(&theta);
             let x0 = strain[0] - model.center_strain;
