@@ -376,8 +376,13 @@ fn bsn_two_sensors_beat_either_alone_and_every_model_runs() {
         rmse[0], rmse[1], rmse[2]
     );
     assert!(rmse[2] < rmse[0] && rmse[2] < rmse[1], "{rmse:?}");
-    // The PI models, for two sensors (Joint C) and one (the sensor-2 config on v2_V).
-    for (model, sensor) in [("pi", "both"), ("continuous-pi", "2")] {
+    // The PI models, for two sensors (Joint C) and one (the sensor-2 config on v2_V). Joint
+    // C's sensors are nearly linear, so a PI fit that found its optimum is as good as the line
+    // (the tanh starts alone once stopped at 60 Ω against the line's 31 Ω: 10.4° here).
+    for ((model, sensor), linear) in [("pi", "both"), ("continuous-pi", "2")]
+        .into_iter()
+        .zip([rmse[2], rmse[1]])
+    {
         let config = d.join(format!("{model}-{sensor}.toml"));
         fit(
             "joint-c.toml",
@@ -387,7 +392,10 @@ fn bsn_two_sensors_beat_either_alone_and_every_model_runs() {
         );
         let e = estimate(&config, &random, d);
         eprintln!("Joint C {model} --sensor {sensor}: angle RMSE {e:.3}°");
-        assert!(e.is_finite() && e < 10.0, "{model} {sensor}: {e}°");
+        assert!(
+            e.is_finite() && e < 1.25 * linear,
+            "{model} {sensor}: {e}° against linear {linear}°"
+        );
     }
 }
 

@@ -113,7 +113,8 @@ struct PlayReport {
 
 #[derive(Debug, Serialize)]
 struct Restart {
-    slope_multiplier: f64,
+    /// `"k = 0.5"` (Eq. 15's tanh with that slope multiplier) or `"linear"`.
+    start: String,
     rmse_ohm: f64,
     converged: bool,
 }
@@ -301,10 +302,10 @@ fn sensor_report(fit: &SensorFit) -> SensorReport {
                 restarts: p
                     .restarts
                     .iter()
-                    .map(|&(k, r, ok)| Restart {
-                        slope_multiplier: k,
-                        rmse_ohm: r,
-                        converged: ok,
+                    .map(|r| Restart {
+                        start: r.start.to_string(),
+                        rmse_ohm: r.rmse_ohm,
+                        converged: r.converged,
                     })
                     .collect(),
                 evaluations: p.evaluations,

@@ -186,11 +186,12 @@ fn sensor_section(page: &mut Page, fit: &SensorFit) {
         params.row([format!("{label} weights Pᵢ"), fmt_all(&v.weights)]);
         params.row([format!("{label} radii ρᵢ"), fmt_all(&pi.model.radii)]);
         params.row([
-            format!("{label} restarts (k: RMSE Ω)"),
+            format!("{label} restarts (start: RMSE Ω)"),
             pi.restarts
                 .iter()
-                .map(|(k, r, ok)| {
-                    format!("{k}: {r:.1}{}", if *ok { "" } else { " (not converged)" })
+                .map(|r| {
+                    let note = if r.converged { "" } else { " (not converged)" };
+                    format!("{}: {:.1}{note}", r.start, r.rmse_ohm)
                 })
                 .collect::<Vec<_>>()
                 .join(", "),
