@@ -24,4 +24,5 @@ pub fn shipped_design(name: &str) -> String {
         .display()
         .to_string()
 }
+pub mod other_forms;
 pub mod second_generator;
