@@ -55,6 +55,7 @@ fn named(report: &serde_json::Value) -> Vec<(String, String)> {
 /// generator: the right first name on the right channel in ≥ 95 % of effect cases (here: all
 /// but at most one of the cases), and no name on the clean ones.
 #[test]
+#[ignore = "needs dlw discover (issue 9), merged next"]
 fn discover_names_effects_of_other_functional_forms() {
     let dir = tempfile::tempdir().unwrap();
     let mut cases: Vec<(&str, Option<(Effect, usize)>, u64)> = Vec::new();
