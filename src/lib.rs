@@ -15,6 +15,7 @@
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
 //! - [`job`]: a design made into a program and a setup sheet for one machine;
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
+//! - [`characterize`]: the paper's characterization analyses over a recording (Section IV-A, IV-B);
 //! - [`control`]: open- and closed-loop control of a joint on the simulated bench (Section IV-C);
 //! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
 //!   config files;
@@ -27,6 +28,7 @@
 //! The cross-section and strain math lives in the `dlw-geometry` crate, shared with the
 //! runtime estimator.
 
+pub mod characterize;
 pub mod control;
 pub mod design;
 pub mod drawing;

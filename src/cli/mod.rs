@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 mod build;
+mod characterize;
 mod control;
 mod draw;
 mod estimate;
@@ -51,6 +52,8 @@ enum Command {
     FluoroRender(fluoro_render::Args),
     /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI).
     Control(control::Args),
+    /// Run one of the paper's characterization analyses on a recording (Section IV-A, IV-B).
+    Characterize(characterize::Args),
 }
 
 /// Runs the parsed command.
@@ -68,5 +71,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Fluoro(args) => fluoro::run(args),
         Command::FluoroRender(args) => fluoro_render::run(args),
         Command::Control(args) => control::run(args),
+        Command::Characterize(args) => characterize::run(args),
     }
 }
