@@ -189,7 +189,12 @@ impl EstimationResult {
                 PALETTE[k % PALETTE.len()],
             ));
         }
-        let shown = self.time_s.get(end.saturating_sub(1)).copied().unwrap_or(t0) - t0;
+        let shown = self
+            .time_s
+            .get(end.saturating_sub(1))
+            .copied()
+            .unwrap_or(t0)
+            - t0;
         page.figure(
             figure_name(prefix, "estimates"),
             chart,

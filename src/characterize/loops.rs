@@ -155,7 +155,10 @@ impl LoopsResult {
         page.table(t);
         for s in &self.sensors {
             for e in s.summary.pi_error.iter() {
-                page.text(format!("{}: the PI model was not fitted: {e}.", s.summary.sensor));
+                page.text(format!(
+                    "{}: the PI model was not fitted: {e}.",
+                    s.summary.sensor
+                ));
             }
         }
         for (k, s) in self.sensors.iter().enumerate() {
@@ -183,7 +186,10 @@ impl LoopsResult {
                 page.figure(
                     figure_name(prefix, &format!("delta-r-v{column}")),
                     dr,
-                    format!("Change in resistance of {} (cf. Fig. 4(c)).", s.summary.sensor),
+                    format!(
+                        "Change in resistance of {} (cf. Fig. 4(c)).",
+                        s.summary.sensor
+                    ),
                 );
             }
             page.figure(

@@ -100,9 +100,8 @@ pub fn rate(
         let joint_strain: Vec<f64> = obs.strain.iter().map(|e| plane.sign() * e).collect();
         let (lo, hi) = min_max(&joint_strain);
         let all = cycles(&phases(&joint_strain, TURN_THRESHOLD * (hi - lo)));
-        let rise_of = |c: &crate::fit::Cycle| {
-            joint_strain[c.loading.end] - joint_strain[c.loading.start]
-        };
+        let rise_of =
+            |c: &crate::fit::Cycle| joint_strain[c.loading.end] - joint_strain[c.loading.start];
         let largest = all.iter().map(rise_of).fold(0.0, f64::max);
         let mut out = Vec::new();
         let mut smaller = 0;
@@ -212,7 +211,10 @@ impl RateResult {
             gf.size = (440, 340);
             gf.push(dot(
                 "",
-                s.cycles.iter().map(|c| (c.rise_s, c.gauge_factor)).collect(),
+                s.cycles
+                    .iter()
+                    .map(|c| (c.rise_s, c.gauge_factor))
+                    .collect(),
                 PALETTE[0],
             ));
             let mut r0 = Chart::new(

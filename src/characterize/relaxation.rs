@@ -152,7 +152,10 @@ fn fit_tau(t: &[f64], y: &[f64], lo: f64, hi: f64) -> f64 {
     let best = (0..=grid)
         .min_by(|&a, &b| exp_fit(t, y, at(a)).2.total_cmp(&exp_fit(t, y, at(b)).2))
         .unwrap_or(0);
-    let (mut a, mut b) = (at(best.saturating_sub(1)).ln(), at((best + 1).min(grid)).ln());
+    let (mut a, mut b) = (
+        at(best.saturating_sub(1)).ln(),
+        at((best + 1).min(grid)).ln(),
+    );
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let f = |x: f64| exp_fit(t, y, x.exp()).2;
     for _ in 0..60 {

@@ -8,7 +8,10 @@ pub fn pearson(x: &[f64], y: &[f64]) -> Option<f64> {
         return None;
     }
     let nf = n as f64;
-    let (mx, my) = (x[..n].iter().sum::<f64>() / nf, y[..n].iter().sum::<f64>() / nf);
+    let (mx, my) = (
+        x[..n].iter().sum::<f64>() / nf,
+        y[..n].iter().sum::<f64>() / nf,
+    );
     let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
     for (a, b) in x[..n].iter().zip(&y[..n]) {
         sxx += (a - mx) * (a - mx);
@@ -37,7 +40,10 @@ pub fn slope(x: &[f64], y: &[f64]) -> Option<f64> {
         return None;
     }
     let nf = n as f64;
-    let (mx, my) = (x[..n].iter().sum::<f64>() / nf, y[..n].iter().sum::<f64>() / nf);
+    let (mx, my) = (
+        x[..n].iter().sum::<f64>() / nf,
+        y[..n].iter().sum::<f64>() / nf,
+    );
     let (mut sxx, mut sxy) = (0.0, 0.0);
     for (a, b) in x[..n].iter().zip(&y[..n]) {
         sxx += (a - mx) * (a - mx);

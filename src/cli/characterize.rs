@@ -82,6 +82,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         None => Kind::of_recording(&recording)
             .with_context(|| format!("choosing the analysis for {}", args.recording.display()))?,
     };
+    if kind != Kind::Estimation && !args.config.is_empty() {
+        anyhow::bail!(
+            "--config is for --kind estimation; the {} analysis takes none",
+            kind.name()
+        );
+    }
     let configs: Vec<NamedConfig> = args
         .config
         .iter()
@@ -94,12 +100,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             })
         })
         .collect::<anyhow::Result<_>>()?;
-    if kind != Kind::Estimation && !configs.is_empty() {
-        anyhow::bail!(
-            "--config is for --kind estimation; the {} analysis takes none",
-            kind.name()
-        );
-    }
     let options = Options {
         prefilter: args.prefilter,
         order: args.order,
@@ -128,7 +128,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     match kind {
         Kind::Loops => {
             let r = loops(&recording, &joint, &planes, &options).with_context(context)?;
-            heading(&mut page, "Resistance-strain loops (Section IV-A1, Fig. 4, Table III)");
+            heading(
+                &mut page,
+                "Resistance-strain loops (Section IV-A1, Fig. 4, Table III)",
+            );
             r.add_to_page(&mut page, "", "");
             page.write(&args.output)?;
             if args.json {
@@ -161,7 +164,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         Kind::Estimation => {
             let r = estimate(&recording, &configs, &options).with_context(context)?;
-            heading(&mut page, "Angle estimation (Section IV-B, Tables IV-V, Figs. 7-8)");
+            heading(
+                &mut page,
+                "Angle estimation (Section IV-B, Tables IV-V, Figs. 7-8)",
+            );
             r.add_to_page(&mut page, "", "");
             page.write(&args.output)?;
             if args.json {
