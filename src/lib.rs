@@ -17,6 +17,7 @@
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
 //! - [`characterize`]: the paper's characterization analyses over a recording (Section IV-A, IV-B);
 //! - [`control`]: open- and closed-loop control of a joint on the simulated bench (Section IV-C);
+//! - [`reproduce`]: the paper's Section IV on the simulator, Tables III-VI side by side;
 //! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
 //!   config files;
 //! - [`fixed`]: fixed-point CSV number formatting;
@@ -43,6 +44,7 @@ pub mod post;
 pub mod process;
 pub mod replay;
 pub mod report;
+pub mod reproduce;
 pub mod rules;
 pub mod sheet;
 pub mod sim;

@@ -9,7 +9,10 @@
 //! - **Rise time** is the time from 10 % to 90 % of the cycle's rise, divided by 0.8: the
 //!   turning point at the start of a rise lies anywhere in the rest before it (the strain is
 //!   flat there), so the time between turning points would add the rest's noise.
-//! - **Per-cycle fit**: `R = R₀·GF·ε + R₀` by least squares on the cycle's samples (Eqs. 5-6).
+//! - **Per-cycle fit**: `R = R₀·GF·ε + R₀` by least squares on the cycle's moving samples
+//!   (Eqs. 5-6): from where the rise leaves the rest (by [`REST_BAND`] of the rise) to where the
+//!   fall comes back to it. The rests around a cycle take a larger share of a fast cycle, and on
+//!   a hysteretic sensor they would tilt the line differently for fast and slow cycles.
 //! - The **correlation coefficient** (Pearson's) of GF with rise time is scale-free: when GF
 //!   barely varies it is the correlation of noise and can take any value. The relative change
 //!   of GF over the range of rise times, from the least-squares slope, says how large the
@@ -27,6 +30,8 @@ use crate::sim::Recording;
 
 /// A cycle counts when its rise reaches this share of the largest rise.
 pub const EQUAL_AMPLITUDE: f64 = 0.75;
+/// Samples within this share of the rise from the cycle's start are rest, not fitted.
+pub const REST_BAND: f64 = 0.02;
 /// Fewest equal-amplitude cycles the analysis needs.
 pub const MIN_CYCLES: usize = 3;
 /// The longest rise must be at least this many times the shortest.
@@ -121,7 +126,18 @@ pub fn rate(
             let (Some(t10), Some(t90)) = (cross(0.1), cross(0.9)) else {
                 continue;
             };
-            let r = c.range();
+            // The moving part of the cycle: from where the rise leaves the rest to where the
+            // fall reaches it again. The rests before and after vary in share with the
+            // speed, and on a hysteretic sensor they would pull the line differently.
+            let floor = base + REST_BAND * amp;
+            let first = load.clone().find(|&i| joint_strain[i] >= floor);
+            let last = (c.unloading.start..=c.unloading.end)
+                .rev()
+                .find(|&i| joint_strain[i] >= floor);
+            let (Some(first), Some(last)) = (first, last) else {
+                continue;
+            };
+            let r = first..=last;
             let fit = fit_linear(&obs.strain[r.clone()], &obs.ohm[r])?;
             out.push(RateCycle {
                 number: out.len() + 1,

@@ -15,6 +15,7 @@ mod fluoro_render;
 mod import_dxf;
 mod inspect;
 mod program;
+mod reproduce;
 mod simulate;
 
 /// From a sensing continuum-robot joint's design parameters to drawings, laser programs and a
@@ -54,6 +55,8 @@ enum Command {
     Control(control::Args),
     /// Run one of the paper's characterization analyses on a recording (Section IV-A, IV-B).
     Characterize(characterize::Args),
+    /// Run the paper's Section IV on the simulator: Tables III-VI beside the paper's.
+    Reproduce(reproduce::Args),
 }
 
 /// Runs the parsed command.
@@ -72,5 +75,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::FluoroRender(args) => fluoro_render::run(args),
         Command::Control(args) => control::run(args),
         Command::Characterize(args) => characterize::run(args),
+        Command::Reproduce(args) => reproduce::run(args),
     }
 }
