@@ -7,7 +7,7 @@ use dlw_geometry::Joint;
 use serde::Serialize;
 
 use super::{figure_name, min_max, sensor_label, titled, CharacterizeError, Options};
-use crate::fit::{fit_sensor, Characteristic, FitOptions, ModelKind, SensorFit};
+use crate::fit::{fit_sensor, Characteristic, FitError, FitOptions, ModelKind, SensorFit};
 use crate::report::{Chart, Legend, Page, Series, Table, PALETTE};
 use crate::sim::Recording;
 
@@ -72,12 +72,26 @@ pub fn loops(
         model: ModelKind::Linear,
         order: options.order,
         prefilter: options.prefilter,
-        decimation: None,
+        decimation: options.decimation,
     };
     let two = planes.len() > 1;
+    // Each sensor's fit on its own thread: a BSN joint's two PI fits are independent.
+    let fits: Vec<Result<SensorFit, FitError>> = std::thread::scope(|s| {
+        let handles: Vec<_> = planes
+            .iter()
+            .map(|&plane| {
+                let fit_options = &fit_options;
+                s.spawn(move || fit_sensor(recording, joint, plane, fit_options, &|_| {}))
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    });
     let mut sensors = Vec::new();
-    for &plane in planes {
-        let fit = fit_sensor(recording, joint, plane, &fit_options, &|_| {})?;
+    for (fit, &plane) in fits.into_iter().zip(planes) {
+        let fit = fit?;
         let step = fit.observations.decimation;
         let stroke_mm: Vec<f64> = recording
             .samples

@@ -174,6 +174,9 @@ pub struct Options {
     /// The paper's estimation processing: a 1000-sample moving average on the angle (the PI
     /// configs clamp to the characterized resistance range themselves).
     pub paper_processing: bool,
+    /// `loops`: keep every `k`-th sample for the fits (`None`: `dlw fit`'s choice, at most
+    /// `crate::fit::MAX_FIT_SAMPLES`).
+    pub decimation: Option<usize>,
 }
 
 impl Default for Options {
@@ -183,6 +186,7 @@ impl Default for Options {
             order: 10,
             min_hold_s: DEFAULT_MIN_HOLD_S,
             paper_processing: false,
+            decimation: None,
         }
     }
 }

@@ -105,6 +105,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         order: args.order,
         min_hold_s: args.min_hold_s,
         paper_processing: args.paper_processing,
+        decimation: None,
     };
     let joint = design.joint;
     let planes = planes(&recording, &joint, &design.file.name)?;

@@ -44,9 +44,11 @@ pub const SHORT_SCALE: f64 = 0.1;
 /// The paper's order of Joint D's PI model, "for the purpose of simplifying the control system".
 pub const CONTROL_ORDER: usize = 3;
 
-/// The moving average on the sensed angle inside the control loop (samples); see
-/// `docs/experiments.md` ("Stability: the sensed angle must be filtered").
-pub const CONTROL_FILTER: u32 = 50;
+/// The fits keep at most about this many samples (`dlw fit`: `crate::fit::MAX_FIT_SAMPLES`,
+/// 8000). Joint C's PI fits take about 40 s each on 8000 samples; on 4000 they fit in the
+/// reproduction's minute, and `docs/performance.md` shows that decimation costs the fit
+/// little.
+pub const MAX_FIT_SAMPLES: usize = 4000;
 
 /// Why the reproduction stopped.
 #[derive(Debug, thiserror::Error)]
@@ -198,7 +200,7 @@ fn simulate(
         protocol: protocol.name(),
         source,
     };
-    let p = plan(&joint.design, sc, None).map_err(err)?;
+    let p = plan(&joint.design, without_drift(sc, protocol), None).map_err(err)?;
     let run = p.run().map_err(err)?;
     Ok(Recording {
         rig: p.rig(),
@@ -206,13 +208,28 @@ fn simulate(
     })
 }
 
-fn options(scale: f64, order: usize) -> Options {
+fn options(scale: f64, order: usize, samples: usize) -> Options {
     Options {
         prefilter: Prefilter::MovingAverage(100),
         order,
         min_hold_s: DEFAULT_MIN_HOLD_S * scale,
         paper_processing: true,
+        decimation: Some((samples.div_ceil(MAX_FIT_SAMPLES)).max(50)),
     }
+}
+
+/// Drift is on only in the rate-dependence run, where the paper measured it (the spread of R₀).
+/// Elsewhere it would move the resistance out of the characterized range: on Joint A, with the
+/// paper's 1.1 kΩ of drift in every run, the PI estimate of the random pattern had an RMSE of
+/// 25.8° against 2.95° for the linear model.
+fn without_drift(mut sc: crate::sim::Scenario, protocol: ProtocolKind) -> crate::sim::Scenario {
+    if protocol != ProtocolKind::RateDependence {
+        sc.sensor1.drift.enabled = false;
+        if let Some(s) = sc.sensor2.as_mut() {
+            s.drift.enabled = false;
+        }
+    }
+    sc
 }
 
 fn run_joint(
@@ -223,7 +240,6 @@ fn run_joint(
     let letter = joint.letter;
     let j = &joint.design.joint;
     let seed = 10 * u64::from(letter as u8 - b'A');
-    let opts = options(scale, 10);
     let analysis = |analysis| {
         move |source| ReproduceError::Analysis {
             joint: letter,
@@ -235,6 +251,7 @@ fn run_joint(
 
     let rec = simulate(joint, ProtocolKind::Characterization, scale, seed + 1)?;
     step("characterization simulated");
+    let opts = options(scale, 10, rec.samples.len());
     let planes = planes(&rec, j, &joint.design.file.name).map_err(analysis("loops"))?;
     let loops = loops(&rec, j, &planes, &opts).map_err(analysis("loops"))?;
     drop(rec);
@@ -297,7 +314,7 @@ fn run_control(
     let j = &joint.design.joint;
     let rec = simulate(joint, ProtocolKind::Characterization, scale, 31)?;
     progress("Joint D: characterization simulated");
-    let opts = options(scale, CONTROL_ORDER);
+    let opts = options(scale, CONTROL_ORDER, rec.samples.len());
     let planes =
         planes(&rec, j, &joint.design.file.name).map_err(|source| ReproduceError::Analysis {
             joint: 'D',
@@ -320,13 +337,13 @@ fn run_control(
                 source,
             }
         })?;
-    // Inside the loop the estimate must be quick: the fit's prefilter (0.1 s of delay) is
-    // replaced by a short average on the angle (docs/experiments.md, "Stability").
-    config.input_filter = FilterConfig::None;
-    config.output_filter = FilterConfig::MovingAverage {
-        samples: CONTROL_FILTER,
-    };
-    let sc = scaled(&joint.scenario, ProtocolKind::Random, scale, 32);
+    // The fit's config as it is: its input filter (the prefilter, a 100-sample moving average)
+    // keeps the loop stable at the paper's gains; no output filter.
+    config.output_filter = FilterConfig::None;
+    let sc = without_drift(
+        scaled(&joint.scenario, ProtocolKind::Random, scale, 32),
+        ProtocolKind::Random,
+    );
     let control = Control::new(
         &joint.design,
         sc,

@@ -5,7 +5,7 @@ use super::paper::{
     R0_STD_OHM, RATE_CORRELATION, RELAXATION_CORRELATION, TABLE_III, TABLE_IV, TABLE_V,
     TWO_SENSOR_RMSE,
 };
-use super::{Reproduction, CONTROL_FILTER, CONTROL_ORDER};
+use super::{Reproduction, CONTROL_ORDER};
 use crate::characterize::{EstimationResult, LoopsSensor};
 use crate::control::{report as control_report, PAPER_TABLE_VI};
 use crate::report::{Block, Page, Table};
@@ -394,14 +394,16 @@ fn table_vi(page: &mut Page, r: &Reproduction) {
     page.table(t);
     page.text(format!(
         "Joint D's sensor is fitted with the PI model of order N = {CONTROL_ORDER}, as in the \
-         paper; the runtime estimator reads it with a {CONTROL_FILTER}-sample moving average on \
-         the angle instead of the fit's prefilter and the paper's 1000 samples, because the \
-         simulated actuator has no dynamics and a longer delay makes the loop at the paper's \
-         gains (K_p = 0.1 mm/°, K_i = 0.1 mm/(°·s), K_d = 0) oscillate (docs/experiments.md). \
-         Why they differ. The simulated joint relaxes 15 % and has 0.1 mm of backlash, \
-         illustrative values: they set open loop's drift, which the paper measured as 8.14°. \
-         The pattern is the paper's: closed loop cuts the actual-vs-desired error and brings the \
-         sensed angle to the desired one."
+         paper, and the runtime estimator reads it with the fit's config unchanged: a \
+         100-sample moving average on the resistance (the fit's prefilter) and no filter on \
+         the angle, instead of the paper's 1000-sample average, because the simulated actuator \
+         has no dynamics and a longer delay makes the loop at the paper's gains \
+         (K_p = 0.1 mm/°, K_i = 0.1 mm/(°·s), K_d = 0) oscillate (docs/experiments.md). Why \
+         they differ. The simulated joint relaxes 15 % with τ = 20 s and has 0.1 mm of \
+         backlash, illustrative values that set open loop's drift (the paper measured 8.14°). \
+         The pattern is the paper's: closed loop cuts the actual-vs-desired error and brings \
+         the sensed angle to the desired one, while its sensed-vs-actual error grows, because \
+         the loop follows the sensor's errors."
     ));
     let control_page = control_report::page(&r.control.control, &r.control.run);
     let from = control_page
