@@ -211,8 +211,8 @@ impl LoopsResult {
                 loop_chart(s, label),
                 format!(
                     "Resistance against strain of {}, each loading/unloading cycle in its own \
-                     colour, with the linear fit (green) and the PI fit (purple) drawn over the \
-                     data (cf. Fig. 4(d-f)).",
+                     colour, with the linear fit (green) and the PI fit over the last cycle (purple) \
+                     drawn over the data (cf. Fig. 4(d-f)).",
                     s.summary.sensor
                 ),
             );
@@ -326,14 +326,16 @@ fn loop_chart(s: &LoopsSensor, label: &str) -> Chart {
         LINEAR,
     ));
     if let Ok(pi) = &fit.pi {
+        // The model runs over the whole recording (its plays remember the history) and is
+        // drawn over the last cycle, so that it shows the loop without hiding the data.
         let model = pi.predict(&obs.strain);
+        let shown = fit
+            .cycles
+            .last()
+            .map_or(0..=obs.len().saturating_sub(1), |c| c.range());
         chart.push(Series::reference(
-            "PI fit",
-            strain_pct
-                .iter()
-                .zip(&model)
-                .map(|(e, r)| (*e, r / 1e3))
-                .collect(),
+            "PI fit (last cycle)",
+            shown.map(|i| (strain_pct[i], model[i] / 1e3)).collect(),
             PI,
         ));
     }
