@@ -136,8 +136,10 @@ fn table_iii(page: &mut Page, r: &Reproduction) {
          so R_c, R_peak and ε_peak come back near the paper's; the peak strain is the simulator's \
          protocol amplitude (1.5 % at the nominal gain, less the relaxation), not the paper's \
          measured one. The linear GF and R₀ are the least-squares line through that PI curve, \
-         which is not the line through the paper's data, and m_c is the steepest slope of a \
-         noisy, prefiltered first loading, which depends on the noise. Joint C's R_peak: the \
+         which is not the line through the paper's data. ε_c and m_c come from the steepest \
+         window of the first cycle's loading phase (dlw fit's procedure); that phase starts in \
+         the rest before the first cycle, where the strain barely moves and a window's slope is \
+         mostly noise, so dlw's ε_c lands near zero strain and m_c scatters. Joint C's R_peak: the \
          paper prints 754 kΩ against R_c = 74.7 kΩ, R₀ = 74.0 kΩ and a linear model that \
          changes by only 1.3 kΩ over the whole range, a misplaced decimal point for 75.4 kΩ; \
          the simulator uses 75.4 kΩ and dlw's value agrees with that.",
@@ -173,14 +175,19 @@ fn rate(page: &mut Page, r: &Reproduction) {
     }
     page.table(t);
     page.text(
-        "Why they differ. The simulated sensors have no rate dependence (the paper found none), \
-         so GF does not change with the rise time beyond noise: the GF change from the fastest \
-         to the slowest cycle is a fraction of a percent. The correlation coefficient is then \
-         the correlation of noise with the rise time over 25 cycles, which can take any value \
-         between about −0.4 and 0.4 from one seed to the next; the paper's values near 0 are one \
-         such draw. The R₀ spread comes from the simulator's baseline drift, a random walk sized \
-         so that its spread over 3000 s is the paper's (20, 10.9 and 0.7 Ω/√s); one walk's \
-         spread over 25 cycles scatters around that size.",
+        "Why they differ. The simulated sensors have no rate dependence of their own (the \
+         paper found none), yet GF changes by a few percent from the fastest cycle to the \
+         slowest. The joint relaxes (τ = 20 s) during the slower rises, so the slow cycles \
+         reach a lower peak strain, and the least-squares line through a curved sensor depends \
+         on the range it spans: on Joints A and B, whose PI curves saturate, the line over a \
+         shorter range is steeper (GF rises with the rise time); Joint C's curve bends upward \
+         below its centre at 0.80 % strain, so there the line is shallower (GF falls). The \
+         paper's sensors, fitted over a nearly constant range, showed no such trend. The \
+         correlation coefficient is scale-free: without a trend it is the correlation of noise \
+         with the rise time, anywhere in about ±0.4 for 25 cycles. The R₀ spread comes from the \
+         simulator's baseline drift, a random walk sized so that its spread over 3000 s is the \
+         paper's (20, 10.9 and 0.7 Ω/√s); one walk's spread over 25 cycles scatters around \
+         that size.",
     );
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
@@ -286,8 +293,11 @@ fn table_iv(page: &mut Page, r: &Reproduction) {
          moving average on the angle, whose 1 s delay the RMSE includes). Why they differ. The \
          simulated sensor is exactly a PI model with white noise, so the PI fit recovers it and \
          beats the linear model on every joint; the paper's Joint C had a nearly linear sensor \
-         whose PI fit did worse (7.57° against 5.25°). Much of dlw's error is the moving \
-         average's lag on the random pattern's ramps, not the sensor model.",
+         whose PI fit did worse (7.57° against 5.25°). dlw's PI fit of Joint C's nearly linear \
+         tension sensor is ill-conditioned too (its curve in Fig. 4 above has steps the data \
+         do not), and its estimate is far worse than the linear one, as in the paper but by \
+         more. Much of the remaining error on Joints A and B is the moving average's lag on \
+         the random pattern's ramps, not the sensor model.",
     );
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
