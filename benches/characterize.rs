@@ -71,13 +71,9 @@ fn bench(c: &mut Criterion) {
         })
     });
     let rec = record(&design, ProtocolKind::Random);
-    let linear = EstimatorConfig::nominal_linear(
-        JointConfig::from_joint(j),
-        15.3,
-        215e3,
-        nominal_divider(),
-    )
-    .expect("valid config");
+    let linear =
+        EstimatorConfig::nominal_linear(JointConfig::from_joint(j), 15.3, 215e3, nominal_divider())
+            .expect("valid config");
     let mut pi = linear;
     pi.sensor.model = ModelConfig::Pi(JOINT_A_PI.to_config());
     let configs = [

@@ -160,7 +160,7 @@ pub fn rate(
         let gf: Vec<f64> = out.iter().map(|c| c.gauge_factor).collect();
         let r0: Vec<f64> = out.iter().map(|c| c.r0_ohm).collect();
         let (min_s, max_s) = min_max(&rise);
-        if !(max_s >= MIN_SPEED_RATIO * min_s) {
+        if max_s < MIN_SPEED_RATIO * min_s || !max_s.is_finite() {
             return Err(CharacterizeError::OneSpeed {
                 cycles: out.len(),
                 min_s,
