@@ -395,3 +395,33 @@ impl RelaxationResult {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn exponential_fit_recovers_tau_and_amplitude() {
+        for (tau, a) in [(3.0, 2e-4), (20.0, -5e-4), (0.8, 1e-3)] {
+            let t: Vec<f64> = (0..600).map(|i| i as f64 * 0.1).collect();
+            let y: Vec<f64> = t
+                .iter()
+                .enumerate()
+                .map(|(i, x)| 0.01 + a * (-x / tau).exp() + 1e-6 * ((i * 7919 % 13) as f64 - 6.0))
+                .collect();
+            let found = fit_tau(&t, &y, 60.0 / 50.0 / 10.0, 600.0);
+            assert_relative_eq!(found, tau, max_relative = 0.03);
+            let (c, amp, _) = exp_fit(&t, &y, found);
+            assert_relative_eq!(c, 0.01, max_relative = 1e-3);
+            assert_relative_eq!(amp, a, max_relative = 0.03);
+        }
+    }
+
+    #[test]
+    fn medians() {
+        assert_eq!(median(&mut []), None);
+        assert_eq!(median(&mut [3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median(&mut [4.0, 1.0, 2.0, 3.0]), Some(2.5));
+    }
+}
