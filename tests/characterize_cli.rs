@@ -445,6 +445,44 @@ fn bad_input_is_refused_with_a_clear_message_and_nothing_written() {
         assert!(err.contains(needle), "{args:?}: {err}");
         assert!(!out.exists(), "{args:?} wrote {}", out.display());
     }
+    // A recording whose rig.toml names no protocol (a real bench's) needs --kind.
+    let rig = std::fs::read_to_string(char.join("rig.toml")).unwrap();
+    let stripped: String = rig
+        .lines()
+        .filter(|l| !l.starts_with("protocol = "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_ne!(rig, stripped);
+    std::fs::write(char.join("rig.toml"), stripped).unwrap();
+    let o = common::dlw(&[
+        "characterize",
+        "--design",
+        &design,
+        &s(&char),
+        "-o",
+        &s(&out),
+    ]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("pass --kind loops|rate|relaxation|estimation"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    ok(&[
+        "characterize",
+        "--design",
+        &design,
+        &s(&char),
+        "--kind",
+        "loops",
+        "--order",
+        "3",
+        "-o",
+        &s(&out),
+    ]);
+    assert!(out.join("report.html").exists());
+    std::fs::remove_dir_all(&out).unwrap();
     // A two-column recording on a UAN design.
     let c = simulate(dir.path(), "c", "joint-c.toml", "relaxation", 60, "");
     let o = common::dlw(&["characterize", "--design", &design, &s(&c), "-o", &s(&out)]);
