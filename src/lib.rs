@@ -15,7 +15,9 @@
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
 //! - [`job`]: a design made into a program and a setup sheet for one machine;
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
+//! - [`characterize`]: the paper's characterization analyses over a recording (Section IV-A, IV-B);
 //! - [`control`]: open- and closed-loop control of a joint on the simulated bench (Section IV-C);
+//! - [`reproduce`]: the paper's Section IV on the simulator, Tables III-VI side by side;
 //! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
 //!   config files;
 //! - [`fixed`]: fixed-point CSV number formatting;
@@ -27,6 +29,7 @@
 //! The cross-section and strain math lives in the `dlw-geometry` crate, shared with the
 //! runtime estimator.
 
+pub mod characterize;
 pub mod control;
 pub mod design;
 pub mod drawing;
@@ -41,6 +44,7 @@ pub mod post;
 pub mod process;
 pub mod replay;
 pub mod report;
+pub mod reproduce;
 pub mod rules;
 pub mod sheet;
 pub mod sim;

@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 mod build;
+mod characterize;
 mod control;
 mod draw;
 mod estimate;
@@ -14,6 +15,7 @@ mod fluoro_render;
 mod import_dxf;
 mod inspect;
 mod program;
+mod reproduce;
 mod simulate;
 
 /// From a sensing continuum-robot joint's design parameters to drawings, laser programs and a
@@ -51,6 +53,10 @@ enum Command {
     FluoroRender(fluoro_render::Args),
     /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI).
     Control(control::Args),
+    /// Run one of the paper's characterization analyses on a recording (Section IV-A, IV-B).
+    Characterize(characterize::Args),
+    /// Run the paper's Section IV on the simulator: Tables III-VI beside the paper's.
+    Reproduce(reproduce::Args),
 }
 
 /// Runs the parsed command.
@@ -68,5 +74,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Fluoro(args) => fluoro::run(args),
         Command::FluoroRender(args) => fluoro_render::run(args),
         Command::Control(args) => control::run(args),
+        Command::Characterize(args) => characterize::run(args),
+        Command::Reproduce(args) => reproduce::run(args),
     }
 }

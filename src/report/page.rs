@@ -123,8 +123,8 @@ impl Page {
                     files.push((file.clone(), chart.to_svg()?.into_bytes()));
                     let _ = writeln!(
                         html,
-                        "<figure><img src=\"{f}\" alt=\"{a}\" width=\"{w}\" height=\"{h}\">\
-                         <figcaption>{c}</figcaption></figure>",
+                        "<figure style=\"width:{w}px\"><img src=\"{f}\" alt=\"{a}\" width=\"{w}\" \
+                         height=\"{h}\"><figcaption>{c}</figcaption></figure>",
                         f = escape(&file),
                         a = escape(&chart.title),
                         w = chart.size.0,
@@ -165,7 +165,8 @@ const STYLE: &str = "body{font-family:sans-serif;max-width:960px;margin:2em auto
 line-height:1.45}h1{font-size:1.6em}h2{font-size:1.25em;margin-top:1.6em;border-bottom:1px solid #ccc}\
 table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #bbb;padding:3px 9px;\
 text-align:right;font-variant-numeric:tabular-nums}th{background:#f1f1f1}td:first-child,\
-th:first-child{text-align:left}figure{margin:1em 0}figcaption{font-size:.9em;color:#555}";
+th:first-child{text-align:left}figure{display:inline-block;vertical-align:top;margin:1em 1em 1em 0;max-width:100%}\
+img{max-width:100%;height:auto}figcaption{font-size:.9em;color:#555}";
 
 fn table_html(html: &mut String, t: &Table) {
     html.push_str("<table><thead><tr>");

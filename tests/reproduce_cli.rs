@@ -1,0 +1,149 @@
+//! `dlw reproduce --short` through the binary: the report holds Tables III-VI with the paper's
+//! numbers beside dlw's, every figure it references exists and is SVG, and every number is
+//! finite.
+
+mod common;
+
+#[test]
+fn short_reproduction_writes_all_four_tables_and_the_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("repro");
+    let o = common::dlw(&[
+        "reproduce",
+        "--short",
+        "-o",
+        &out.display().to_string(),
+        "--json",
+    ]);
+    assert!(
+        o.status.success(),
+        "dlw reproduce failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    // Every number the command prints is finite (JSON has no NaN: serde writes null).
+    fn walk(v: &serde_json::Value, path: &str) {
+        match v {
+            serde_json::Value::Null => {
+                assert!(
+                    path.ends_with("median_tau_s"),
+                    "{path} is null (not finite)"
+                )
+            }
+            serde_json::Value::Number(n) => {
+                assert!(n.as_f64().is_some_and(f64::is_finite), "{path} = {n}")
+            }
+            serde_json::Value::Array(a) => {
+                for (i, x) in a.iter().enumerate() {
+                    walk(x, &format!("{path}[{i}]"));
+                }
+            }
+            serde_json::Value::Object(m) => {
+                for (k, x) in m {
+                    walk(x, &format!("{path}.{k}"));
+                }
+            }
+            _ => {}
+        }
+    }
+    walk(&j, "");
+    let joints = j["joints"].as_array().unwrap();
+    let letters: Vec<&str> = joints
+        .iter()
+        .map(|x| x["joint"].as_str().unwrap())
+        .collect();
+    assert_eq!(letters, ["A", "B", "C"]);
+    // The simulated sensors are Table III's: the fitted linear R₀ is near each joint's.
+    for (x, r0) in joints.iter().zip([215e3, 77.2e3, 74.0e3]) {
+        let fitted = x["r0_ohm"].as_f64().unwrap();
+        assert!((fitted / r0 - 1.0).abs() < 0.05, "{x}");
+    }
+    // Joint C estimates with tension, compression and both sensors.
+    let c: Vec<&str> = joints[2]["estimation"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["sensors"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        c,
+        ["one sensor", "one sensor", "tension", "compression", "both"]
+    );
+    // Closed loop brings the sensed angle to the desired one.
+    let sensed = |k: &str| j[k]["sensed_vs_desired_rmse_deg"].as_f64().unwrap();
+    assert!(
+        sensed("control_closed_loop") < sensed("control_open_loop"),
+        "{j}"
+    );
+
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    for needle in [
+        "Table III",
+        "Table IV",
+        "Table V",
+        "Table VI",
+        "Fig. 4",
+        "Fig. 5",
+        "Fig. 6",
+        "Fig. 7",
+        "Fig. 8",
+        "Fig. 10",
+        "754.0",
+        "misplaced decimal point",
+        "Why they differ",
+    ] {
+        assert!(html.contains(needle), "{needle} not in the report");
+    }
+    // The paper's numbers beside dlw's: Table IV's and Table VI's.
+    for paper in [
+        "2.76", "1.76", "3.51", "2.65", "5.25", "7.57", "8.14", "2.92", "3.13", "0.118",
+    ] {
+        assert!(
+            html.contains(&format!("<td>{paper}</td>")),
+            "paper's {paper} not in a table"
+        );
+    }
+    assert!(
+        !html.contains("NaN") && !html.contains("inf<"),
+        "a non-finite number in the report"
+    );
+    let figures: Vec<&str> = html
+        .split("src=\"")
+        .skip(1)
+        .filter_map(|s| s.split('"').next())
+        .collect();
+    assert!(figures.len() >= 35, "{} figures", figures.len());
+    for f in &figures {
+        let svg = std::fs::read_to_string(out.join(f)).unwrap_or_else(|e| panic!("{f}: {e}"));
+        roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("{f}: {e}"));
+    }
+    for want in [
+        "a-loops-loops-v1.svg",
+        "c-loops-loops-v2.svg",
+        "b-rate-gf-v1.svg",
+        "a-relax-strain-v1.svg",
+        "c-two-estimates.svg",
+        "d-control-fig10b-closed-loop.svg",
+    ] {
+        assert!(figures.contains(&want), "{want} missing");
+    }
+}
+
+#[test]
+fn a_bad_duration_scale_is_refused_and_nothing_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("repro");
+    for scale in ["0", "2", "nan"] {
+        let o = common::dlw(&[
+            "reproduce",
+            "--duration-scale",
+            scale,
+            "-o",
+            &out.display().to_string(),
+        ]);
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("must lie in (0, 1]"), "{scale}: {err}");
+        assert!(!out.exists());
+    }
+}
