@@ -15,6 +15,8 @@
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
 //! - [`job`]: a design made into a program and a setup sheet for one machine;
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
+//! - [`discover`]: where the simulator and a recording disagree, which effect is missing, and
+//!   the gap once it is added;
 //! - [`control`]: open- and closed-loop control of a joint on the simulated bench (Section IV-C);
 //! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
 //!   config files;
@@ -29,6 +31,7 @@
 
 pub mod control;
 pub mod design;
+pub mod discover;
 pub mod drawing;
 pub mod fit;
 pub mod fixed;
