@@ -179,9 +179,17 @@ impl ChannelModel {
                     }
                     labels.push("rate");
                 }
-                Term::Drift => {
+                Term::Drift { settle_tau_s } => {
                     let t0 = data.time_s[0];
-                    columns.push(data.time_s.iter().map(|t| t - t0).collect());
+                    columns.push(
+                        data.time_s
+                            .iter()
+                            .map(|t| match settle_tau_s {
+                                None => t - t0,
+                                Some(tau) => 1.0 - (-(t - t0) / tau).exp(),
+                            })
+                            .collect(),
+                    );
                     labels.push("drift");
                 }
                 Term::Backlash { .. } | Term::Saturation { .. } => {}

@@ -62,8 +62,17 @@ pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
             p.insert("fraction".into(), fitted.get("creep").unwrap_or(0.0) / gain);
             p.insert("tau_s".into(), *tau_s);
         }
-        Term::Drift => {
-            p.insert("rate_ohm_per_s".into(), fitted.get("drift").unwrap_or(0.0));
+        Term::Drift { settle_tau_s } => {
+            let c = fitted.get("drift").unwrap_or(0.0);
+            match settle_tau_s {
+                None => {
+                    p.insert("rate_ohm_per_s".into(), c);
+                }
+                Some(tau) => {
+                    p.insert("settle_ohm".into(), c);
+                    p.insert("settle_tau_s".into(), *tau);
+                }
+            }
         }
     }
     p
@@ -128,7 +137,12 @@ pub fn known(scenario: &Scenario) -> Known {
             ));
         }
         if s.drift.enabled {
-            k.push((ch, Term::Drift));
+            k.push((
+                ch,
+                Term::Drift {
+                    settle_tau_s: (s.drift.settle_ohm != 0.0).then_some(s.drift.settle_tau_s),
+                },
+            ));
         }
     }
     k
@@ -229,10 +243,18 @@ fn write_sensor(sensor: &mut SensorParams, ch: &ChannelReport) -> Result<(), Str
                 sensor.creep.fraction = f.get("creep").unwrap_or(0.0) / b;
                 sensor.creep.tau_s = *tau_s;
             }
-            Term::Drift => {
+            Term::Drift { settle_tau_s } => {
+                let c = f.get("drift").unwrap_or(0.0);
                 sensor.drift.enabled = true;
-                sensor.drift.rate_ohm_per_s = f.get("drift").unwrap_or(0.0);
                 sensor.drift.random_walk_ohm_per_sqrt_s = Some(0.0);
+                match settle_tau_s {
+                    None => sensor.drift.rate_ohm_per_s = c,
+                    Some(tau) => {
+                        sensor.drift.rate_ohm_per_s = 0.0;
+                        sensor.drift.settle_ohm = c;
+                        sensor.drift.settle_tau_s = *tau;
+                    }
+                }
             }
             Term::Backlash { .. } | Term::Relaxation { .. } => {}
         }

@@ -8,7 +8,7 @@
 //! - **Sensor** (tracker angle → resistance): `R = c₀ + b·x + …` where `x` is the felt strain
 //!   (`±ε(θ)`, Eq. 3), or `ε_s·tanh(ε/ε_s)` with `saturation`; `hysteresis` adds plays
 //!   `play_ρ(x)` (a Prandtl-Ishlinskii model); `rate` adds `LP_τ(ẋ)` (signed) or
-//!   `x·log₁₀(1 + LP_τ(|ẋ|)/ṙ₀)` (log); `creep` adds `LP_τ(x)`; `drift` adds `t`.
+//!   `x·log₁₀(1 + LP_τ(|ẋ|)/ṙ₀)` (log); `creep` adds `LP_τ(x)`; `drift` adds `t` or `1 − e^(−t/τ)`.
 
 use serde::Serialize;
 
@@ -105,8 +105,11 @@ pub enum Term {
         /// Time constant (s).
         tau_s: f64,
     },
-    /// `t − t₀`.
-    Drift,
+    /// `t − t₀` (linear), or `1 − e^(−(t − t₀)/τ)` (settling).
+    Drift {
+        /// `None`: linear in time; `Some(τ)`: settling with time constant `τ` (s).
+        settle_tau_s: Option<f64>,
+    },
 }
 
 impl Term {
@@ -119,7 +122,7 @@ impl Term {
             Term::Saturation { .. } => Effect::Saturation,
             Term::Rate { .. } => Effect::Rate,
             Term::Creep { .. } => Effect::Creep,
-            Term::Drift => Effect::Drift,
+            Term::Drift { .. } => Effect::Drift,
         }
     }
 
@@ -158,11 +161,14 @@ impl Term {
                         .map(move |&tau_s| Term::Rate { signed, tau_s })
                 })
                 .collect(),
-            Effect::Creep => [2.0, 5.0, 10.0, 20.0, 40.0, 80.0]
+            Effect::Creep => [5.0, 10.0, 20.0, 40.0, 80.0]
                 .iter()
                 .map(|&tau_s| Term::Creep { tau_s })
                 .collect(),
-            Effect::Drift => vec![Term::Drift],
+            Effect::Drift => [None, Some(60.0), Some(150.0), Some(400.0)]
+                .into_iter()
+                .map(|settle_tau_s| Term::Drift { settle_tau_s })
+                .collect(),
         }
     }
 
@@ -186,7 +192,10 @@ impl Term {
                 if *signed { "signed" } else { "log" }
             ),
             Term::Creep { tau_s } => format!("τ = {tau_s} s"),
-            Term::Drift => "linear in time".to_owned(),
+            Term::Drift { settle_tau_s: None } => "linear in time".to_owned(),
+            Term::Drift {
+                settle_tau_s: Some(tau),
+            } => format!("settling, τ = {tau} s"),
         }
     }
 }
