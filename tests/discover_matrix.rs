@@ -63,7 +63,11 @@ fn run(dir: &Path, case: &Case) -> Outcome {
     } else {
         case.effects.join("+")
     };
-    let name = format!("{}-{tag}-{}", case.design.trim_end_matches(".toml"), case.seed);
+    let name = format!(
+        "{}-{tag}-{}",
+        case.design.trim_end_matches(".toml"),
+        case.seed
+    );
     let rec = dir.join(&name);
     let seed = case.seed.to_string();
     let design = shipped_design(case.design);
@@ -89,7 +93,11 @@ fn run(dir: &Path, case: &Case) -> Outcome {
         args.extend(["--scenario".into(), file.display().to_string()]);
     }
     let o = common::dlw(&args);
-    assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let out = dir.join(format!("{name}-out"));
     let o = common::dlw(&[
         "discover",
@@ -100,7 +108,11 @@ fn run(dir: &Path, case: &Case) -> Outcome {
         &out.display().to_string(),
         "--json",
     ]);
-    assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let named = json["discovered"]
         .as_array()
@@ -164,7 +176,11 @@ fn discovery_matrix() {
             });
         }
     }
-    for pair in [["relaxation", "drift"], ["backlash", "rate"], ["hysteresis", "drift"]] {
+    for pair in [
+        ["relaxation", "drift"],
+        ["backlash", "rate"],
+        ["hysteresis", "drift"],
+    ] {
         for s in 0..seeds.min(3) {
             cases.push(Case {
                 design: "joint-a.toml",
@@ -196,7 +212,10 @@ fn discovery_matrix() {
             o.name,
             o.named,
             if o.ambiguous { " (ambiguous left)" } else { "" },
-            o.shrink.map_or(String::new(), |s| format!(", gap shrink {:.0} %", 100.0 * s))
+            o.shrink.map_or(String::new(), |s| format!(
+                ", gap shrink {:.0} %",
+                100.0 * s
+            ))
         );
         let truth: Vec<(String, String)> = case
             .effects

@@ -56,7 +56,8 @@ fn named(report: &serde_json::Value) -> Vec<(String, String)> {
 #[test]
 fn discover_names_effects_of_other_functional_forms() {
     let dir = tempfile::tempdir().unwrap();
-    let mut cases: Vec<(&str, Option<(Effect, usize)>, u64)> = Vec::new();
+    type Case = (&'static str, Option<(Effect, usize)>, u64);
+    let mut cases: Vec<Case> = Vec::new();
     for (i, effect) in Effect::ALL.into_iter().enumerate() {
         cases.push(("joint-a.toml", Some((effect, 1)), 100 + i as u64));
         if !effect.is_plant() {

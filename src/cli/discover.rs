@@ -103,18 +103,24 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     {
         bail!("the discovered scenario does not validate: {e}");
     }
-    let name = args
-        .recording
-        .file_name()
-        .map_or_else(|| args.recording.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let name = args.recording.file_name().map_or_else(
+        || args.recording.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
     let page = discover::report::page(&name, &outcome);
     let mut files = page.files()?;
-    files.push(("scenario.toml".to_owned(), header(&outcome, &text).into_bytes()));
+    files.push((
+        "scenario.toml".to_owned(),
+        header(&outcome, &text).into_bytes(),
+    ));
     write_folder_atomic(&args.output, &files)?;
     let scenario_path = args.output.join("scenario.toml");
     let report_path = args.output.join("report.html");
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&json(&outcome, scenario_path, report_path))?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&json(&outcome, scenario_path, report_path))?
+        );
     } else {
         print_text(&outcome, &scenario_path, &report_path);
     }
@@ -176,8 +182,10 @@ fn print_text(outcome: &Outcome, scenario: &std::path::Path, report: &std::path:
             d.effect.name(),
             d.channel.name(),
             d.evidence,
-            d.runner_up
-                .map_or(String::new(), |(e, v)| format!("; runner-up {} {v:.1}", e.name()))
+            d.runner_up.map_or(String::new(), |(e, v)| format!(
+                "; runner-up {} {v:.1}",
+                e.name()
+            ))
         );
     }
     for a in &outcome.ambiguous {

@@ -45,7 +45,8 @@ impl Data {
         let rig = &recording.rig;
         let step = ((rig.sample_hz / TARGET_HZ).round() as usize).max(1);
         let n = s.time_s.len() / step;
-        let mean = |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
+        let mean =
+            |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
         let mut ohm = Vec::new();
         for (c, volts) in s.volts.iter().enumerate() {
             let divider = Divider {
@@ -74,7 +75,9 @@ impl Data {
             .map(|a| joint.strain(a.to_radians()))
             .collect();
         // The rest: the stroke stays where it started (within 0.1 % of its span).
-        let span = stroke_mm.iter().fold(0.0_f64, |m, v| m.max((v - stroke_mm[0]).abs()));
+        let span = stroke_mm
+            .iter()
+            .fold(0.0_f64, |m, v| m.max((v - stroke_mm[0]).abs()));
         let moved = stroke_mm
             .iter()
             .position(|v| (v - stroke_mm[0]).abs() > 1e-3 * span.max(1e-9))

@@ -52,10 +52,14 @@ pub fn locate(data: &Data, residual: &[f64], mask: &[bool]) -> Vec<Place> {
     let peak = data.strain.iter().fold(0.0_f64, |m, e| m.max(e.abs()));
     let end = data.time_s.last().copied().unwrap_or(0.0);
     let start = data.time_s.first().copied().unwrap_or(0.0);
-    let situations: [(&'static str, Box<dyn Fn(usize) -> bool>); 5] = [
+    type Pick<'a> = Box<dyn Fn(usize) -> bool + 'a>;
+    let situations: [(&'static str, Pick); 5] = [
         ("reversals", Box::new(|i| near_reversal[i])),
-        ("holds", Box::new(|i| still(i))),
-        ("high strain", Box::new(|i| data.strain[i].abs() > 0.7 * peak)),
+        ("holds", Box::new(still)),
+        (
+            "high strain",
+            Box::new(|i| data.strain[i].abs() > 0.7 * peak),
+        ),
         ("high rate", Box::new(|i| rate[i].abs() > 0.5 * span_rate)),
         (
             "late (last third)",

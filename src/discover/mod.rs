@@ -300,14 +300,12 @@ pub fn discover(
     for &ch in &channels {
         let m = base_model(ch);
         let design = m.design(&data, &proxies.borrow().0);
-        let base = fit(&design, &ArNoise::white(1.0), &train).ok_or(DiscoverError::Base {
-            channel: ch.name(),
-        })?;
+        let base = fit(&design, &ArNoise::white(1.0), &train)
+            .ok_or(DiscoverError::Base { channel: ch.name() })?;
         let residual = base.residual(&design);
         let noise = ArNoise::fit(&residual[..data.rest]);
-        let base = fit(&design, &noise, &train).ok_or(DiscoverError::Base {
-            channel: ch.name(),
-        })?;
+        let base =
+            fit(&design, &noise, &train).ok_or(DiscoverError::Base { channel: ch.name() })?;
         if ch == Channel::Plant {
             *proxies.borrow_mut() = (
                 proxy(&data, &m, &base, joint),
@@ -367,8 +365,7 @@ pub fn discover(
                 let Some((fitted, ss, _, _)) = evaluate(&trial, noise) else {
                     continue;
                 };
-                let train_residual =
-                    fitted.residual(&trial.design(&data, &proxies.borrow().0));
+                let train_residual = fitted.residual(&trial.design(&data, &proxies.borrow().0));
                 let lags = (CORRELATION_WINDOW_S / data.dt_s) as usize;
                 let tau = correlation_time(&train_residual, noise, &train, lags);
                 let evidence = 0.5 * n as f64 * (current_ss / ss).ln() / tau;
@@ -415,7 +412,7 @@ pub fn discover(
             if top.evidence < THRESHOLD {
                 continue;
             }
-            let clear = runner.is_none_or(|(_, e)| top.evidence >= CLEAR_RATIO * e.max(0.0));
+            let clear = runner.map_or(true, |(_, e)| top.evidence >= CLEAR_RATIO * e.max(0.0));
             if clear {
                 best.push((top.clone(), runner));
             } else {
@@ -481,8 +478,7 @@ pub fn discover(
         let (before_deg, after_deg) = match ch {
             Channel::Plant => (None, None),
             Channel::Sensor(_) => {
-                let per_deg = base_fit.gain().abs()
-                    * joint.strain_per_deg();
+                let per_deg = base_fit.gain().abs() * joint.strain_per_deg();
                 if per_deg > 0.0 && per_deg.is_finite() {
                     (Some(before / per_deg), Some(after / per_deg))
                 } else {
@@ -562,7 +558,9 @@ fn merge_saturating_hysteresis(discovered: &mut Vec<Discovery>) {
         let mut merged = discovered[h].clone();
         merged.evidence += saturation.evidence;
         if let Some(strain) = saturation.parameters.get("strain") {
-            merged.parameters.insert("saturation_strain".into(), *strain);
+            merged
+                .parameters
+                .insert("saturation_strain".into(), *strain);
         }
         let at = h.min(s);
         discovered.remove(h.max(s));
@@ -609,7 +607,11 @@ pub fn proxy(data: &Data, plant: &ChannelModel, fitted: &Fitted, joint: &Joint) 
 fn same_rig(a: &Recording, b: &Recording) -> Result<(), DiscoverError> {
     let (ra, rb) = (&a.rig, &b.rig);
     let checks: [(&'static str, String, String); 3] = [
-        ("sample_hz", ra.sample_hz.to_string(), rb.sample_hz.to_string()),
+        (
+            "sample_hz",
+            ra.sample_hz.to_string(),
+            rb.sample_hz.to_string(),
+        ),
         ("supply_v", ra.supply_v.to_string(), rb.supply_v.to_string()),
         (
             "divider_ohm",

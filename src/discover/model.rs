@@ -152,13 +152,7 @@ impl ChannelModel {
                     // from its smallest play, −1 (unloading) to 1 (loading).
                     if let Some(&r) = radii.first() {
                         let p = play(&nu, r);
-                        columns.push(
-                            nu
-                                .iter()
-                                .zip(&p)
-                                .map(|(x, y)| (x - y) / r * x)
-                                .collect(),
-                        );
+                        columns.push(nu.iter().zip(&p).map(|(x, y)| (x - y) / r * x).collect());
                         labels.push("direction");
                     }
                 }
@@ -319,7 +313,7 @@ pub fn correlation_time(residual: &[f64], noise: &ArNoise, mask: &[bool], max_la
     }
     let mean = idx.iter().map(|&i| w[i]).sum::<f64>() / idx.len() as f64;
     let var = idx.iter().map(|&i| (w[i] - mean).powi(2)).sum::<f64>() / idx.len() as f64;
-    if !(var > 0.0) {
+    if var.is_nan() || var <= 0.0 {
         return 1.0;
     }
     let mut tau = 1.0;

@@ -42,11 +42,14 @@ impl ArNoise {
         }
         let mean = e.iter().sum::<f64>() / n as f64;
         let acov = |k: usize| -> f64 {
-            (k..n).map(|t| (e[t] - mean) * (e[t - k] - mean)).sum::<f64>() / n as f64
+            (k..n)
+                .map(|t| (e[t] - mean) * (e[t - k] - mean))
+                .sum::<f64>()
+                / n as f64
         };
         let r: Vec<f64> = (0..=MAX_ORDER).map(acov).collect();
         let sigma = r[0].max(0.0).sqrt();
-        if !(r[0] > 0.0) {
+        if r[0].is_nan() || r[0] <= 0.0 {
             return Self::white(sigma);
         }
         let bound = 2.0 / (n as f64).sqrt();
@@ -99,7 +102,9 @@ mod tests {
         let mut x = 0.0;
         (0..n)
             .map(|_| {
-                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
                 let u = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
                 x = phi * x + u;
                 x

@@ -29,7 +29,14 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
             "Nothing named clearly.".to_owned()
         });
     }
-    let mut named = Table::new(["order", "effect", "channel", "evidence", "runner-up", "parameters"]);
+    let mut named = Table::new([
+        "order",
+        "effect",
+        "channel",
+        "evidence",
+        "runner-up",
+        "parameters",
+    ]);
     for (i, d) in outcome.discovered.iter().enumerate() {
         named.row([
             (i + 1).to_string(),
@@ -60,7 +67,14 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
         ));
     }
     page.heading("Gap between simulation and measurement (held out)");
-    let mut gaps = Table::new(["channel", "on", "before", "after each named effect", "after", "in degrees of estimate"]);
+    let mut gaps = Table::new([
+        "channel",
+        "on",
+        "before",
+        "after each named effect",
+        "after",
+        "in degrees of estimate",
+    ]);
     for g in &outcome.gaps {
         gaps.row([
             g.channel.name(),
@@ -123,7 +137,11 @@ fn channel_section(page: &mut Page, c: &super::ChannelReport) {
         Channel::Sensor(_) => 1e-3,
     };
     page.heading(format!("Channel {name}"));
-    let mut places = Table::new(["situation", "share of held-out samples", "RMS there / RMS overall (base model)"]);
+    let mut places = Table::new([
+        "situation",
+        "share of held-out samples",
+        "RMS there / RMS overall (base model)",
+    ]);
     for p in &c.places {
         places.row([
             p.situation.to_owned(),
@@ -150,16 +168,32 @@ fn channel_section(page: &mut Page, c: &super::ChannelReport) {
         unit,
     )
     .with(Series::dots("measured", held(&c.measured), PALETTE[7]))
-    .with(Series::line("base model", held(&c.before), PALETTE[0]))
-    .with(Series::line("with named effects", held(&c.after), PALETTE[2]));
-    page.figure(format!("overlay-{name}"), overlay, "Measured against the calibrated base model and the model with the named effects.");
+    .with(Series::dots("base model", held(&c.before), PALETTE[0]))
+    .with(Series::dots(
+        "with named effects",
+        held(&c.after),
+        PALETTE[2],
+    ));
+    page.figure(format!("overlay-{name}"), overlay, "Measured against the calibrated base model and the model with the named effects, on the held-out blocks only (the gaps between them are the training blocks).");
     let diff = |m: &[f64]| -> Vec<f64> { c.measured.iter().zip(m).map(|(y, p)| y - p).collect() };
     let residual = Chart::new(
         format!("{name}: residual before and after (held-out samples)"),
         "time (s)",
         format!("measured − model, {unit}"),
     )
-    .with(Series::line("base model", held(&diff(&c.before)), PALETTE[0]))
-    .with(Series::line("with named effects", held(&diff(&c.after)), PALETTE[2]));
-    page.figure(format!("residual-{name}"), residual, "The residual before and after; what remains after should look like the noise at rest.");
+    .with(Series::dots(
+        "base model",
+        held(&diff(&c.before)),
+        PALETTE[0],
+    ))
+    .with(Series::dots(
+        "with named effects",
+        held(&diff(&c.after)),
+        PALETTE[2],
+    ));
+    page.figure(
+        format!("residual-{name}"),
+        residual,
+        "The residual before and after; what remains after should look like the noise at rest.",
+    );
 }

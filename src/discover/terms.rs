@@ -226,6 +226,12 @@ pub fn play(x: &[f64], r: f64) -> Vec<f64> {
 /// The derivative by backward differences (first sample 0).
 pub fn rate(x: &[f64], dt_s: f64) -> Vec<f64> {
     (0..x.len())
-        .map(|i| if i == 0 { 0.0 } else { (x[i] - x[i - 1]) / dt_s })
+        .map(|i| {
+            if i == 0 {
+                0.0
+            } else {
+                (x[i] - x[i - 1]) / dt_s
+            }
+        })
         .collect()
 }
