@@ -16,6 +16,8 @@
 //! - [`job`]: a design made into a program and a setup sheet for one machine;
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
 //! - [`characterize`]: the paper's characterization analyses over a recording (Section IV-A, IV-B);
+//! - [`discover`]: where the simulator and a recording disagree, which effect is missing, and
+//!   the gap once it is added;
 //! - [`control`]: open- and closed-loop control of a joint on the simulated bench (Section IV-C);
 //! - [`reproduce`]: the paper's Section IV on the simulator, Tables III-VI side by side;
 //! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
@@ -32,6 +34,7 @@
 pub mod characterize;
 pub mod control;
 pub mod design;
+pub mod discover;
 pub mod drawing;
 pub mod fit;
 pub mod fixed;

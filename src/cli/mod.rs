@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 mod build;
 mod characterize;
 mod control;
+mod discover;
 mod draw;
 mod estimate;
 mod estimator_config;
@@ -47,6 +48,8 @@ enum Command {
     Estimate(estimate::Args),
     /// Fit linear and PI sensor models to a recording and write an estimator config.
     Fit(fit::Args),
+    /// Find where the simulator and a recording disagree, name the missing effect, add it.
+    Discover(discover::Args),
     /// Measure the joint angle in fluoroscopy frames (the phantom's ground truth).
     Fluoro(fluoro::Args),
     /// Render synthetic fluoroscopy frames of a recording's angle, to try `dlw fluoro`.
@@ -71,6 +74,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::EstimatorConfig(args) => estimator_config::run(args),
         Command::Estimate(args) => estimate::run(args),
         Command::Fit(args) => fit::run(args),
+        Command::Discover(args) => discover::run(args),
         Command::Fluoro(args) => fluoro::run(args),
         Command::FluoroRender(args) => fluoro_render::run(args),
         Command::Control(args) => control::run(args),

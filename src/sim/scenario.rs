@@ -346,8 +346,8 @@ impl Default for Saturation {
     }
 }
 
-/// Baseline drift (`[sensorN.drift]`): `R += rate·t + W(t)`, `W` a random walk with
-/// `σ_W(t) = random_walk_ohm_per_sqrt_s·√t`.
+/// Baseline drift (`[sensorN.drift]`): `R += rate·t + settle·(1 − e^(−t/τ)) + W(t)`, `W` a
+/// random walk with `σ_W(t) = random_walk_ohm_per_sqrt_s·√t`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Drift {
@@ -358,6 +358,11 @@ pub struct Drift {
     pub rate_ohm_per_s: f64,
     /// Random-walk intensity (Ω/√s); `None` means the style's default.
     pub random_walk_ohm_per_sqrt_s: Option<f64>,
+    /// A settling (warm-up) drift: `settle_ohm·(1 − e^(−t/settle_tau_s))` is added, a baseline
+    /// that moves at first and then levels off, which a rate cannot express (0: off).
+    pub settle_ohm: f64,
+    /// Time constant of the settling drift (s).
+    pub settle_tau_s: f64,
 }
 
 impl Default for Drift {
@@ -366,6 +371,8 @@ impl Default for Drift {
             enabled: false,
             rate_ohm_per_s: 0.0,
             random_walk_ohm_per_sqrt_s: None,
+            settle_ohm: 0.0,
+            settle_tau_s: 300.0,
         }
     }
 }
@@ -712,6 +719,8 @@ impl Scenario {
             c.positive(&k("divider_ohm"), s.divider_ohm.unwrap_or(f64::NAN));
             c.positive(&k("saturation.strain"), s.saturation.strain);
             c.finite(&k("drift.rate_ohm_per_s"), s.drift.rate_ohm_per_s);
+            c.finite(&k("drift.settle_ohm"), s.drift.settle_ohm);
+            c.positive(&k("drift.settle_tau_s"), s.drift.settle_tau_s);
             c.non_negative(
                 &k("drift.random_walk_ohm_per_sqrt_s"),
                 s.drift.random_walk_ohm_per_sqrt_s.unwrap_or(f64::NAN),

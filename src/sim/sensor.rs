@@ -15,7 +15,8 @@
 //!      `c` in Ω·s: loading reads high, unloading low.
 //! 4. **Creep** (switchable): `c ← c + (φ·ΔR − c)·(1 − e^(−Δt/τ))` is added, so a held strain's
 //!    resistance change grows by `φ` with time constant `τ`.
-//! 5. **Baseline drift** (switchable): `rate·t + W(t)` is added, `W` a Gaussian random walk with
+//! 5. **Baseline drift** (switchable): `rate·t + settle·(1 − e^(−t/τ)) + W(t)` is added, `W` a
+//!    Gaussian random walk with
 //!    `W(t + Δt) = W(t) + σ·√Δt·N(0, 1)`.
 
 use dlw_estimator::{ContinuousPi, GeneralizedPi};
@@ -64,6 +65,9 @@ struct Creep {
 #[derive(Debug, Clone)]
 struct Drift {
     rate_ohm_per_sample: f64,
+    settle_ohm: f64,
+    settle_alpha: f64,
+    settled_ohm: f64,
     step_ohm: f64,
     walk_ohm: f64,
     linear_ohm: f64,
@@ -141,6 +145,9 @@ impl Sensor {
             }),
             drift: params.drift.enabled.then(|| Drift {
                 rate_ohm_per_sample: params.drift.rate_ohm_per_s * dt_s,
+                settle_ohm: params.drift.settle_ohm,
+                settle_alpha: alpha(params.drift.settle_tau_s),
+                settled_ohm: 0.0,
                 step_ohm: params.drift.random_walk_ohm_per_sqrt_s.unwrap_or(0.0) * dt_s.sqrt(),
                 walk_ohm: 0.0,
                 linear_ohm: 0.0,
@@ -179,7 +186,8 @@ impl Sensor {
             ohm += c.ohm;
         }
         if let Some(d) = &mut self.drift {
-            ohm += d.linear_ohm + d.walk_ohm;
+            ohm += d.linear_ohm + d.walk_ohm + d.settled_ohm;
+            d.settled_ohm += (d.settle_ohm - d.settled_ohm) * d.settle_alpha;
             d.linear_ohm += d.rate_ohm_per_sample;
             d.walk_ohm += d.step_ohm * d.rng.normal();
         }

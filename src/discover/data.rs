@@ -1,0 +1,146 @@
+//! The recording as discovery sees it: block-averaged to about [`TARGET_HZ`], the rest at the
+//! start found, and the samples after it split into interleaved training and held-out blocks.
+
+use dlw_geometry::{Divider, Joint};
+
+use super::DiscoverError;
+use crate::sim::Recording;
+
+/// Rate discovery works at (Hz): each sample is the mean of `sample_hz/TARGET_HZ` recorded
+/// samples. The effects live at seconds; averaging cuts the white noise and the work.
+pub const TARGET_HZ: f64 = 25.0;
+/// Shortest rest at the start (s) the noise model is frozen from.
+pub const MIN_REST_S: f64 = 4.0;
+/// Interleaved blocks after the rest: odd ones train, even ones are held out.
+pub const BLOCKS: usize = 10;
+/// Shortest block (s): a block must span several noise correlation times.
+pub const MIN_BLOCK_S: f64 = 8.0;
+
+/// One recording, decimated.
+#[derive(Debug, Clone)]
+pub struct Data {
+    /// Time (s).
+    pub time_s: Vec<f64>,
+    /// Tendon stroke (mm).
+    pub stroke_mm: Vec<f64>,
+    /// Tracker angle (°).
+    pub angle_deg: Vec<f64>,
+    /// Strain at sensor 1's plane, `ε(θ)` (Eq. 3).
+    pub strain: Vec<f64>,
+    /// Each sensor's resistance (Ω, Eq. 4).
+    pub ohm: Vec<Vec<f64>>,
+    /// Samples `0..rest` are the rest at the start.
+    pub rest: usize,
+    /// Sample spacing (s).
+    pub dt_s: f64,
+}
+
+impl Data {
+    /// Block-averages `recording`; strain through `joint`.
+    ///
+    /// # Errors
+    /// A voltage with no finite resistance, or less than [`MIN_REST_S`] at rest at the start.
+    pub fn new(recording: &Recording, joint: &Joint) -> Result<Self, DiscoverError> {
+        let s = &recording.samples;
+        let rig = &recording.rig;
+        let step = ((rig.sample_hz / TARGET_HZ).round() as usize).max(1);
+        let n = s.time_s.len() / step;
+        let mean =
+            |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
+        let mut ohm = Vec::new();
+        for (c, volts) in s.volts.iter().enumerate() {
+            let divider = Divider {
+                fixed_ohm: rig.divider_ohm[c],
+                supply_v: rig.supply_v,
+            };
+            let mut r = Vec::with_capacity(n);
+            for k in 0..n {
+                let v = mean(volts, k);
+                let value = divider.resistance(v).ok().filter(|r| r.is_finite()).ok_or(
+                    DiscoverError::Rail {
+                        column: c + 1,
+                        time_s: s.time_s[k * step],
+                        volts: v,
+                    },
+                )?;
+                r.push(value);
+            }
+            ohm.push(r);
+        }
+        let time_s: Vec<f64> = (0..n).map(|k| mean(&s.time_s, k)).collect();
+        let stroke_mm: Vec<f64> = (0..n).map(|k| mean(&s.stroke_mm, k)).collect();
+        let angle_deg: Vec<f64> = (0..n).map(|k| mean(&s.angle_deg, k)).collect();
+        let strain = angle_deg
+            .iter()
+            .map(|a| joint.strain(a.to_radians()))
+            .collect();
+        // The rest: the stroke stays where it started (within 0.1 % of its span).
+        let span = stroke_mm
+            .iter()
+            .fold(0.0_f64, |m, v| m.max((v - stroke_mm[0]).abs()));
+        let moved = stroke_mm
+            .iter()
+            .position(|v| (v - stroke_mm[0]).abs() > 1e-3 * span.max(1e-9))
+            .unwrap_or(n);
+        let dt_s = step as f64 / rig.sample_hz;
+        // Leave a second before the first motion out of the rest.
+        let rest = moved.saturating_sub((1.0 / dt_s) as usize);
+        if (rest as f64) * dt_s < MIN_REST_S {
+            return Err(DiscoverError::NoRest {
+                rest_s: moved as f64 * dt_s,
+                min_s: MIN_REST_S,
+            });
+        }
+        Ok(Self {
+            time_s,
+            stroke_mm,
+            angle_deg,
+            strain,
+            ohm,
+            rest: moved,
+            dt_s,
+        })
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.time_s.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.time_s.is_empty()
+    }
+
+    /// The interleaved split of the samples after the rest: `(training, held out)` masks.
+    ///
+    /// # Errors
+    /// [`DiscoverError::TooShort`] when a block would be shorter than [`MIN_BLOCK_S`].
+    pub fn split(&self) -> Result<(Vec<bool>, Vec<bool>), DiscoverError> {
+        let n = self.len();
+        let moving = n - self.rest;
+        let block = moving / BLOCKS;
+        if (block as f64) * self.dt_s < MIN_BLOCK_S {
+            return Err(DiscoverError::TooShort {
+                moving_s: moving as f64 * self.dt_s,
+                min_s: BLOCKS as f64 * MIN_BLOCK_S,
+            });
+        }
+        let mut train = vec![false; n];
+        let mut test = vec![false; n];
+        for i in self.rest..n {
+            let b = ((i - self.rest) / block).min(BLOCKS - 1);
+            if b % 2 == 0 {
+                train[i] = true;
+            } else {
+                test[i] = true;
+            }
+        }
+        Ok((train, test))
+    }
+
+    /// Every sample after the rest (a holdout recording is held out whole).
+    pub fn moving(&self) -> Vec<bool> {
+        (0..self.len()).map(|i| i >= self.rest).collect()
+    }
+}

@@ -1,0 +1,639 @@
+//! Discovery: where the simulation and the measurement disagree, which effect of the
+//! simulator's library is missing, and how much the gap shrinks once it is added
+//! (`docs/discovery.md`).
+//!
+//! Data flows one way: recording → [`data`] (decimated, rest found, split) → per channel a base
+//! model ([`model`]) calibrated on the training blocks → the noise model frozen from the rest
+//! ([`noise`]) → every candidate term of [`terms`] scored by its held-out whitened likelihood
+//! gain → the clear winner added, and again, until nothing more is named → the scenario
+//! ([`scenario`]) and the report ([`report`]).
+
+pub mod data;
+pub mod locate;
+pub mod model;
+pub mod noise;
+pub mod report;
+pub mod scenario;
+pub mod terms;
+
+use std::cell::RefCell;
+use std::collections::BTreeMap;
+
+use dlw_geometry::Joint;
+use serde::Serialize;
+
+use crate::sim::Recording;
+use data::Data;
+use locate::{locate, Place};
+use model::{correlation_time, fit, score, Channel, ChannelModel, Fitted};
+use noise::ArNoise;
+use terms::{Effect, Term};
+
+/// Evidence (nats of held-out whitened likelihood) a candidate needs to be named. Calibrated on
+/// clean recordings with correlated noise (`docs/discovery.md`).
+pub const THRESHOLD: f64 = 20.0;
+/// The winner must beat the runner-up on its channel by this factor, or it is `ambiguous`.
+pub const CLEAR_RATIO: f64 = 1.5;
+/// Lags over which the residual's leftover correlation is summed (s).
+pub const CORRELATION_WINDOW_S: f64 = 2.0;
+/// At most this many effects are named.
+pub const MAX_EFFECTS: usize = 4;
+
+/// Why discovery refused.
+#[derive(Debug, thiserror::Error)]
+pub enum DiscoverError {
+    /// A voltage at a rail.
+    #[error("column v{column}_V reads {volts:.4} V at t = {time_s:.2} s, which has no finite sensor resistance (Eq. 4)")]
+    Rail {
+        /// Column.
+        column: usize,
+        /// Time (s).
+        time_s: f64,
+        /// Reading (V).
+        volts: f64,
+    },
+    /// No rest at the start.
+    #[error("the recording starts with {rest_s:.1} s at rest; discovery freezes its noise model from a rest of at least {min_s} s at the start (the stroke constant)")]
+    NoRest {
+        /// Rest found (s).
+        rest_s: f64,
+        /// Needed (s).
+        min_s: f64,
+    },
+    /// Too short to hold out from.
+    #[error("the recording moves for {moving_s:.1} s after its rest; discovery needs at least {min_s} s to hold out half of it in blocks (or give --holdout REC2)")]
+    TooShort {
+        /// Motion (s).
+        moving_s: f64,
+        /// Needed (s).
+        min_s: f64,
+    },
+    /// Sensor count mismatch.
+    #[error("the recording has {columns} voltage column(s) but the design's {style} joint has {sensors} sensor(s)")]
+    Sensors {
+        /// Columns in the recording.
+        columns: usize,
+        /// Sensors of the design.
+        sensors: usize,
+        /// `UAN` or `BSN`.
+        style: &'static str,
+    },
+    /// Holdout recorded on another rig.
+    #[error("the holdout was recorded with {what} = {holdout}, the recording with {recording}; discovery compares like with like")]
+    Rig {
+        /// Which setting.
+        what: &'static str,
+        /// The recording's.
+        recording: String,
+        /// The holdout's.
+        holdout: String,
+    },
+    /// The base model could not be fitted.
+    #[error("the {channel} channel's base model cannot be fitted (the joint barely moves?)")]
+    Base {
+        /// Channel.
+        channel: String,
+    },
+}
+
+/// One candidate's score in one round.
+#[derive(Debug, Clone, Serialize)]
+pub struct Candidate {
+    /// The effect.
+    pub effect: Effect,
+    /// The channel.
+    pub channel: Channel,
+    /// Held-out whitened log-likelihood gain over the current model (nats).
+    pub evidence: f64,
+    /// Round (0: against the base model).
+    pub round: usize,
+    /// The shape chosen on the training blocks.
+    #[serde(skip)]
+    pub term: Term,
+    /// The shape, for people.
+    pub shape: String,
+    /// Hysteresis only: the evidence of its plays over its curve alone (nats).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub memory: Option<f64>,
+}
+
+/// A named effect.
+#[derive(Debug, Clone, Serialize)]
+pub struct Discovery {
+    /// The effect.
+    pub effect: Effect,
+    /// The channel.
+    pub channel: Channel,
+    /// Its evidence when named (nats).
+    pub evidence: f64,
+    /// The runner-up on the channel and its evidence.
+    pub runner_up: Option<(Effect, f64)>,
+    /// Its parameters in the scenario's units.
+    pub parameters: BTreeMap<String, f64>,
+    /// The shape.
+    #[serde(skip)]
+    pub term: Term,
+}
+
+/// A channel left with a disagreement no candidate explains clearly.
+#[derive(Debug, Clone, Serialize)]
+pub struct Ambiguity {
+    /// The channel.
+    pub channel: Channel,
+    /// The contenders and their evidence.
+    pub contenders: Vec<(Effect, f64)>,
+}
+
+/// A channel's held-out gap.
+#[derive(Debug, Clone, Serialize)]
+pub struct Gap {
+    /// The channel.
+    pub channel: Channel,
+    /// `deg` or `ohm`.
+    pub unit: &'static str,
+    /// RMSE of the calibrated base model.
+    pub before: f64,
+    /// RMSE with every named effect.
+    pub after: f64,
+    /// `holdout` (REC2) or `held-out blocks` (of REC).
+    pub on: &'static str,
+    /// A sensor's gap in degrees of angle estimate (RMSE over the sensitivity dR/dθ).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub before_deg: Option<f64>,
+    /// After, in degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub after_deg: Option<f64>,
+    /// RMSE after each named effect on this channel, in order.
+    pub steps: Vec<(Effect, f64)>,
+}
+
+/// A channel's state for the report: noise, the fitted models, where it disagreed.
+#[derive(Debug, Clone)]
+pub struct ChannelReport {
+    /// The channel.
+    pub channel: Channel,
+    /// Its noise model.
+    pub noise: ArNoise,
+    /// Calibrated base parameters (`offset`, `gain`).
+    pub base: Fitted,
+    /// Where the base model disagreed (held-out samples).
+    pub places: Vec<Place>,
+    /// Time, measurement, base model and final model on the evaluation recording.
+    pub time_s: Vec<f64>,
+    /// Measured.
+    pub measured: Vec<f64>,
+    /// Base model.
+    pub before: Vec<f64>,
+    /// Final model.
+    pub after: Vec<f64>,
+    /// Which samples are held out.
+    pub held_out: Vec<bool>,
+    /// The final model's terms.
+    pub terms: Vec<Term>,
+    /// The final model's coefficients.
+    pub fitted: Fitted,
+}
+
+/// What discovery found.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// Named effects in the order named.
+    pub discovered: Vec<Discovery>,
+    /// Every candidate of every round.
+    pub candidates: Vec<Candidate>,
+    /// Channels with an unexplained, ambiguous disagreement.
+    pub ambiguous: Vec<Ambiguity>,
+    /// Held-out gaps per channel.
+    pub gaps: Vec<Gap>,
+    /// Per channel, for the report.
+    pub channels: Vec<ChannelReport>,
+    /// Samples (decimated) and rate used.
+    pub samples: usize,
+    /// Decimated sample spacing (s).
+    pub dt_s: f64,
+}
+
+/// Effects already in the base scenario, per channel (they are part of the base model).
+pub type Known = Vec<(Channel, Term)>;
+
+/// Runs discovery on `recording` of `joint`, holding out `holdout` when given, with `known`
+/// effects in the base model. `progress` is told each step.
+///
+/// # Errors
+/// See [`DiscoverError`].
+pub fn discover(
+    recording: &Recording,
+    holdout: Option<&Recording>,
+    joint: &Joint,
+    known: &Known,
+    progress: &dyn Fn(&str),
+) -> Result<Outcome, DiscoverError> {
+    let sensors = match joint.style() {
+        dlw_geometry::NotchStyle::Bsn => 2,
+        _ => 1,
+    };
+    let style = if sensors == 2 { "BSN" } else { "UAN" };
+    for rec in std::iter::once(recording).chain(holdout) {
+        let columns = rec.samples.volts.len();
+        if columns != sensors {
+            return Err(DiscoverError::Sensors {
+                columns,
+                sensors,
+                style,
+            });
+        }
+    }
+    if let Some(h) = holdout {
+        same_rig(recording, h)?;
+    }
+    progress("reading and decimating");
+    let data = Data::new(recording, joint)?;
+    let (train, test_data, test) = match holdout {
+        Some(h) => {
+            let other = Data::new(h, joint)?;
+            let mask = other.moving();
+            (data.moving(), other, mask)
+        }
+        None => {
+            let (train, test) = data.split()?;
+            (train, data.clone(), test)
+        }
+    };
+    let on = if holdout.is_some() {
+        "holdout"
+    } else {
+        "held-out blocks"
+    };
+    let channels: Vec<Channel> = std::iter::once(Channel::Plant)
+        .chain((1..=sensors).map(Channel::Sensor))
+        .collect();
+
+    // Base models, calibrated; the noise frozen from each base residual at rest.
+    let span_of = |ch: Channel| match ch {
+        Channel::Plant => {
+            let (lo, hi) = min_max(&data.stroke_mm);
+            hi - lo
+        }
+        Channel::Sensor(_) => data.strain.iter().fold(0.0_f64, |a, e| a.max(e.abs())),
+    };
+    let base_model = |ch: Channel| {
+        let mut m = ChannelModel::base(ch);
+        for (c, t) in known {
+            if *c == ch {
+                let t = match t {
+                    // A PI sensor model of the scenario: plays over the recording's span.
+                    Term::Hysteresis { radii, .. } if radii.is_empty() => {
+                        Term::grid(Effect::Hysteresis, span_of(ch)).remove(4)
+                    }
+                    t => t.clone(),
+                };
+                m = m.with(t);
+            }
+        }
+        m
+    };
+    let mut models = BTreeMap::new();
+    let mut noises = BTreeMap::new();
+    let mut bases = BTreeMap::new();
+    // The sensors' candidate input, from the plant model (set once the plant is fitted).
+    let proxies = RefCell::new((Vec::new(), Vec::new()));
+    for &ch in &channels {
+        let m = base_model(ch);
+        let design = m.design(&data, &proxies.borrow().0);
+        let base = fit(&design, &ArNoise::white(1.0), &train)
+            .ok_or(DiscoverError::Base { channel: ch.name() })?;
+        let residual = base.residual(&design);
+        let noise = ArNoise::fit(&residual[..data.rest]);
+        let base =
+            fit(&design, &noise, &train).ok_or(DiscoverError::Base { channel: ch.name() })?;
+        if ch == Channel::Plant {
+            *proxies.borrow_mut() = (
+                proxy(&data, &m, &base, joint),
+                proxy(&test_data, &m, &base, joint),
+            );
+        }
+        bases.insert(ch, base);
+        noises.insert(ch, noise);
+        models.insert(ch, m);
+    }
+    let evaluate = |m: &ChannelModel, noise: &ArNoise| -> Option<(Fitted, f64, f64, usize)> {
+        let p = proxies.borrow();
+        let fitted = fit(&m.design(&data, &p.0), noise, &train)?;
+        let residual = fitted.residual(&m.design(&test_data, &p.1));
+        let (ss, rmse, n) = score(&residual, noise, &test);
+        Some((fitted, ss, rmse, n))
+    };
+
+    let mut discovered: Vec<Discovery> = Vec::new();
+    let mut candidates = Vec::new();
+    let mut ambiguous = Vec::new();
+    let mut steps: BTreeMap<Channel, Vec<(Effect, f64)>> = BTreeMap::new();
+    let mut closed: Vec<Channel> = Vec::new();
+    for round in 0..MAX_EFFECTS {
+        progress(&format!("round {}: scoring candidates", round + 1));
+        let mut best: Vec<(Candidate, Option<(Effect, f64)>)> = Vec::new();
+        for &ch in &channels {
+            if closed.contains(&ch) {
+                continue;
+            }
+            let m = &models[&ch];
+            let noise = &noises[&ch];
+            let Some((_, current_ss, _, n)) = evaluate(m, noise) else {
+                continue;
+            };
+            let span = span_of(ch);
+            let effects: &[Effect] = match ch {
+                Channel::Plant => &Effect::PLANT,
+                Channel::Sensor(_) => &Effect::SENSOR,
+            };
+            let mut scored: Vec<Candidate> = Vec::new();
+            for &effect in effects {
+                if m.terms.iter().any(|t| t.effect() == effect) {
+                    continue;
+                }
+                // The shape that fits the training blocks best, then its held-out score.
+                let chosen = Term::grid(effect, span)
+                    .into_iter()
+                    .filter_map(|term| {
+                        let trial = m.with(term.clone());
+                        let f = fit(&trial.design(&data, &proxies.borrow().0), noise, &train)?;
+                        Some((term, f.train_ss))
+                    })
+                    .min_by(|a, b| a.1.total_cmp(&b.1));
+                let Some((term, _)) = chosen else { continue };
+                let trial = m.with(term.clone());
+                let Some((fitted, ss, _, _)) = evaluate(&trial, noise) else {
+                    continue;
+                };
+                let train_residual = fitted.residual(&trial.design(&data, &proxies.borrow().0));
+                let lags = (CORRELATION_WINDOW_S / data.dt_s) as usize;
+                let tau = correlation_time(&train_residual, noise, &train, lags);
+                let evidence = 0.5 * n as f64 * (current_ss / ss).ln() / tau;
+                // Hysteresis is memory: score the plays against the same curve without them.
+                let memory = match &term {
+                    Term::Hysteresis {
+                        radii,
+                        center,
+                        width,
+                        ..
+                    } => {
+                        let curve = m.with(Term::Hysteresis {
+                            radii: radii.clone(),
+                            center: *center,
+                            width: *width,
+                            memory: false,
+                        });
+                        evaluate(&curve, noise)
+                            .map(|(_, curve_ss, _, _)| 0.5 * n as f64 * (curve_ss / ss).ln() / tau)
+                    }
+                    _ => None,
+                };
+                scored.push(Candidate {
+                    effect,
+                    channel: ch,
+                    evidence: if evidence.is_finite() { evidence } else { 0.0 },
+                    memory,
+                    round,
+                    shape: term.describe(),
+                    term,
+                });
+            }
+            scored.sort_by(|a, b| b.evidence.total_cmp(&a.evidence));
+            candidates.extend(scored.iter().cloned());
+            prefer_simpler(&mut scored);
+            let Some(top) = scored.first() else { continue };
+            // Hysteresis bends like saturation (its tanh curve): it is no rival to a
+            // saturation that beats it.
+            let runner = scored
+                .iter()
+                .skip(1)
+                .find(|c| !(top.effect == Effect::Saturation && c.effect == Effect::Hysteresis))
+                .map(|c| (c.effect, c.evidence));
+            if top.evidence < THRESHOLD {
+                continue;
+            }
+            let clear = runner.map_or(true, |(_, e)| top.evidence >= CLEAR_RATIO * e.max(0.0));
+            if clear {
+                best.push((top.clone(), runner));
+            } else {
+                ambiguous.push(Ambiguity {
+                    channel: ch,
+                    contenders: scored
+                        .iter()
+                        .filter(|c| c.evidence * CLEAR_RATIO >= top.evidence && c.evidence > 0.0)
+                        .map(|c| (c.effect, c.evidence))
+                        .collect(),
+                });
+                closed.push(ch);
+            }
+        }
+        let Some((winner, runner_up)) = best
+            .into_iter()
+            .max_by(|a, b| a.0.evidence.total_cmp(&b.0.evidence))
+        else {
+            break;
+        };
+        let ch = winner.channel;
+        let updated = models[&ch].with(winner.term.clone());
+        let Some((fitted, _, rmse, _)) = evaluate(&updated, &noises[&ch]) else {
+            break;
+        };
+        steps.entry(ch).or_default().push((winner.effect, rmse));
+        discovered.push(Discovery {
+            effect: winner.effect,
+            channel: ch,
+            evidence: winner.evidence,
+            runner_up,
+            parameters: scenario::parameters(&winner.term, &fitted),
+            term: winner.term.clone(),
+        });
+        if ch == Channel::Plant {
+            let plant = &updated;
+            let f = fit(&plant.design(&data, &[]), &noises[&ch], &train);
+            if let Some(f) = f {
+                *proxies.borrow_mut() = (
+                    proxy(&data, plant, &f, joint),
+                    proxy(&test_data, plant, &f, joint),
+                );
+            }
+        }
+        models.insert(ch, updated);
+    }
+
+    merge_saturating_hysteresis(&mut discovered);
+    progress("measuring the gaps");
+    let mut gaps = Vec::new();
+    let mut reports = Vec::new();
+    for &ch in &channels {
+        let noise = &noises[&ch];
+        let base_model = base_model(ch);
+        let (base_fit, _, before, _) =
+            evaluate(&base_model, noise).ok_or(DiscoverError::Base { channel: ch.name() })?;
+        let (final_fit, _, after, _) =
+            evaluate(&models[&ch], noise).ok_or(DiscoverError::Base { channel: ch.name() })?;
+        let p = proxies.borrow();
+        let base_design = base_model.design(&test_data, &p.1);
+        let final_design = models[&ch].design(&test_data, &p.1);
+        let residual = base_fit.residual(&base_design);
+        let (before_deg, after_deg) = match ch {
+            Channel::Plant => (None, None),
+            Channel::Sensor(_) => {
+                let per_deg = base_fit.gain().abs() * joint.strain_per_deg();
+                if per_deg > 0.0 && per_deg.is_finite() {
+                    (Some(before / per_deg), Some(after / per_deg))
+                } else {
+                    (None, None)
+                }
+            }
+        };
+        gaps.push(Gap {
+            channel: ch,
+            unit: ch.unit(),
+            before,
+            after,
+            on,
+            before_deg,
+            after_deg,
+            steps: steps.get(&ch).cloned().unwrap_or_default(),
+        });
+        reports.push(ChannelReport {
+            channel: ch,
+            noise: noise.clone(),
+            base: bases[&ch].clone(),
+            places: locate(&test_data, &residual, &test),
+            time_s: test_data.time_s.clone(),
+            measured: base_design.target.clone(),
+            before: base_fit.predict(&base_design),
+            after: final_fit.predict(&final_design),
+            held_out: test.clone(),
+            terms: models[&ch].terms.clone(),
+            fitted: final_fit,
+        });
+    }
+    Ok(Outcome {
+        discovered,
+        candidates,
+        ambiguous,
+        gaps,
+        channels: reports,
+        samples: data.len(),
+        dt_s: data.dt_s,
+    })
+}
+
+/// Hysteresis (the generalized PI: a tanh curve centred anywhere, plays, a direction switch)
+/// can bend like saturation (a tanh centred at zero strain). It stays in the round only when
+/// it shows what saturation cannot: memory (its plays buy [`THRESHOLD`] over its own curve
+/// alone), or a curve saturation cannot draw (evidence over twice saturation's, plus
+/// [`THRESHOLD`]). Otherwise the static nonlinearity is saturation's to name.
+fn prefer_simpler(scored: &mut Vec<Candidate>) {
+    let saturation = scored
+        .iter()
+        .find(|c| c.effect == Effect::Saturation)
+        .map_or(0.0, |c| c.evidence.max(0.0));
+    scored.retain(|c| {
+        c.effect != Effect::Hysteresis
+            || c.memory.unwrap_or(0.0) >= THRESHOLD
+            || c.evidence >= 2.0 * saturation + THRESHOLD
+    });
+}
+
+/// A PI sensor model's loading curve is a tanh (Eqs. 8-11): a loop that also bends is one
+/// saturating PI sensor, not two effects. When both are named on a channel, the saturation
+/// is folded into the hysteresis (its strain becomes a parameter, the evidences add), at the
+/// place of the first of the two.
+fn merge_saturating_hysteresis(discovered: &mut Vec<Discovery>) {
+    let find = |d: &[Discovery], e: Effect, ch: Channel| {
+        d.iter().position(|x| x.effect == e && x.channel == ch)
+    };
+    let channels: Vec<Channel> = discovered.iter().map(|d| d.channel).collect();
+    for ch in channels {
+        let (Some(h), Some(s)) = (
+            find(discovered, Effect::Hysteresis, ch),
+            find(discovered, Effect::Saturation, ch),
+        ) else {
+            continue;
+        };
+        let saturation = discovered[s].clone();
+        let mut merged = discovered[h].clone();
+        merged.evidence += saturation.evidence;
+        if let Some(strain) = saturation.parameters.get("strain") {
+            merged
+                .parameters
+                .insert("saturation_strain".into(), *strain);
+        }
+        let at = h.min(s);
+        discovered.remove(h.max(s));
+        discovered[at] = merged;
+    }
+}
+
+/// Window of the centred moving average that keeps the slow part of the tracker's departure
+/// from the plant model in the proxy (s).
+pub const PROXY_SMOOTHING_S: f64 = 10.0;
+
+/// The strain of the angle the sensor's candidate terms are driven by: the plant model's angle
+/// from the stroke, plus the slow part (a centred moving average over [`PROXY_SMOOTHING_S`]) of
+/// the tracker's departure from it.
+///
+/// The tracker angle is noisy, and its noise is correlated over seconds. A candidate built from
+/// it, a low-passed rate say, is a high-pass of that noise, which also sits in the sensor
+/// residual (through the base term `b·ε(θ_tracker)`): it "explains" the noise on held-out data
+/// too and names effects on clean recordings. The stroke is noise-free; the plant model carries
+/// it to an angle, and the slow part of the tracker keeps whatever the plant model misses.
+pub fn proxy(data: &Data, plant: &ChannelModel, fitted: &Fitted, joint: &Joint) -> Vec<f64> {
+    let predicted = fitted.predict(&plant.design(data, &[]));
+    let departure: Vec<f64> = data
+        .angle_deg
+        .iter()
+        .zip(&predicted)
+        .map(|(a, p)| a - p)
+        .collect();
+    let half = ((PROXY_SMOOTHING_S / data.dt_s) as usize / 2).max(1);
+    let n = data.len();
+    let mut prefix = vec![0.0; n + 1];
+    for i in 0..n {
+        prefix[i + 1] = prefix[i] + departure[i];
+    }
+    (0..n)
+        .map(|i| {
+            let (lo, hi) = (i.saturating_sub(half), (i + half + 1).min(n));
+            let slow = (prefix[hi] - prefix[lo]) / (hi - lo) as f64;
+            joint.strain((predicted[i] + slow).to_radians())
+        })
+        .collect()
+}
+
+fn same_rig(a: &Recording, b: &Recording) -> Result<(), DiscoverError> {
+    let (ra, rb) = (&a.rig, &b.rig);
+    let checks: [(&'static str, String, String); 3] = [
+        (
+            "sample_hz",
+            ra.sample_hz.to_string(),
+            rb.sample_hz.to_string(),
+        ),
+        ("supply_v", ra.supply_v.to_string(), rb.supply_v.to_string()),
+        (
+            "divider_ohm",
+            format!("{:?}", ra.divider_ohm),
+            format!("{:?}", rb.divider_ohm),
+        ),
+    ];
+    for (what, recording, holdout) in checks {
+        if recording != holdout {
+            return Err(DiscoverError::Rig {
+                what,
+                recording,
+                holdout,
+            });
+        }
+    }
+    Ok(())
+}
+
+fn min_max(v: &[f64]) -> (f64, f64) {
+    v.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+            (lo.min(x), hi.max(x))
+        })
+}

@@ -1,0 +1,349 @@
+//! A channel's model: its base (a line) plus the terms named so far, built as columns over a
+//! recording and fitted by whitened least squares.
+
+use nalgebra::{DMatrix, DVector};
+use serde::Serialize;
+
+use super::data::Data;
+use super::noise::ArNoise;
+use super::terms::{low_pass, play, rate, Term, LOG_REFERENCE_RATE};
+
+/// Which channel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Channel {
+    /// Stroke → tracker angle.
+    Plant,
+    /// Tracker angle → resistance of sensor 1 or 2.
+    Sensor(usize),
+}
+
+impl Channel {
+    /// `plant`, `sensor1`, `sensor2`.
+    pub fn name(self) -> String {
+        match self {
+            Channel::Plant => "plant".to_owned(),
+            Channel::Sensor(k) => format!("sensor{k}"),
+        }
+    }
+
+    /// The channel's unit.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Channel::Plant => "deg",
+            Channel::Sensor(_) => "ohm",
+        }
+    }
+}
+
+impl Serialize for Channel {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.name())
+    }
+}
+
+/// A channel's model: the base line and the terms.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChannelModel {
+    /// The channel.
+    pub channel: Channel,
+    /// Terms in the order they were added.
+    pub terms: Vec<Term>,
+}
+
+/// The columns and the target of a model over one recording.
+pub struct Design {
+    /// Regressors, one per coefficient; the first is the constant, the second the input.
+    pub columns: Vec<Vec<f64>>,
+    /// The measured channel.
+    pub target: Vec<f64>,
+    /// What each column is (for the parameters).
+    pub labels: Vec<&'static str>,
+}
+
+impl ChannelModel {
+    /// The base model of `channel`.
+    pub fn base(channel: Channel) -> Self {
+        Self {
+            channel,
+            terms: Vec::new(),
+        }
+    }
+
+    /// This model with `term` added (a shape term replaces one of its kind).
+    pub fn with(&self, term: Term) -> Self {
+        let mut m = self.clone();
+        m.terms.retain(|t| t.effect() != term.effect());
+        m.terms.push(term);
+        m
+    }
+
+    /// The felt strain of a sensor channel (sensor 2 of a BSN joint reads `−ε`).
+    pub fn felt(&self, data: &Data) -> Vec<f64> {
+        let sign = if self.channel == Channel::Sensor(2) {
+            -1.0
+        } else {
+            1.0
+        };
+        data.strain.iter().map(|e| sign * e).collect()
+    }
+
+    /// The columns over `data`. A sensor's candidate terms (plays, rate, creep) are built from
+    /// `proxy`, the strain of an angle with the tracker's fast noise taken out
+    /// ([`super::proxy`]); its base input stays the strain of the tracker angle itself.
+    pub fn design(&self, data: &Data, proxy: &[f64]) -> Design {
+        let n = data.len();
+        let mut columns = vec![vec![1.0; n]];
+        let mut labels = vec!["offset"];
+        let (target, input, driver) = match self.channel {
+            Channel::Plant => {
+                let mut u = data.stroke_mm.clone();
+                for t in &self.terms {
+                    if let Term::Backlash { half_mm } = t {
+                        u = play(&u, *half_mm);
+                    }
+                }
+                (data.angle_deg.clone(), u.clone(), u)
+            }
+            Channel::Sensor(k) => {
+                let sign = if k == 2 { -1.0 } else { 1.0 };
+                let mut x = self.felt(data);
+                let mut xp: Vec<f64> = proxy.iter().map(|e| sign * e).collect();
+                for t in &self.terms {
+                    if let Term::Saturation { strain } = t {
+                        let sat = |v: &f64| strain * (v / strain).tanh();
+                        x = x.iter().map(sat).collect();
+                        xp = xp.iter().map(sat).collect();
+                    }
+                }
+                (data.ohm[k - 1].clone(), x, xp)
+            }
+        };
+        for t in &self.terms {
+            match t {
+                Term::Relaxation { tau_s } | Term::Creep { tau_s } => {
+                    columns.push(low_pass(&driver, *tau_s, data.dt_s));
+                    labels.push(if matches!(t, Term::Creep { .. }) {
+                        "creep"
+                    } else {
+                        "relaxation"
+                    });
+                }
+                Term::Hysteresis {
+                    radii,
+                    center,
+                    width,
+                    memory,
+                } => {
+                    let nu: Vec<f64> = driver
+                        .iter()
+                        .map(|x| width * ((x - center) / width).tanh())
+                        .collect();
+                    columns.push(nu.clone());
+                    labels.push("curve");
+                    if !memory {
+                        continue;
+                    }
+                    for &r in radii {
+                        columns.push(play(&nu, r));
+                        labels.push("play");
+                    }
+                    // The generalized PI's direction switch (Eq. 10): the slope differs
+                    // between loading and unloading. The direction is how far the input sits
+                    // from its smallest play, −1 (unloading) to 1 (loading).
+                    if let Some(&r) = radii.first() {
+                        let p = play(&nu, r);
+                        columns.push(nu.iter().zip(&p).map(|(x, y)| (x - y) / r * x).collect());
+                        labels.push("direction");
+                    }
+                }
+                Term::Rate { signed, tau_s } => {
+                    let r = rate(&driver, data.dt_s);
+                    if *signed {
+                        columns.push(low_pass(&r, *tau_s, data.dt_s));
+                    } else {
+                        let abs: Vec<f64> = r.iter().map(|v| v.abs()).collect();
+                        let smooth = low_pass(&abs, *tau_s, data.dt_s);
+                        columns.push(
+                            driver
+                                .iter()
+                                .zip(&smooth)
+                                .map(|(x, s)| x * (1.0 + s / LOG_REFERENCE_RATE).log10())
+                                .collect(),
+                        );
+                    }
+                    labels.push("rate");
+                }
+                Term::Drift { settle_tau_s } => {
+                    let t0 = data.time_s[0];
+                    columns.push(
+                        data.time_s
+                            .iter()
+                            .map(|t| match settle_tau_s {
+                                None => t - t0,
+                                Some(tau) => 1.0 - (-(t - t0) / tau).exp(),
+                            })
+                            .collect(),
+                    );
+                    labels.push("drift");
+                }
+                Term::Backlash { .. } | Term::Saturation { .. } => {}
+            }
+        }
+        columns.insert(1, input);
+        labels.insert(1, "gain");
+        if let Channel::Sensor(_) = self.channel {
+            // The proxy beside the tracker strain: the base may already weigh the noise-free
+            // input against the noisy one, so no candidate gains by denoising the input.
+            columns.insert(2, driver.clone());
+            labels.insert(2, "gain_proxy");
+        }
+        Design {
+            columns,
+            target,
+            labels,
+        }
+    }
+}
+
+/// A model fitted on one recording's training samples.
+#[derive(Debug, Clone)]
+pub struct Fitted {
+    /// Coefficients, one per column.
+    pub coef: Vec<f64>,
+    /// Column labels.
+    pub labels: Vec<&'static str>,
+    /// Whitened sum of squares on the training samples.
+    pub train_ss: f64,
+}
+
+/// Whitened least squares of `design` over the samples where `train` holds.
+pub fn fit(design: &Design, noise: &ArNoise, train: &[bool]) -> Option<Fitted> {
+    let rows: Vec<usize> = (0..train.len()).filter(|&i| train[i]).collect();
+    let p = design.columns.len();
+    if rows.len() <= p {
+        return None;
+    }
+    let white_cols: Vec<Vec<f64>> = design.columns.iter().map(|c| noise.whiten(c)).collect();
+    let white_y = noise.whiten(&design.target);
+    // Scale the columns so the solve is well conditioned whatever the units.
+    let scales: Vec<f64> = white_cols
+        .iter()
+        .map(|c| {
+            let s = (rows.iter().map(|&i| c[i] * c[i]).sum::<f64>() / rows.len() as f64).sqrt();
+            if s > 0.0 && s.is_finite() {
+                s
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let x = DMatrix::from_fn(rows.len(), p, |r, c| white_cols[c][rows[r]] / scales[c]);
+    let y = DVector::from_iterator(rows.len(), rows.iter().map(|&i| white_y[i]));
+    let solution = x.clone().svd(true, true).solve(&y, 1e-10).ok()?;
+    let coef: Vec<f64> = solution.iter().zip(&scales).map(|(b, s)| b / s).collect();
+    if !coef.iter().all(|c| c.is_finite()) {
+        return None;
+    }
+    let residual = &y - &x * &solution;
+    Some(Fitted {
+        coef,
+        labels: design.labels.clone(),
+        train_ss: residual.norm_squared(),
+    })
+}
+
+impl Fitted {
+    /// The model's prediction over `design`'s recording.
+    pub fn predict(&self, design: &Design) -> Vec<f64> {
+        let n = design.target.len();
+        (0..n)
+            .map(|i| {
+                design
+                    .columns
+                    .iter()
+                    .zip(&self.coef)
+                    .map(|(c, b)| c[i] * b)
+                    .sum()
+            })
+            .collect()
+    }
+
+    /// The residual `measured − model` over `design`'s recording.
+    pub fn residual(&self, design: &Design) -> Vec<f64> {
+        let p = self.predict(design);
+        design.target.iter().zip(&p).map(|(y, m)| y - m).collect()
+    }
+
+    /// The input's gain: `gain`, plus `gain_proxy` for a sensor (Ω per unit strain, or °/mm).
+    pub fn gain(&self) -> f64 {
+        self.get("gain").unwrap_or(f64::NAN) + self.get("gain_proxy").unwrap_or(0.0)
+    }
+
+    /// The coefficient of the first column labelled `label`.
+    pub fn get(&self, label: &str) -> Option<f64> {
+        self.labels
+            .iter()
+            .position(|l| *l == label)
+            .map(|i| self.coef[i])
+    }
+
+    /// Coefficients of every column labelled `label`.
+    pub fn all(&self, label: &str) -> Vec<f64> {
+        self.labels
+            .iter()
+            .zip(&self.coef)
+            .filter(|(l, _)| **l == label)
+            .map(|(_, c)| *c)
+            .collect()
+    }
+}
+
+/// How many correlated samples count as one in `residual` (whitened) over `mask`: the
+/// integrated autocorrelation `1 + 2·Σₖ ρₖ` over lags up to `max_lag` (at least 1).
+///
+/// The noise model is frozen from a rest of seconds, too short to see the slowest wander of
+/// the noise; what it leaves correlated would count as independent evidence. Dividing the
+/// evidence by this factor, measured on the candidate model's own training residual (noise,
+/// if the candidate captured the effect), keeps the evidence in units of independent samples.
+pub fn correlation_time(residual: &[f64], noise: &ArNoise, mask: &[bool], max_lag: usize) -> f64 {
+    let w = noise.whiten(residual);
+    let idx: Vec<usize> = (0..w.len()).filter(|&i| mask[i]).collect();
+    if idx.len() < 2 * max_lag + 2 {
+        return 1.0;
+    }
+    let mean = idx.iter().map(|&i| w[i]).sum::<f64>() / idx.len() as f64;
+    let var = idx.iter().map(|&i| (w[i] - mean).powi(2)).sum::<f64>() / idx.len() as f64;
+    if var.is_nan() || var <= 0.0 {
+        return 1.0;
+    }
+    let mut tau = 1.0;
+    for k in 1..=max_lag {
+        let (mut c, mut m) = (0.0, 0usize);
+        for &i in &idx {
+            if i + k < w.len() && mask[i + k] {
+                c += (w[i] - mean) * (w[i + k] - mean);
+                m += 1;
+            }
+        }
+        if m == 0 {
+            break;
+        }
+        let rho = c / m as f64 / var;
+        tau += 2.0 * rho;
+    }
+    tau.max(1.0)
+}
+
+/// Whitened sum of squares and plain RMS of `residual` over `mask`.
+pub fn score(residual: &[f64], noise: &ArNoise, mask: &[bool]) -> (f64, f64, usize) {
+    let w = noise.whiten(residual);
+    let (mut ss, mut plain, mut n) = (0.0, 0.0, 0usize);
+    for i in 0..residual.len() {
+        if mask[i] {
+            ss += w[i] * w[i];
+            plain += residual[i] * residual[i];
+            n += 1;
+        }
+    }
+    (ss, (plain / n.max(1) as f64).sqrt(), n)
+}

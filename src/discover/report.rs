@@ -1,0 +1,199 @@
+//! The discovery report: the noise model, where each channel disagreed, the candidates' scores
+//! round by round, the named effects, the gaps before and after, and per channel the held-out
+//! overlay and residuals before and after (through the shared `report` layer).
+
+use crate::report::{Chart, Page, Series, Table, PALETTE};
+
+use super::model::Channel;
+use super::{Outcome, CLEAR_RATIO, THRESHOLD};
+
+/// The report page of `outcome` for the recording called `name`.
+pub fn page(name: &str, outcome: &Outcome) -> Page {
+    let mut page = Page::new(format!("Discovery: {name}"));
+    page.text(format!(
+        "Each channel is compared on its own: the plant (stroke → tracker angle) and each sensor \
+         (tracker angle → resistance). The base model is calibrated on the training blocks, the \
+         noise model is an autoregressive process frozen from the rest at the start, and every \
+         candidate effect is scored by its held-out gain in whitened log-likelihood (nats). An \
+         effect is named when its evidence exceeds {THRESHOLD} and {CLEAR_RATIO} times the \
+         runner-up's on its channel; then the search repeats on what remains. {} samples at \
+         {:.0} Hz after block averaging.",
+        outcome.samples,
+        1.0 / outcome.dt_s
+    ));
+    page.heading("Result");
+    if outcome.discovered.is_empty() {
+        page.text(if outcome.ambiguous.is_empty() {
+            "Nothing named: no candidate buys enough held-out evidence.".to_owned()
+        } else {
+            "Nothing named clearly.".to_owned()
+        });
+    }
+    let mut named = Table::new([
+        "order",
+        "effect",
+        "channel",
+        "evidence",
+        "runner-up",
+        "parameters",
+    ]);
+    for (i, d) in outcome.discovered.iter().enumerate() {
+        named.row([
+            (i + 1).to_string(),
+            d.effect.name().to_owned(),
+            d.channel.name(),
+            format!("{:.1}", d.evidence),
+            d.runner_up
+                .map_or("–".into(), |(e, v)| format!("{} ({v:.1})", e.name())),
+            d.parameters
+                .iter()
+                .map(|(k, v)| format!("{k} = {v:.4}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+        ]);
+    }
+    if !outcome.discovered.is_empty() {
+        page.table(named);
+    }
+    for a in &outcome.ambiguous {
+        page.text(format!(
+            "Ambiguous on {}: {} — none beats the others clearly; the disagreement is shown below.",
+            a.channel.name(),
+            a.contenders
+                .iter()
+                .map(|(e, v)| format!("{} ({v:.1})", e.name()))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    page.heading("Gap between simulation and measurement (held out)");
+    let mut gaps = Table::new([
+        "channel",
+        "on",
+        "before",
+        "after each named effect",
+        "after",
+        "in degrees of estimate",
+    ]);
+    for g in &outcome.gaps {
+        gaps.row([
+            g.channel.name(),
+            g.on.to_owned(),
+            format!("{:.4} {}", g.before, g.unit),
+            g.steps
+                .iter()
+                .map(|(e, v)| format!("+{}: {v:.4}", e.name()))
+                .collect::<Vec<_>>()
+                .join(", "),
+            format!("{:.4} {}", g.after, g.unit),
+            match (g.before_deg, g.after_deg) {
+                (Some(b), Some(a)) => format!("{b:.3}° → {a:.3}°"),
+                _ => "–".into(),
+            },
+        ]);
+    }
+    page.table(gaps);
+    page.heading("Noise model (frozen from the rest)");
+    let mut noise = Table::new(["channel", "σ at rest", "AR coefficients φ"]);
+    for c in &outcome.channels {
+        noise.row([
+            c.channel.name(),
+            format!("{:.4} {}", c.noise.sigma, c.channel.unit()),
+            c.noise
+                .phi
+                .iter()
+                .map(|p| format!("{p:.3}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+        ]);
+    }
+    page.table(noise);
+    page.heading("Candidates");
+    let mut cands = Table::new(["round", "channel", "effect", "shape", "evidence"]);
+    for c in &outcome.candidates {
+        cands.row([
+            (c.round + 1).to_string(),
+            c.channel.name(),
+            c.effect.name().to_owned(),
+            c.shape.clone(),
+            format!("{:.1}", c.evidence),
+        ]);
+    }
+    page.table(cands);
+    for c in &outcome.channels {
+        channel_section(&mut page, c);
+    }
+    page
+}
+
+fn channel_section(page: &mut Page, c: &super::ChannelReport) {
+    let name = c.channel.name();
+    let unit = match c.channel {
+        Channel::Plant => "angle (°)",
+        Channel::Sensor(_) => "resistance (kΩ)",
+    };
+    let scale = match c.channel {
+        Channel::Plant => 1.0,
+        Channel::Sensor(_) => 1e-3,
+    };
+    page.heading(format!("Channel {name}"));
+    let mut places = Table::new([
+        "situation",
+        "share of held-out samples",
+        "RMS there / RMS overall (base model)",
+    ]);
+    for p in &c.places {
+        places.row([
+            p.situation.to_owned(),
+            format!("{:.0} %", 100.0 * p.share),
+            format!("{:.2}", p.ratio),
+        ]);
+    }
+    page.text(format!(
+        "Where the base model disagrees on {name}: the residual's RMS in each situation over its RMS on all held-out samples (above 1: the disagreement gathers there)."
+    ));
+    page.table(places);
+    let held = |v: &[f64]| -> Vec<(f64, f64)> {
+        c.time_s
+            .iter()
+            .zip(v)
+            .zip(&c.held_out)
+            .filter(|(_, h)| **h)
+            .map(|((t, y), _)| (*t, y * scale))
+            .collect()
+    };
+    let overlay = Chart::new(
+        format!("{name}: measured and simulated (held-out samples)"),
+        "time (s)",
+        unit,
+    )
+    .with(Series::dots("measured", held(&c.measured), PALETTE[7]))
+    .with(Series::dots("base model", held(&c.before), PALETTE[0]))
+    .with(Series::dots(
+        "with named effects",
+        held(&c.after),
+        PALETTE[2],
+    ));
+    page.figure(format!("overlay-{name}"), overlay, "Measured against the calibrated base model and the model with the named effects, on the held-out blocks only (the gaps between them are the training blocks).");
+    let diff = |m: &[f64]| -> Vec<f64> { c.measured.iter().zip(m).map(|(y, p)| y - p).collect() };
+    let residual = Chart::new(
+        format!("{name}: residual before and after (held-out samples)"),
+        "time (s)",
+        format!("measured − model, {unit}"),
+    )
+    .with(Series::dots(
+        "base model",
+        held(&diff(&c.before)),
+        PALETTE[0],
+    ))
+    .with(Series::dots(
+        "with named effects",
+        held(&diff(&c.after)),
+        PALETTE[2],
+    ));
+    page.figure(
+        format!("residual-{name}"),
+        residual,
+        "The residual before and after; what remains after should look like the noise at rest.",
+    );
+}

@@ -1,0 +1,290 @@
+//! From named effects to a scenario `dlw simulate` runs: the base scenario, calibrated (plant
+//! gain, sensors' GF and R₀, the rig's supply and dividers), with each named effect switched on
+//! and its fitted parameters; and back, the effects a base scenario already has.
+
+use std::collections::BTreeMap;
+
+use dlw_estimator::{ModelConfig, PiConfig, SensorPlane};
+use dlw_geometry::Joint;
+
+use super::model::{Channel, Fitted};
+use super::terms::{Effect, Term, LOG_REFERENCE_RATE};
+use super::{ChannelReport, Known, Outcome};
+use crate::fit::{fit_sensor, FitOptions, ModelKind, Prefilter};
+use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams};
+
+/// The named effect's parameters in the scenario's units, from the fitted coefficients.
+pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
+    let gain = fitted.gain();
+    let mut p = BTreeMap::new();
+    match term {
+        Term::Backlash { half_mm } => {
+            p.insert("width_mm".into(), 2.0 * half_mm);
+        }
+        Term::Relaxation { tau_s } => {
+            p.insert(
+                "fraction".into(),
+                -fitted.get("relaxation").unwrap_or(0.0) / gain,
+            );
+            p.insert("tau_s".into(), *tau_s);
+        }
+        Term::Hysteresis {
+            radii,
+            center,
+            width,
+            ..
+        } => {
+            p.insert("curve_center_strain".into(), *center);
+            p.insert("curve_width_strain".into(), *width);
+            for (i, (r, w)) in radii.iter().zip(fitted.all("play")).enumerate() {
+                p.insert(format!("radius_{}", i + 1), *r);
+                p.insert(format!("weight_{}_ohm", i + 1), w);
+            }
+            if let Some(d) = fitted.get("direction") {
+                p.insert("direction_ohm".into(), d);
+            }
+        }
+        Term::Saturation { strain } => {
+            p.insert("strain".into(), *strain);
+        }
+        Term::Rate { signed, tau_s } => {
+            let c = fitted.get("rate").unwrap_or(0.0);
+            if *signed {
+                p.insert("ohm_per_strain_per_s".into(), c);
+            } else {
+                p.insert("per_decade".into(), c / gain);
+                p.insert("reference_rate_per_s".into(), LOG_REFERENCE_RATE);
+            }
+            p.insert("signed".into(), if *signed { 1.0 } else { 0.0 });
+            p.insert("smoothing_s".into(), *tau_s);
+        }
+        Term::Creep { tau_s } => {
+            p.insert("fraction".into(), fitted.get("creep").unwrap_or(0.0) / gain);
+            p.insert("tau_s".into(), *tau_s);
+        }
+        Term::Drift { settle_tau_s } => {
+            let c = fitted.get("drift").unwrap_or(0.0);
+            match settle_tau_s {
+                None => {
+                    p.insert("rate_ohm_per_s".into(), c);
+                }
+                Some(tau) => {
+                    p.insert("settle_ohm".into(), c);
+                    p.insert("settle_tau_s".into(), *tau);
+                }
+            }
+        }
+    }
+    p
+}
+
+/// The effects a (resolved) base scenario already switches on, as terms of the base models.
+pub fn known(scenario: &Scenario) -> Known {
+    let mut k = Vec::new();
+    let plant = &scenario.plant;
+    if plant.backlash.enabled {
+        k.push((
+            Channel::Plant,
+            Term::Backlash {
+                half_mm: plant.backlash.width_mm / 2.0,
+            },
+        ));
+    }
+    if plant.relaxation.enabled {
+        k.push((
+            Channel::Plant,
+            Term::Relaxation {
+                tau_s: plant.relaxation.tau_s,
+            },
+        ));
+    }
+    for (i, s) in scenario.sensors().enumerate() {
+        let ch = Channel::Sensor(i + 1);
+        if s.model != SensorModelKind::Linear {
+            k.push((
+                ch,
+                Term::Hysteresis {
+                    radii: Vec::new(),
+                    center: 0.0,
+                    width: 0.0,
+                    memory: true,
+                },
+            ));
+        }
+        if s.saturation.enabled {
+            k.push((
+                ch,
+                Term::Saturation {
+                    strain: s.saturation.strain,
+                },
+            ));
+        }
+        if s.rate.enabled {
+            k.push((
+                ch,
+                Term::Rate {
+                    signed: s.rate.form == RateForm::Signed,
+                    tau_s: s.rate.smoothing_s,
+                },
+            ));
+        }
+        if s.creep.enabled {
+            k.push((
+                ch,
+                Term::Creep {
+                    tau_s: s.creep.tau_s,
+                },
+            ));
+        }
+        if s.drift.enabled {
+            k.push((
+                ch,
+                Term::Drift {
+                    settle_tau_s: (s.drift.settle_ohm != 0.0).then_some(s.drift.settle_tau_s),
+                },
+            ));
+        }
+    }
+    k
+}
+
+/// `base` calibrated to the recording and with the named effects on.
+///
+/// # Errors
+/// A message when a fitted PI model is not invertible (a partial sum of its weights ≤ 0).
+pub fn scenario(
+    base: &Scenario,
+    recording: &Recording,
+    joint: &Joint,
+    outcome: &Outcome,
+) -> Result<Scenario, String> {
+    let rig = &recording.rig;
+    let mut s = base.clone();
+    s.sample_hz = rig.sample_hz;
+    s.supply_v = rig.supply_v;
+    // Recomputed from the calibrated gain when the scenario is resolved.
+    s.protocols.amplitude_mm = None;
+    s.duration_s = None;
+    for ch in &outcome.channels {
+        match ch.channel {
+            Channel::Plant => {
+                let gain = ch.fitted.gain();
+                if gain.is_finite() && gain > 0.0 {
+                    s.plant.gain_deg_per_mm = gain;
+                }
+                for t in &ch.terms {
+                    match t {
+                        Term::Backlash { half_mm } => {
+                            s.plant.backlash.enabled = true;
+                            s.plant.backlash.width_mm = 2.0 * half_mm;
+                        }
+                        Term::Relaxation { tau_s } => {
+                            let f = -ch.fitted.get("relaxation").unwrap_or(0.0) / gain;
+                            s.plant.relaxation.enabled = true;
+                            s.plant.relaxation.fraction = f.clamp(0.0, 0.9);
+                            s.plant.relaxation.tau_s = *tau_s;
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            Channel::Sensor(k) => {
+                let sensor = if k == 1 {
+                    &mut s.sensor1
+                } else {
+                    s.sensor2.get_or_insert_with(SensorParams::default)
+                };
+                sensor.divider_ohm = rig.divider_ohm.get(k - 1).copied();
+                write_sensor(sensor, ch)?;
+                if sensor.model == SensorModelKind::Pi {
+                    sensor.pi = Some(fit_pi(recording, joint, k)?);
+                    // The PI model's tanh input curve carries the saturation.
+                    sensor.saturation.enabled = false;
+                }
+            }
+        }
+    }
+    Ok(s)
+}
+
+fn write_sensor(sensor: &mut SensorParams, ch: &ChannelReport) -> Result<(), String> {
+    let f = &ch.fitted;
+    let (r0, b) = (f.get("offset").unwrap_or(f64::NAN), f.gain());
+    sensor.model = SensorModelKind::Linear;
+    sensor.gauge_factor = Some(b / r0);
+    sensor.r0_ohm = Some(r0);
+    sensor.pi = None;
+    sensor.continuous_pi = None;
+    for t in &ch.terms {
+        match t {
+            Term::Hysteresis { .. } => {
+                // Filled by `fit_pi`: the paper's generalized PI fitted to the recording.
+                sensor.model = SensorModelKind::Pi;
+            }
+            Term::Saturation { strain } => {
+                sensor.saturation.enabled = true;
+                sensor.saturation.strain = *strain;
+            }
+            Term::Rate { signed, tau_s } => {
+                let c = f.get("rate").unwrap_or(0.0);
+                sensor.rate.enabled = true;
+                sensor.rate.smoothing_s = *tau_s;
+                if *signed {
+                    sensor.rate.form = RateForm::Signed;
+                    sensor.rate.ohm_per_strain_per_s = Some(c);
+                } else {
+                    sensor.rate.form = RateForm::Log;
+                    sensor.rate.per_decade = c / b;
+                    sensor.rate.reference_rate_per_s = LOG_REFERENCE_RATE;
+                }
+            }
+            Term::Creep { tau_s } => {
+                sensor.creep.enabled = true;
+                sensor.creep.fraction = f.get("creep").unwrap_or(0.0) / b;
+                sensor.creep.tau_s = *tau_s;
+            }
+            Term::Drift { settle_tau_s } => {
+                let c = f.get("drift").unwrap_or(0.0);
+                sensor.drift.enabled = true;
+                sensor.drift.random_walk_ohm_per_sqrt_s = Some(0.0);
+                match settle_tau_s {
+                    None => sensor.drift.rate_ohm_per_s = c,
+                    Some(tau) => {
+                        sensor.drift.rate_ohm_per_s = 0.0;
+                        sensor.drift.settle_ohm = c;
+                        sensor.drift.settle_tau_s = *tau;
+                    }
+                }
+            }
+            Term::Backlash { .. } | Term::Relaxation { .. } => {}
+        }
+    }
+    Ok(())
+}
+
+/// The paper's generalized PI model (Eqs. 8-11) of sensor `k`, fitted to the whole recording
+/// by `dlw fit`'s machinery: the form the simulator's `model = "pi"` runs.
+fn fit_pi(recording: &Recording, joint: &Joint, k: usize) -> Result<PiConfig, String> {
+    let plane = if k == 2 {
+        SensorPlane::MinusYs
+    } else {
+        SensorPlane::PlusYs
+    };
+    let options = FitOptions {
+        model: ModelKind::Pi,
+        order: 10,
+        prefilter: Prefilter::MovingAverage(100),
+        decimation: None,
+    };
+    let fit = fit_sensor(recording, joint, plane, &options, &|_| {})
+        .map_err(|e| format!("fitting the PI model of sensor {k}: {e}"))?;
+    match fit.config(ModelKind::Pi).map(|c| &c.model) {
+        Some(ModelConfig::Pi(pi)) => Ok(*pi),
+        _ => Err(format!("the PI model of sensor {k} could not be fitted")),
+    }
+}
+
+/// Which effects of the seven a term list holds (for tests and the report).
+pub fn effects(terms: &[Term]) -> Vec<Effect> {
+    terms.iter().map(Term::effect).collect()
+}

@@ -1,0 +1,237 @@
+//! The effect library as discovery sees it: each of the simulator's seven effects as terms of a
+//! channel model that is linear in its coefficients once a few shape parameters (a time
+//! constant, a width, a saturation strain) are fixed, and the grids those are searched over.
+//!
+//! - **Plant** (stroke `s` → angle θ): `θ = c₀ + g·u + …` where `u = s`, or `u = play_h(s)`
+//!   with `backlash` (the simulator's tendon dead band of width `2h`); `relaxation` adds
+//!   `LP_τ(u)` (the standard linear solid: `θ = g·u − f·g·LP_τ(u)`).
+//! - **Sensor** (tracker angle → resistance): `R = c₀ + b·x + …` where `x` is the felt strain
+//!   (`±ε(θ)`, Eq. 3), or `ε_s·tanh(ε/ε_s)` with `saturation`; `hysteresis` adds plays
+//!   `play_ρ(x)` (a Prandtl-Ishlinskii model); `rate` adds `LP_τ(ẋ)` (signed) or
+//!   `x·log₁₀(1 + LP_τ(|ẋ|)/ṙ₀)` (log); `creep` adds `LP_τ(x)`; `drift` adds `t` or `1 − e^(−t/τ)`.
+
+use serde::Serialize;
+
+/// The seven effects, named as the simulator's scenario names them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, PartialOrd, Ord)]
+#[serde(rename_all = "snake_case")]
+pub enum Effect {
+    /// Sensor: a Prandtl-Ishlinskii hysteresis model.
+    Hysteresis,
+    /// Sensor: soft saturation of the felt strain.
+    Saturation,
+    /// Sensor: strain-rate dependence.
+    Rate,
+    /// Sensor: creep of the resistance change under held strain.
+    Creep,
+    /// Sensor: baseline drift.
+    Drift,
+    /// Plant: viscoelastic relaxation.
+    Relaxation,
+    /// Plant: tendon backlash.
+    Backlash,
+}
+
+impl Effect {
+    /// The sensor channel's candidates.
+    pub const SENSOR: [Effect; 5] = [
+        Effect::Hysteresis,
+        Effect::Saturation,
+        Effect::Rate,
+        Effect::Creep,
+        Effect::Drift,
+    ];
+    /// The plant channel's candidates.
+    pub const PLANT: [Effect; 2] = [Effect::Relaxation, Effect::Backlash];
+
+    /// The name in reports and JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Effect::Hysteresis => "hysteresis",
+            Effect::Saturation => "saturation",
+            Effect::Rate => "rate",
+            Effect::Creep => "creep",
+            Effect::Drift => "drift",
+            Effect::Relaxation => "relaxation",
+            Effect::Backlash => "backlash",
+        }
+    }
+}
+
+/// Reference strain rate of the log form (1/s), the simulator's default.
+pub const LOG_REFERENCE_RATE: f64 = 1e-3;
+
+/// One effect with its shape parameters fixed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Term {
+    /// Play of half-width `half_mm` on the stroke.
+    Backlash {
+        /// Half the dead band (mm).
+        half_mm: f64,
+    },
+    /// `LP_τ(u)`.
+    Relaxation {
+        /// Time constant (s).
+        tau_s: f64,
+    },
+    /// A generalized PI model's part beyond the line: the input curve
+    /// `ν = w·tanh((x − c)/w)` (Eq. 8's tanh, centred at `c`), plays of these radii on it, and
+    /// the direction switch (Eq. 10).
+    Hysteresis {
+        /// Radii (strain), all > 0.
+        radii: Vec<f64>,
+        /// Centre `c` of the input curve (strain).
+        center: f64,
+        /// Width `w` of the input curve (strain).
+        width: f64,
+        /// With the plays and the direction switch (the memory); without, the curve alone,
+        /// a static nonlinearity, against which the memory is scored.
+        memory: bool,
+    },
+    /// `ε_s·tanh(x/ε_s)`.
+    Saturation {
+        /// `ε_s`.
+        strain: f64,
+    },
+    /// Strain-rate term.
+    Rate {
+        /// `true`: signed `LP_τ(ẋ)`; `false`: `x·log₁₀(1 + LP_τ(|ẋ|)/ṙ₀)`.
+        signed: bool,
+        /// Low-pass time constant (s).
+        tau_s: f64,
+    },
+    /// `LP_τ(x)`.
+    Creep {
+        /// Time constant (s).
+        tau_s: f64,
+    },
+    /// `t − t₀` (linear), or `1 − e^(−(t − t₀)/τ)` (settling).
+    Drift {
+        /// `None`: linear in time; `Some(τ)`: settling with time constant `τ` (s).
+        settle_tau_s: Option<f64>,
+    },
+}
+
+impl Term {
+    /// Which effect.
+    pub fn effect(&self) -> Effect {
+        match self {
+            Term::Backlash { .. } => Effect::Backlash,
+            Term::Relaxation { .. } => Effect::Relaxation,
+            Term::Hysteresis { .. } => Effect::Hysteresis,
+            Term::Saturation { .. } => Effect::Saturation,
+            Term::Rate { .. } => Effect::Rate,
+            Term::Creep { .. } => Effect::Creep,
+            Term::Drift { .. } => Effect::Drift,
+        }
+    }
+
+    /// The shapes searched for `effect`, given the span of the input (`stroke` span in mm for
+    /// the plant, peak |felt strain| for a sensor).
+    pub fn grid(effect: Effect, span: f64) -> Vec<Term> {
+        match effect {
+            Effect::Backlash => [0.004, 0.008, 0.015, 0.025, 0.04, 0.06, 0.09]
+                .iter()
+                .map(|f| Term::Backlash { half_mm: f * span })
+                .collect(),
+            Effect::Relaxation => [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0]
+                .iter()
+                .map(|&tau_s| Term::Relaxation { tau_s })
+                .collect(),
+            Effect::Hysteresis => [0.25, 0.5, 0.75]
+                .iter()
+                .flat_map(|&c| {
+                    [0.3, 0.6, 1.2].iter().map(move |&w| Term::Hysteresis {
+                        radii: [0.05, 0.15, 0.3].iter().map(|f| f * span).collect(),
+                        center: c * span,
+                        width: w * span,
+                        memory: true,
+                    })
+                })
+                .collect(),
+            Effect::Saturation => [0.6, 0.9, 1.3, 2.0, 3.0, 5.0]
+                .iter()
+                .map(|f| Term::Saturation { strain: f * span })
+                .collect(),
+            Effect::Rate => [true, false]
+                .iter()
+                .flat_map(|&signed| {
+                    [0.3, 1.0, 3.0]
+                        .iter()
+                        .map(move |&tau_s| Term::Rate { signed, tau_s })
+                })
+                .collect(),
+            Effect::Creep => [5.0, 10.0, 20.0, 40.0, 80.0]
+                .iter()
+                .map(|&tau_s| Term::Creep { tau_s })
+                .collect(),
+            Effect::Drift => [None, Some(60.0), Some(150.0), Some(400.0)]
+                .into_iter()
+                .map(|settle_tau_s| Term::Drift { settle_tau_s })
+                .collect(),
+        }
+    }
+
+    /// How the term reads in a report.
+    pub fn describe(&self) -> String {
+        match self {
+            Term::Backlash { half_mm } => format!("dead band {:.4} mm", 2.0 * half_mm),
+            Term::Relaxation { tau_s } => format!("τ = {tau_s} s"),
+            Term::Hysteresis {
+                radii,
+                center,
+                width,
+                ..
+            } => format!(
+                "{} plays on a tanh centred at ε = {center:.4}, width {width:.4}",
+                radii.len() + 1
+            ),
+            Term::Saturation { strain } => format!("ε_s = {strain:.4}"),
+            Term::Rate { signed, tau_s } => format!(
+                "{} form, smoothing {tau_s} s",
+                if *signed { "signed" } else { "log" }
+            ),
+            Term::Creep { tau_s } => format!("τ = {tau_s} s"),
+            Term::Drift { settle_tau_s: None } => "linear in time".to_owned(),
+            Term::Drift {
+                settle_tau_s: Some(tau),
+            } => format!("settling, τ = {tau} s"),
+        }
+    }
+}
+
+/// A first-order low-pass with time constant `tau_s`, started at the first value.
+pub fn low_pass(x: &[f64], tau_s: f64, dt_s: f64) -> Vec<f64> {
+    let alpha = 1.0 - (-dt_s / tau_s).exp();
+    let mut state = x.first().copied().unwrap_or(0.0);
+    x.iter()
+        .map(|&v| {
+            state += (v - state) * alpha;
+            state
+        })
+        .collect()
+}
+
+/// A play operator of radius `r`, started relaxed at the first value.
+pub fn play(x: &[f64], r: f64) -> Vec<f64> {
+    let mut y = x.first().copied().unwrap_or(0.0);
+    x.iter()
+        .map(|&v| {
+            y = y.clamp(v - r, v + r);
+            y
+        })
+        .collect()
+}
+
+/// The derivative by backward differences (first sample 0).
+pub fn rate(x: &[f64], dt_s: f64) -> Vec<f64> {
+    (0..x.len())
+        .map(|i| {
+            if i == 0 {
+                0.0
+            } else {
+                (x[i] - x[i - 1]) / dt_s
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,220 @@
+//! `dlw discover` through the binary: the written scenario simulates, a holdout recording is
+//! used for the gaps, a base scenario's effects are not rediscovered, the report has its
+//! parts, and bad input is refused with nothing written.
+
+mod common;
+use common::shipped_design;
+
+use std::path::{Path, PathBuf};
+
+fn simulate(
+    dir: &Path,
+    name: &str,
+    design: &str,
+    seconds: &str,
+    seed: &str,
+    scenario: Option<&str>,
+) -> PathBuf {
+    let out = dir.join(name);
+    let design = shipped_design(design);
+    let mut args: Vec<String> = [
+        "simulate",
+        "--design",
+        &design,
+        "--protocol",
+        "random",
+        "--duration-s",
+        seconds,
+        "--seed",
+        seed,
+        "--noise",
+        "realistic",
+        "-o",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    args.push(out.display().to_string());
+    if let Some(text) = scenario {
+        let file = dir.join(format!("{name}.toml"));
+        std::fs::write(&file, text).unwrap();
+        args.extend(["--scenario".into(), file.display().to_string()]);
+    }
+    let o = common::dlw(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    out
+}
+
+fn discover(design: &str, rec: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
+    let design = shipped_design(design);
+    let (rec, out) = (rec.display().to_string(), out.display().to_string());
+    let mut args = vec!["discover", "--design", &design, &rec, "-o", &out, "--json"];
+    args.extend_from_slice(extra);
+    common::dlw(&args)
+}
+
+const BACKLASH: &str = "[plant.backlash]\nwidth_mm = 0.05\n";
+
+#[test]
+fn named_effect_goes_into_a_scenario_that_simulates_and_the_holdout_is_used() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let rec = simulate(d, "rec", "joint-a.toml", "300", "5", Some(BACKLASH));
+    let other = simulate(d, "other", "joint-a.toml", "300", "6", Some(BACKLASH));
+    let out = d.join("disc");
+    let o = discover(
+        "joint-a.toml",
+        &rec,
+        &out,
+        &["--holdout", &other.display().to_string()],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(json["discovered"][0]["effect"], "backlash", "{json}");
+    assert_eq!(json["discovered"][0]["channel"], "plant");
+    let width = json["discovered"][0]["parameters"]["width_mm"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (0.02..0.1).contains(&width),
+        "fitted dead band {width} mm for 0.05 mm"
+    );
+    let plant = json["gaps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|g| g["channel"] == "plant")
+        .unwrap();
+    assert_eq!(plant["on"], "holdout");
+    assert_eq!(plant["unit"], "deg");
+    assert!(
+        plant["after"].as_f64().unwrap() < 0.5 * plant["before"].as_f64().unwrap(),
+        "{plant}"
+    );
+    let sensor = json["gaps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|g| g["channel"] == "sensor1")
+        .unwrap();
+    assert_eq!(sensor["unit"], "ohm");
+    assert!(sensor["before_deg"].as_f64().unwrap() > 0.0);
+    // The scenario simulates, with the backlash on, and the report shows the process.
+    let scenario = out.join("scenario.toml");
+    let text = std::fs::read_to_string(&scenario).unwrap();
+    assert!(
+        text.contains("[plant.backlash]") && text.contains("enabled = true"),
+        "{text}"
+    );
+    let o = common::dlw(&[
+        "simulate",
+        "--design",
+        &shipped_design("joint-a.toml"),
+        "--protocol",
+        "random",
+        "--duration-s",
+        "30",
+        "--scenario",
+        &scenario.display().to_string(),
+        "-o",
+        &d.join("resim").display().to_string(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    for part in [
+        "Candidates",
+        "Noise model",
+        "Gap between simulation",
+        "overlay-plant.svg",
+        "residual-sensor1.svg",
+    ] {
+        assert!(html.contains(part), "report lacks {part}");
+    }
+    // Given as the base scenario, the backlash is not named again.
+    let base = d.join("base.toml");
+    std::fs::write(&base, BACKLASH).unwrap();
+    let o = discover(
+        "joint-a.toml",
+        &rec,
+        &d.join("again"),
+        &["--scenario", &base.display().to_string()],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(
+        json["discovered"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|d| d["effect"] != "backlash"),
+        "{json}"
+    );
+}
+
+#[test]
+fn bad_input_is_refused_and_nothing_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let uan = simulate(d, "uan", "joint-a.toml", "200", "1", None);
+    let short = simulate(d, "short", "joint-a.toml", "60", "1", None);
+    let check = |o: std::process::Output, out: &Path, words: &[&str]| {
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        for w in words {
+            assert!(err.contains(w), "{err} lacks {w}");
+        }
+        assert!(!out.exists(), "{} written", out.display());
+    };
+    let out = d.join("o1");
+    check(
+        discover("joint-c.toml", &uan, &out, &[]),
+        &out,
+        &["1 voltage column", "2 sensor"],
+    );
+    let out = d.join("o2");
+    check(
+        discover("joint-a.toml", &short, &out, &[]),
+        &out,
+        &["moves for", "at least 80 s"],
+    );
+    // A holdout on another rig.
+    let other = d.join("other-rig");
+    std::fs::create_dir_all(&other).unwrap();
+    std::fs::copy(uan.join("data.csv"), other.join("data.csv")).unwrap();
+    let rig = std::fs::read_to_string(uan.join("rig.toml")).unwrap();
+    std::fs::write(
+        other.join("rig.toml"),
+        rig.replacen("divider_ohm = [99600.0]", "divider_ohm = [120000.0]", 1),
+    )
+    .unwrap();
+    let out = d.join("o3");
+    check(
+        discover(
+            "joint-a.toml",
+            &uan,
+            &out,
+            &["--holdout", &other.display().to_string()],
+        ),
+        &out,
+        &["divider_ohm", "120000"],
+    );
+    // No rest at the start: the first 10 s cut away.
+    let moving = d.join("moving");
+    std::fs::create_dir_all(&moving).unwrap();
+    std::fs::copy(uan.join("rig.toml"), moving.join("rig.toml")).unwrap();
+    let csv = std::fs::read_to_string(uan.join("data.csv")).unwrap();
+    let mut lines = csv.lines();
+    let mut cut = String::from(lines.next().unwrap());
+    cut.push('\n');
+    for l in lines.skip(5500) {
+        cut.push_str(l);
+        cut.push('\n');
+    }
+    std::fs::write(moving.join("data.csv"), cut).unwrap();
+    let out = d.join("o4");
+    check(
+        discover("joint-a.toml", &moving, &out, &[]),
+        &out,
+        &["at rest", "4 s"],
+    );
+}

