@@ -131,59 +131,70 @@ pub fn fit_plays(
     let mut restarts = Vec::new();
     let mut evaluations = 0;
     let mut last_reason = String::from("no restart ran");
-    let starts = SLOPE_RESTARTS
+    let starts: Vec<Start> = SLOPE_RESTARTS
         .into_iter()
         .map(Start::Slope)
-        .chain([Start::Linear]);
-    for start in starts {
-        let initial = match start {
-            Start::Slope(k) => {
-                let a = [span, k * points.center_slope_ohm / span, 0.0, 0.0];
-                initial(kind, order, a, strain, ohm, points)
+        .chain([Start::Linear])
+        .collect();
+    // The restarts are independent: each runs on its own thread, and the results are taken in
+    // the order of `starts`, so the outcome does not depend on the scheduling.
+    let runs: Vec<Run> = std::thread::scope(|scope| {
+        let handles: Vec<_> = starts
+            .iter()
+            .map(|&start| {
+                scope.spawn(move || run_start(kind, order, start, span, strain, ohm, points))
+            })
+            .collect();
+        handles
+            .into_iter()
+            .zip(&starts)
+            .map(|(h, &start)| {
+                h.join().unwrap_or_else(|_| Run::Failed {
+                    start,
+                    reason: "the restart's thread panicked".into(),
+                })
+            })
+            .collect()
+    });
+    for run in runs {
+        match run {
+            Run::Failed { start, reason } => {
+                last_reason = format!("{start}: {reason}");
             }
-            Start::Linear => linear_start(kind, order, strain, ohm, points),
-        };
-        let Some((model, theta0)) = initial else {
-            last_reason = format!("the initial parameters for {start} are not finite");
-            continue;
-        };
-        let problem = Problem::new(&model, strain, ohm, theta0);
-        let (problem, report) = LevenbergMarquardt::new()
-            .with_ftol(FTOL)
-            .with_xtol(XTOL)
-            .with_gtol(GTOL)
-            .with_patience(PATIENCE)
-            .minimize(problem);
-        evaluations += report.number_of_evaluations;
-        let converged = report.termination.was_successful()
-            || matches!(
-                report.termination,
-                TerminationReason::NoImprovementPossible(_)
-            );
-        let rmse = problem.rmse();
-        restarts.push(Restart {
-            start,
-            rmse_ohm: rmse,
-            converged,
-        });
-        if !(converged && rmse.is_finite() && problem.theta.iter().all(|v| v.is_finite())) {
-            last_reason = format!("{:?}", report.termination);
-            continue;
-        }
-        if best.as_ref().map_or(true, |b| rmse < b.rmse_ohm) {
-            let theta: Vec<f64> = problem.theta.iter().copied().collect();
-            let values = model.unpack(&theta);
-            let x0 = strain[0] - model.center_strain;
-            let l = values.loading;
-            best = Some(PlayFit {
-                initial_state: l[0] * (l[1] * x0 + l[2]).tanh() + l[3],
-                values,
-                theta,
+            Run::Done {
+                start,
                 model,
-                rmse_ohm: rmse,
-                restarts: Vec::new(),
-                evaluations: 0,
-            });
+                theta,
+                rmse,
+                converged,
+                evaluations: used,
+                reason,
+            } => {
+                evaluations += used;
+                restarts.push(Restart {
+                    start,
+                    rmse_ohm: rmse,
+                    converged,
+                });
+                if !(converged && rmse.is_finite() && theta.iter().all(|v| v.is_finite())) {
+                    last_reason = reason;
+                    continue;
+                }
+                if best.as_ref().map_or(true, |b| rmse < b.rmse_ohm) {
+                    let values = model.unpack(&theta);
+                    let x0 = strain[0] - model.center_strain;
+                    let l = values.loading;
+                    best = Some(PlayFit {
+                        initial_state: l[0] * (l[1] * x0 + l[2]).tanh() + l[3],
+                        values,
+                        theta,
+                        model,
+                        rmse_ohm: rmse,
+                        restarts: Vec::new(),
+                        evaluations: 0,
+                    });
+                }
+            }
         }
     }
     let mut fit = best.ok_or(FitError::NotConverged {
@@ -196,6 +207,68 @@ pub fn fit_plays(
     fit.restarts = restarts;
     fit.evaluations = evaluations;
     Ok(fit)
+}
+
+/// What one restart ended with.
+enum Run {
+    /// No finite starting point.
+    Failed { start: Start, reason: String },
+    /// Levenberg-Marquardt ran.
+    Done {
+        start: Start,
+        model: PlayModel,
+        theta: Vec<f64>,
+        rmse: f64,
+        converged: bool,
+        evaluations: usize,
+        reason: String,
+    },
+}
+
+/// One restart from `start`: the initial model and `θ`, then Levenberg-Marquardt.
+fn run_start(
+    kind: PlayKind,
+    order: usize,
+    start: Start,
+    span: f64,
+    strain: &[f64],
+    ohm: &[f64],
+    points: &Characteristic,
+) -> Run {
+    let initial = match start {
+        Start::Slope(k) => {
+            let a = [span, k * points.center_slope_ohm / span, 0.0, 0.0];
+            initial(kind, order, a, strain, ohm, points)
+        }
+        Start::Linear => linear_start(kind, order, strain, ohm, points),
+    };
+    let Some((model, theta0)) = initial else {
+        return Run::Failed {
+            start,
+            reason: "the initial parameters are not finite".into(),
+        };
+    };
+    let problem = Problem::new(&model, strain, ohm, theta0);
+    let (problem, report) = LevenbergMarquardt::new()
+        .with_ftol(FTOL)
+        .with_xtol(XTOL)
+        .with_gtol(GTOL)
+        .with_patience(PATIENCE)
+        .minimize(problem);
+    let converged = report.termination.was_successful()
+        || matches!(
+            report.termination,
+            TerminationReason::NoImprovementPossible(_)
+        );
+    Run::Done {
+        start,
+        rmse: problem.rmse(),
+        theta: problem.theta.iter().copied().collect(),
+        model,
+        converged,
+        evaluations: report.number_of_evaluations,
+        reason: format!("{:?}", report.termination),
+    }
 }
 
 /// The model and starting `θ` of [`Start::Linear`]: the least-squares line `R = c₀ + c₁·ε` as
