@@ -25,7 +25,9 @@ pub struct Characteristic {
 ///
 /// - `R_c` is the resistance where the slope `dR/dε` is greatest during the loading phase of
 ///   the first cycle, `m_c` that slope. The slope is a least-squares line over a window of a
-///   tenth of the phase (at least 5 samples), so one noisy pair of samples cannot set it.
+///   tenth of the phase (at least 5 samples), so one noisy pair of samples cannot set it, and
+///   only over windows where the strain moves by at least [`MIN_WINDOW_SPAN`] of the phase's
+///   span (not in a rest the phase begins with).
 /// - `ε_c` is the mean of the strain there and the strain where the last cycle's unloading
 ///   phase passes `R_c`.
 /// - `R_peak` and `ε_peak` are the largest resistance and strain of the recording.
@@ -49,9 +51,18 @@ pub fn characteristic(
     let len = load.end() - load.start() + 1;
     let w = (len / 10).max(5).min(len);
     let mut best: Option<(f64, f64, f64)> = None; // (slope, R, ε)
+    let (lo, hi) = span(&strain[load.clone()]);
+    let min_span = MIN_WINDOW_SPAN * (hi - lo);
     let mut start = *load.start();
     while start + w <= load.end() + 1 {
         let (x, y) = (&strain[start..start + w], &ohm[start..start + w]);
+        // A window where the strain barely moves (the rest a recording starts with, which the
+        // first loading phase takes in) has a slope of noise over noise: skip it.
+        let (a, b) = span(x);
+        if b - a < min_span {
+            start += 1;
+            continue;
+        }
         if let Some(slope) = slope(x, y) {
             if best.map_or(true, |b| slope > b.0) {
                 let n = w as f64;
@@ -83,6 +94,16 @@ pub fn characteristic(
         peak_ohm,
         peak_strain,
     })
+}
+
+/// A window for `m_c` must span at least this fraction of the first loading phase's strain.
+pub const MIN_WINDOW_SPAN: f64 = 0.03;
+
+fn span(x: &[f64]) -> (f64, f64) {
+    x.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        })
 }
 
 /// Least-squares slope of `y` on `x`, or `None` when `x` does not vary.
@@ -124,5 +145,33 @@ mod tests {
         assert_relative_eq!(ch.center_strain, ec, max_relative = 0.05);
         assert_relative_eq!(ch.center_slope_ohm, a * k, max_relative = 0.02);
         assert_relative_eq!(ch.peak_strain, 0.0135, max_relative = 1e-12);
+    }
+
+    /// A recording that starts at rest: the first loading phase takes the rest in, where the
+    /// strain is noise around zero and any slope is noise over noise. The centre is still the
+    /// tanh's.
+    #[test]
+    fn a_rest_before_the_first_loading_does_not_set_the_centre() {
+        let (rc, a, k, ec) = (224e3, 26e3, 200.0, 0.00307);
+        let mut seed = 99u64;
+        let mut noise = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut strain: Vec<f64> = (0..300).map(|_| 2e-6 * noise()).collect();
+        for _ in 0..2 {
+            strain.extend((0..=400).map(|i| 0.0135 * i as f64 / 400.0));
+            strain.extend((0..400).rev().map(|i| 0.0135 * i as f64 / 400.0));
+        }
+        let ohm: Vec<f64> = strain
+            .iter()
+            .map(|e| rc + a * (k * (e - ec)).tanh() + 20.0 * noise())
+            .collect();
+        let c = cycles(&phases(&strain, 0.001));
+        let ch = characteristic(&strain, &ohm, &c).unwrap();
+        assert_relative_eq!(ch.center_strain, ec, max_relative = 0.1);
+        assert_relative_eq!(ch.center_slope_ohm, a * k, max_relative = 0.05);
     }
 }

@@ -137,9 +137,9 @@ fn table_iii(page: &mut Page, r: &Reproduction) {
          protocol amplitude (1.5 % at the nominal gain, less the relaxation), not the paper's \
          measured one. The linear GF and R₀ are the least-squares line through that PI curve, \
          which is not the line through the paper's data. ε_c and m_c come from the steepest \
-         window of the first cycle's loading phase (dlw fit's procedure); that phase starts in \
-         the rest before the first cycle, where the strain barely moves and a window's slope is \
-         mostly noise, so dlw's ε_c lands near zero strain and m_c scatters. Joint C's R_peak: the \
+         window of the first cycle's loading phase (dlw fit's procedure, skipping the rest the \
+         phase starts in); on a loop with hysteresis the steepest part is not the centre, so \
+         dlw's ε_c sits below the paper's. Joint C's R_peak: the \
          paper prints 754 kΩ against R_c = 74.7 kΩ, R₀ = 74.0 kΩ and a linear model that \
          changes by only 1.3 kΩ over the whole range, a misplaced decimal point for 75.4 kΩ; \
          the simulator uses 75.4 kΩ and dlw's value agrees with that.",
