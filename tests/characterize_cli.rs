@@ -29,13 +29,7 @@ repeat_s = 60.0
 "#;
 
 fn ok(args: &[&str]) -> Output {
-    let o = common::dlw(args);
-    assert!(
-        o.status.success(),
-        "dlw {args:?} failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    o
+    common::dlw_ok(args)
 }
 
 fn s(p: &Path) -> String {

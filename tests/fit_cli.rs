@@ -20,13 +20,7 @@ fn run(args: &[&str]) -> Output {
 }
 
 fn ok(args: &[&str]) -> Output {
-    let o = run(args);
-    assert!(
-        o.status.success(),
-        "dlw {args:?} failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    o
+    common::dlw_ok(args)
 }
 
 fn s(p: &Path) -> String {

@@ -33,24 +33,8 @@ pub fn std_dev(v: &[f64]) -> Option<f64> {
     Some((ss / (n - 1) as f64).sqrt())
 }
 
-/// Least-squares slope of `y` on `x`, or `None` when `x` does not vary.
-pub fn slope(x: &[f64], y: &[f64]) -> Option<f64> {
-    let n = x.len().min(y.len());
-    if n < 2 {
-        return None;
-    }
-    let nf = n as f64;
-    let (mx, my) = (
-        x[..n].iter().sum::<f64>() / nf,
-        y[..n].iter().sum::<f64>() / nf,
-    );
-    let (mut sxx, mut sxy) = (0.0, 0.0);
-    for (a, b) in x[..n].iter().zip(&y[..n]) {
-        sxx += (a - mx) * (a - mx);
-        sxy += (a - mx) * (b - my);
-    }
-    (sxx > 0.0).then(|| sxy / sxx)
-}
+/// Least-squares slope of `y` on `x`: the fit's own ([`crate::fit::slope`]).
+pub use crate::fit::slope;
 
 #[cfg(test)]
 mod tests {

@@ -1,7 +1,6 @@
 //! `dlw discover --design D REC [--scenario S] [--holdout REC2] -o DIR [--json]`.
 
 use std::collections::BTreeMap;
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context};
@@ -83,7 +82,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .resolve(&design)
         .with_context(|| "resolving the base scenario".to_owned())?;
     let known = scenario::known(&resolved);
-    let bar = progress();
+    let bar = super::spinner();
     let outcome = discover::discover(
         &recording,
         holdout.as_ref(),
@@ -215,14 +214,4 @@ fn print_text(outcome: &Outcome, scenario: &std::path::Path, report: &std::path:
     }
     println!("scenario {}", scenario.display());
     println!("report   {}", report.display());
-}
-
-fn progress() -> indicatif::ProgressBar {
-    if std::io::stderr().is_terminal() {
-        let bar = indicatif::ProgressBar::new_spinner();
-        bar.enable_steady_tick(std::time::Duration::from_millis(120));
-        bar
-    } else {
-        indicatif::ProgressBar::hidden()
-    }
 }

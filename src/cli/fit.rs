@@ -1,7 +1,6 @@
 //! `dlw fit --design D REC [--model linear|pi|continuous-pi] [--order N] [--prefilter none|ma:N]
 //! [--sensor 1|2|both] [--validate REC2] -o CONFIG [--json] [--report DIR]`.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -177,7 +176,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         prefilter: args.prefilter,
         decimation: None,
     };
-    let bar = progress();
+    let bar = super::spinner();
     let say = |m: &str| bar.set_message(m.to_owned());
     let mut fits: Vec<SensorFit> = Vec::new();
     for &plane in planes {
@@ -368,15 +367,4 @@ fn print_text(r: &Report) {
         "fitted {} samples (prefilter {}, every {}th) in {:.2} s",
         r.samples_fitted, r.prefilter, r.decimation, r.timings_s.total
     );
-}
-
-/// A spinner on stderr when it is a terminal; hidden otherwise.
-fn progress() -> indicatif::ProgressBar {
-    if std::io::stderr().is_terminal() {
-        let bar = indicatif::ProgressBar::new_spinner();
-        bar.enable_steady_tick(std::time::Duration::from_millis(120));
-        bar
-    } else {
-        indicatif::ProgressBar::hidden()
-    }
 }

@@ -22,6 +22,7 @@ use std::collections::BTreeMap;
 use dlw_geometry::Joint;
 use serde::Serialize;
 
+use crate::fit::min_max;
 use crate::sim::Recording;
 use data::Data;
 use locate::{locate, Place};
@@ -629,11 +630,4 @@ fn same_rig(a: &Recording, b: &Recording) -> Result<(), DiscoverError> {
         }
     }
     Ok(())
-}
-
-fn min_max(v: &[f64]) -> (f64, f64) {
-    v.iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-            (lo.min(x), hi.max(x))
-        })
 }

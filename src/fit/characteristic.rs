@@ -4,7 +4,8 @@
 use serde::Serialize;
 
 use super::cycles::Cycle;
-use super::FitError;
+use super::linear::slope;
+use super::{min_max, FitError};
 
 /// The points the PI procedure starts from. JSON keys are part of `dlw fit --json`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -51,14 +52,14 @@ pub fn characteristic(
     let len = load.end() - load.start() + 1;
     let w = (len / 10).max(5).min(len);
     let mut best: Option<(f64, f64, f64)> = None; // (slope, R, ε)
-    let (lo, hi) = span(&strain[load.clone()]);
+    let (lo, hi) = min_max(&strain[load.clone()]);
     let min_span = MIN_WINDOW_SPAN * (hi - lo);
     let mut start = *load.start();
     while start + w <= load.end() + 1 {
         let (x, y) = (&strain[start..start + w], &ohm[start..start + w]);
         // A window where the strain barely moves (the rest a recording starts with, which the
         // first loading phase takes in) has a slope of noise over noise: skip it.
-        let (a, b) = span(x);
+        let (a, b) = min_max(x);
         if b - a < min_span {
             start += 1;
             continue;
@@ -98,25 +99,6 @@ pub fn characteristic(
 
 /// A window for `m_c` must span at least this fraction of the first loading phase's strain.
 pub const MIN_WINDOW_SPAN: f64 = 0.03;
-
-fn span(x: &[f64]) -> (f64, f64) {
-    x.iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        })
-}
-
-/// Least-squares slope of `y` on `x`, or `None` when `x` does not vary.
-fn slope(x: &[f64], y: &[f64]) -> Option<f64> {
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let (mut sxx, mut sxy) = (0.0, 0.0);
-    for (a, b) in x.iter().zip(y) {
-        sxx += (a - mx) * (a - mx);
-        sxy += (a - mx) * (b - my);
-    }
-    (sxx > 0.0).then(|| sxy / sxx)
-}
 
 #[cfg(test)]
 mod tests {

@@ -79,6 +79,25 @@ pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
     })
 }
 
+/// Least-squares slope of `y` on `x`, or `None` when `x` does not vary.
+pub fn slope(x: &[f64], y: &[f64]) -> Option<f64> {
+    let n = x.len().min(y.len());
+    if n < 2 {
+        return None;
+    }
+    let nf = n as f64;
+    let (mx, my) = (
+        x[..n].iter().sum::<f64>() / nf,
+        y[..n].iter().sum::<f64>() / nf,
+    );
+    let (mut sxx, mut sxy) = (0.0, 0.0);
+    for (a, b) in x[..n].iter().zip(&y[..n]) {
+        sxx += (a - mx) * (a - mx);
+        sxy += (a - mx) * (b - my);
+    }
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

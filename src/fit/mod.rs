@@ -46,7 +46,7 @@ pub use data::{
     observe, Observations, Prefilter, MAX_FIT_SAMPLES, MIN_ANGLE_SPAN_DEG, RAIL_FRACTION,
 };
 /// The linear model by least squares.
-pub use linear::{fit_linear, LinearFit, MIN_R2};
+pub use linear::{fit_linear, slope, LinearFit, MIN_R2};
 /// PI fits by Levenberg-Marquardt.
 pub use pi::{fit_plays, PlayFit, Problem, FTOL, GTOL, SLOPE_RESTARTS, XTOL};
 /// The play models with their Jacobian.
@@ -457,7 +457,8 @@ pub fn model_name(model: ModelKind) -> &'static str {
     }
 }
 
-fn min_max(v: &[f64]) -> (f64, f64) {
+/// Smallest and largest value.
+pub(crate) fn min_max(v: &[f64]) -> (f64, f64) {
     v.iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
             (lo.min(x), hi.max(x))

@@ -283,12 +283,7 @@ fn linear_start(
 ) -> Option<(PlayModel, Vec<f64>)> {
     let n = strain.len() as f64;
     let (mean_e, mean_r) = (strain.iter().sum::<f64>() / n, ohm.iter().sum::<f64>() / n);
-    let (mut see, mut ser) = (0.0, 0.0);
-    for (e, r) in strain.iter().zip(ohm) {
-        see += (e - mean_e) * (e - mean_e);
-        ser += (e - mean_e) * (r - mean_r);
-    }
-    let slope = ser / see;
+    let slope = super::linear::slope(strain, ohm).unwrap_or(f64::NAN);
     let reach = strain
         .iter()
         .map(|e| (e - points.center_strain).abs())
@@ -300,11 +295,7 @@ fn linear_start(
     let a1 = slope / a2;
     let a4 = mean_r + slope * (points.center_strain - mean_e) - points.center_ohm;
     let a = [a1, a2, 0.0, a4];
-    let (lo, hi) = strain
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &e| {
-            (lo.min(e), hi.max(e))
-        });
+    let (lo, hi) = super::min_max(strain);
     let rho_max = 0.5 * slope * (hi - lo);
     let model = PlayModel {
         kind,

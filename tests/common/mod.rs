@@ -16,6 +16,17 @@ pub fn dlw<S: AsRef<OsStr>>(args: &[S]) -> Output {
         .expect("the dlw binary runs")
 }
 
+/// Runs the `dlw` binary with `args` and asserts it succeeded, showing its stderr if not.
+pub fn dlw_ok<S: AsRef<OsStr> + std::fmt::Debug>(args: &[S]) -> Output {
+    let o = dlw(args);
+    assert!(
+        o.status.success(),
+        "dlw {args:?} failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    o
+}
+
 /// The path of a design shipped under `designs/`, e.g. `shipped_design("joint-a.toml")`.
 pub fn shipped_design(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -25,4 +36,5 @@ pub fn shipped_design(name: &str) -> String {
         .to_string()
 }
 pub mod other_forms;
+pub mod rng;
 pub mod second_generator;

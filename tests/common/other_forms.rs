@@ -31,12 +31,14 @@
 //! same generator serves a sensitive UAN sensor and Joint C's insensitive BSN sensors.
 #![allow(dead_code)]
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::Path;
 
 use dlw::design::Design;
 use dlw_geometry::{Divider, NotchStyle};
+
+use super::rng::{Noise, Rng};
 
 /// Sample rate (Hz).
 pub const SAMPLE_HZ: f64 = 500.0;
@@ -129,50 +131,6 @@ pub struct Bench {
     pub seed: u64,
 }
 
-/// xorshift64* with Box-Muller normals (no extra crates, not the simulator's generator).
-struct Rng(u64);
-
-impl Rng {
-    fn new(seed: u64) -> Self {
-        Rng((seed ^ 0xD1B5_4A32_D192_ED03).wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        ((x >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn normal(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (TAU * v).cos()
-    }
-}
-
-/// White plus AR(1) noise at `SAMPLE_HZ`.
-struct Noise {
-    white: f64,
-    ar: f64,
-    phi: f64,
-    state: f64,
-}
-
-impl Noise {
-    fn new((white, ar, tau_s): (f64, f64, f64), rng: &mut Rng) -> Self {
-        Noise {
-            white,
-            ar,
-            phi: (-1.0 / (SAMPLE_HZ * tau_s)).exp(),
-            state: ar * rng.normal(),
-        }
-    }
-    fn next(&mut self, rng: &mut Rng) -> f64 {
-        self.state =
-            self.phi * self.state + (1.0 - self.phi * self.phi).sqrt() * self.ar * rng.normal();
-        self.state + self.white * rng.normal()
-    }
-}
-
 fn smoothstep(u: f64) -> f64 {
     let u = u.clamp(0.0, 1.0);
     u * u * (3.0 - 2.0 * u)
@@ -221,7 +179,8 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
     };
     let n = (bench.duration_s * SAMPLE_HZ) as usize;
     let dt = 1.0 / SAMPLE_HZ;
-    let mut rng = Rng::new(bench.seed);
+    // Another stream than the second generator's for the same seed.
+    let mut rng = Rng::new(bench.seed ^ 0xD1B5_4A32_D192_ED03);
     let peak_deg = PEAK_STRAIN / joint.strain_per_deg();
     let strokes = stroke_pattern(n, peak_deg / GAIN_DEG_PER_MM, bsn, &mut rng);
 
@@ -276,7 +235,8 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
         let (mut z, mut last) = (0.0_f64, 0.0_f64);
         let mut rate = 0.0_f64;
         let mut creep = [0.0_f64; 2];
-        let mut noise = Noise::new(NOISE_V, &mut rng);
+        let (white, ar, tau) = NOISE_V;
+        let mut noise = Noise::new(white, ar, tau, SAMPLE_HZ, &mut rng);
         for (i, &e) in strain.iter().enumerate() {
             let t = i as f64 * dt;
             let felt = sign * e;
@@ -313,7 +273,8 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
         }
     }
 
-    let mut tracker = Noise::new(NOISE_DEG, &mut rng);
+    let (white, ar, tau) = NOISE_DEG;
+    let mut tracker = Noise::new(white, ar, tau, SAMPLE_HZ, &mut rng);
     let mut csv = String::from("time_s,stroke_mm,angle_deg,v1_V");
     if bsn {
         csv.push_str(",v2_V");

@@ -32,6 +32,8 @@ use std::path::Path as FsPath;
 use dlw::design::Design;
 use dlw_geometry::Divider;
 
+use super::rng::{Noise, Rng};
+
 /// Sample rate (Hz), the paper's bench.
 pub const SAMPLE_HZ: f64 = 500.0;
 /// Divider supply (V).
@@ -82,51 +84,6 @@ pub enum Path {
     Cycles,
     /// Slow sinusoids, for validation, lasting this many seconds.
     Random(f64),
-}
-
-/// A tiny seeded generator: xorshift64* with Box-Muller normals.
-struct Rng(u64);
-
-impl Rng {
-    fn new(seed: u64) -> Self {
-        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        ((x >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn normal(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
-    }
-}
-
-/// White plus AR(1) noise.
-struct Noise {
-    white: f64,
-    ar: f64,
-    phi: f64,
-    state: f64,
-}
-
-impl Noise {
-    fn new(white: f64, ar: f64, rng: &mut Rng) -> Self {
-        let phi = (-1.0 / (SAMPLE_HZ * TAU_S)).exp();
-        Noise {
-            white,
-            ar,
-            phi,
-            state: ar * rng.normal(),
-        }
-    }
-    fn next(&mut self, rng: &mut Rng) -> f64 {
-        self.state =
-            self.phi * self.state + (1.0 - self.phi * self.phi).sqrt() * self.ar * rng.normal();
-        self.state + self.white * rng.normal()
-    }
 }
 
 fn raised_cosine(u: f64) -> f64 {
@@ -187,8 +144,8 @@ pub fn write_recording(design: &FsPath, path: Path, seed: u64, out: &FsPath) {
         rng.uniform() * std::f64::consts::TAU,
         rng.uniform() * std::f64::consts::TAU,
     ];
-    let mut v_noise = Noise::new(WHITE_V, AR_V, &mut rng);
-    let mut a_noise = Noise::new(WHITE_DEG, AR_DEG, &mut rng);
+    let mut v_noise = Noise::new(WHITE_V, AR_V, TAU_S, SAMPLE_HZ, &mut rng);
+    let mut a_noise = Noise::new(WHITE_DEG, AR_DEG, TAU_S, SAMPLE_HZ, &mut rng);
     let mut csv = String::from("time_s,stroke_mm,angle_deg,v1_V\n");
     let (mut z, mut last_strain) = (0.0_f64, 0.0_f64);
     let mut i = 0usize;
