@@ -246,6 +246,17 @@ fn pi_sensor_fit_within_noise_and_pi_config_beats_linear_on_a_random_recording()
     eprintln!("PI sensor, random recording: angle RMSE linear {e_lin:.3}°, PI {e_pi:.3}°");
     assert!(e_pi < e_lin, "PI {e_pi}° vs linear {e_lin}°");
     check_report(&report_dir, 1);
+    // The PI config carries the characterized strain range its inverse clamps to.
+    let config: toml::Value = toml::from_str(&std::fs::read_to_string(&pi).unwrap()).unwrap();
+    let pi_model = &config["sensor"]["model"]["pi"];
+    let (lo, hi) = (f(pi_model, &["min_strain"]), f(pi_model, &["max_strain"]));
+    let peak = report["sensors"][0]["characteristic"]["peak_strain"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        lo < 0.001 && hi >= peak,
+        "strain range [{lo}, {hi}], peak {peak}"
+    );
 }
 
 /// The report folder: report.html and SVGs that parse, with the plots' titles.

@@ -69,6 +69,21 @@ fn short_reproduction_writes_all_four_tables_and_the_figures() {
         c,
         ["one sensor", "one sensor", "tension", "compression", "both"]
     );
+    // No PI config runs far from its linear one: the inverse stays within the characterized
+    // strain range (Joint C's fitted tanh once inverted to 141.6° on a 45° joint).
+    for x in joints {
+        let rmse = |config: &str| {
+            x["estimation"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|r| r["config"] == config)
+                .unwrap()["rmse_deg"]
+                .as_f64()
+                .unwrap()
+        };
+        assert!(rmse("PI") < 1.5 * rmse("linear"), "{x}");
+    }
     // Closed loop brings the sensed angle to the desired one.
     let sensed = |k: &str| j[k]["sensed_vs_desired_rmse_deg"].as_f64().unwrap();
     assert!(

@@ -389,6 +389,8 @@ fn play_config(
             center_ohm: fit.model.center_ohm,
             min_ohm: obs.ohm_range.0,
             max_ohm: obs.ohm_range.1,
+            min_strain: Some(lo),
+            max_strain: Some(hi),
             initial_state: fit.initial_state,
         }),
         PlayKind::Continuous => ModelConfig::ContinuousPi(ContinuousPiConfig {

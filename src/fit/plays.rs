@@ -286,6 +286,8 @@ mod tests {
                         center_ohm: m.center_ohm,
                         min_ohm: 0.0,
                         max_ohm: 1e9,
+                        min_strain: None,
+                        max_strain: None,
                         initial_state: m0,
                     })
                     .unwrap();

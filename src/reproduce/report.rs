@@ -289,14 +289,15 @@ fn table_iv(page: &mut Page, r: &Reproduction) {
     page.text(
         "Each joint's linear and PI configs are dlw fit's, from its characterization run; the \
          estimates are the runtime estimator's over the random pattern, with the paper's \
-         processing (the PI model clamps to the characterized resistance range, a 1000-sample \
+         processing (the PI model clamps to the characterized resistance and strain ranges, a 1000-sample \
          moving average on the angle, whose 1 s delay the RMSE includes). Why they differ. The \
          simulated sensor is exactly a PI model with white noise, so the PI fit recovers it and \
-         beats the linear model on every joint; the paper's Joint C had a nearly linear sensor \
+         beats the linear model on Joints A and B; the paper's Joint C had a nearly linear sensor \
          whose PI fit did worse (7.57° against 5.25°). dlw's PI fit of Joint C's nearly linear \
-         tension sensor is ill-conditioned too (its curve in Fig. 4 above has steps the data \
-         do not), and its estimate is far worse than the linear one, as in the paper but by \
-         more. Much of the remaining error on Joints A and B is the moving average's lag on \
+         tension sensor also estimates worse than the linear one: its fitted tanh flattens \
+         near both ends of the characterized range, where a few ohms of model error become a \
+         large strain error (the inverse clamps the strain to the characterized range). \
+         Much of the remaining error on Joints A and B is the moving average's lag on \
          the random pattern's ramps, not the sensor model.",
     );
     for j in &r.joints {

@@ -84,6 +84,8 @@ impl PiCharacteristics {
             center_ohm: self.center_ohm,
             min_ohm: self.center_ohm - a1,
             max_ohm: self.center_ohm + a1,
+            min_strain: None,
+            max_strain: None,
             initial_state: 0.0,
         }
     }

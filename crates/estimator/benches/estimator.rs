@@ -32,6 +32,8 @@ fn pi_n10() -> PiConfig {
         center_ohm: 224.0e3,
         min_ohm: 200.0e3,
         max_ohm: 250.0e3,
+        min_strain: None,
+        max_strain: None,
         initial_state: 0.0,
     }
 }

@@ -396,6 +396,8 @@ mod tests {
             center_ohm: c.center_ohm,
             min_ohm: 0.0,
             max_ohm: 1.0e6,
+            min_strain: None,
+            max_strain: None,
             initial_state: 0.0,
         };
         let mut jumping = crate::GeneralizedPi::new(&switched).unwrap();

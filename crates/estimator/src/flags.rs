@@ -14,7 +14,8 @@ impl Flags {
     /// explains it (open or shorted sensor, disconnected lead, ADC saturation).
     pub const RAIL: Self = Self(1 << 0);
     /// The resistance lay outside the model's characterized range and was clamped to it
-    /// (`[min_ohm, max_ohm]` for the PI model; the strain bracket for the continuous PI model).
+    /// (`[min_ohm, max_ohm]` for the PI model; the strain bracket for the continuous PI model),
+    /// or the strain it inverted to lay outside the characterized strain range and was clamped.
     pub const RESISTANCE_CLAMPED: Self = Self(1 << 1);
     /// The argument of `atanh` in the PI inverse (Eq. 14) was clamped to `±ATANH_BOUND`.
     pub const ATANH_CLAMPED: Self = Self(1 << 2);

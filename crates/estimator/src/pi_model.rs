@@ -30,6 +30,21 @@ pub struct PiConfig {
     pub min_ohm: f64,
     /// Largest resistance seen while characterizing (Ω); the inverse clamps above it.
     pub max_ohm: f64,
+    /// Smallest strain seen while characterizing (fraction); the inverse never reports less.
+    /// Optional (older configs have none), but `dlw fit` always writes it: where the fitted tanh
+    /// flattens near the ends of the range, a resistance inside `[min_ohm, max_ohm]` that the
+    /// model misses by a little can invert to a strain far outside what was characterized.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub min_strain: Option<f64>,
+    /// Largest strain seen while characterizing (fraction); the inverse never reports more.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub max_strain: Option<f64>,
     /// Initial state `M₀` of every forward play (Eq. 9), in units of `ν`.
     #[cfg_attr(feature = "serde", serde(default))]
     pub initial_state: f64,
@@ -40,7 +55,7 @@ impl PiConfig {
     ///
     /// # Errors
     /// As [`PiOperator::new`] and [`TanhInput::new`]; a centre that is not finite;
-    /// `min_ohm ≥ max_ohm`.
+    /// `min_ohm ≥ max_ohm`; a strain bound that is not finite, or `min_strain ≥ max_strain`.
     pub fn validate(&self) -> Result<(), EstimatorError> {
         self.parts().map(|_| ())
     }
@@ -55,7 +70,22 @@ impl PiConfig {
         finite("center_strain", self.center_strain)?;
         finite("center_ohm", self.center_ohm)?;
         range("min_ohm", self.min_ohm, "max_ohm", self.max_ohm)?;
+        let (min_strain, max_strain) = self.strain_bounds();
+        match (self.min_strain, self.max_strain) {
+            (Some(_), Some(_)) => range("min_strain", min_strain, "max_strain", max_strain)?,
+            (Some(v), None) => finite("min_strain", v).map(|_| ())?,
+            (None, Some(v)) => finite("max_strain", v).map(|_| ())?,
+            (None, None) => (),
+        }
         Ok((input, plays))
+    }
+
+    /// `[min_strain, max_strain]`, unbounded where absent.
+    fn strain_bounds(&self) -> (f64, f64) {
+        (
+            self.min_strain.unwrap_or(f64::NEG_INFINITY),
+            self.max_strain.unwrap_or(f64::INFINITY),
+        )
     }
 }
 
@@ -130,6 +160,8 @@ pub struct PiInverse {
     center_ohm: f64,
     min_ohm: f64,
     max_ohm: f64,
+    min_strain: f64,
+    max_strain: f64,
     previous_mu: f64,
     previous_loading: bool,
     last_strain: f64,
@@ -150,6 +182,8 @@ impl PiInverse {
             center_ohm: config.center_ohm,
             min_ohm: config.min_ohm,
             max_ohm: config.max_ohm,
+            min_strain: config.strain_bounds().0,
+            max_strain: config.strain_bounds().1,
             previous_mu: f64::NEG_INFINITY,
             previous_loading: true,
             last_strain: config.center_strain,
@@ -168,7 +202,8 @@ impl PiInverse {
 
     /// Feeds one resistance sample (Ω) and returns the strain and what happened:
     /// [`Flags::RESISTANCE_CLAMPED`] when `R` lay outside `[min_ohm, max_ohm]` (it is clamped,
-    /// as in the paper's Section IV-C), [`Flags::ATANH_CLAMPED`], [`Flags::REVERSAL`] when the
+    /// as in the paper's Section IV-C) or the strain it inverts to outside `[min_strain,
+    /// max_strain]` (the strain is clamped), [`Flags::ATANH_CLAMPED`], [`Flags::REVERSAL`] when the
     /// branch switched. A non-finite `R` returns the last strain with
     /// [`Flags::NON_FINITE`] and [`Flags::HELD`] and changes nothing.
     #[inline]
@@ -188,12 +223,16 @@ impl PiInverse {
         let mu = self.plays.step(ohm - self.center_ohm);
         let loading = mu >= self.previous_mu;
         let (x, atanh_clamped) = self.input.nu_inverse(mu, loading);
-        let flags = Flags::when(below | above, Flags::RESISTANCE_CLAMPED)
-            | Flags::when(atanh_clamped, Flags::ATANH_CLAMPED)
+        let strain = x + self.center_strain;
+        let clamped = strain.clamp(self.min_strain, self.max_strain);
+        let flags = Flags::when(
+            below | above | (clamped != strain),
+            Flags::RESISTANCE_CLAMPED,
+        ) | Flags::when(atanh_clamped, Flags::ATANH_CLAMPED)
             | Flags::when(loading != self.previous_loading, Flags::REVERSAL);
         self.previous_mu = mu;
         self.previous_loading = loading;
-        self.last_strain = x + self.center_strain;
+        self.last_strain = clamped;
         (self.last_strain, flags)
     }
 
@@ -231,6 +270,8 @@ mod tests {
             center_ohm: r_c,
             min_ohm: 200.0e3,
             max_ohm: 250.0e3,
+            min_strain: None,
+            max_strain: None,
             initial_state: 0.0,
         }
     }
@@ -262,6 +303,50 @@ mod tests {
         assert_eq!(high, at_max);
         let (_, flags) = inv.step(-5.0);
         assert!(flags.contains(Flags::RESISTANCE_CLAMPED));
+    }
+
+    /// A resistance inside `[min_ohm, max_ohm]` can invert, where the tanh flattens, to a strain
+    /// far beyond the characterized range; with the strain range set, the inverse stops at its
+    /// end and flags it, and inside the range it changes nothing.
+    #[test]
+    fn the_strain_is_clamped_to_the_characterized_range() {
+        let open = joint_a();
+        let bounded = PiConfig {
+            min_strain: Some(0.0),
+            max_strain: Some(0.012),
+            ..open
+        };
+        let mut free = PiInverse::new(&open).unwrap();
+        let mut clamped = PiInverse::new(&bounded).unwrap();
+        // 249.9 kΩ is inside [200, 250] kΩ but near the tanh's asymptote (224 + 26 kΩ).
+        for ohm in [226.0e3, 240.0e3, 249.9e3, 235.0e3, 210.0e3] {
+            let (a, fa) = free.step(ohm);
+            let (b, fb) = clamped.step(ohm);
+            if !(0.0..=0.012).contains(&a) {
+                assert_eq!(b, a.clamp(0.0, 0.012), "{ohm} Ω: {a} unclamped");
+                assert!(fb.contains(Flags::RESISTANCE_CLAMPED));
+                assert!(!fa.contains(Flags::RESISTANCE_CLAMPED));
+            } else {
+                assert_eq!((a, fa), (b, fb), "{ohm} Ω");
+            }
+        }
+        let mut probe = PiInverse::new(&open).unwrap();
+        assert!(
+            probe.step(249.9e3).0 > 0.012,
+            "the probe must leave the range above"
+        );
+        assert!(probe.step(210.0e3).0 < 0.0, "and below");
+        let mut c = bounded;
+        c.max_strain = Some(0.0);
+        assert!(matches!(
+            c.validate(),
+            Err(EstimatorError::EmptyRange { .. })
+        ));
+        c.max_strain = Some(f64::NAN);
+        assert!(matches!(
+            c.validate(),
+            Err(EstimatorError::NotFinite { .. })
+        ));
     }
 
     #[test]

@@ -21,6 +21,8 @@ fn pi() -> PiConfig {
         center_ohm: 224.0e3,
         min_ohm: 205.0e3,
         max_ohm: 250.0e3,
+        min_strain: None,
+        max_strain: None,
         initial_state: 0.0,
     }
 }
@@ -55,9 +57,15 @@ fn configs() -> Vec<EstimatorConfig> {
     };
     let mut two =
         EstimatorConfig::nominal_linear(joint_c(), 1.28, 74.0e3, nominal_divider()).unwrap();
+    // With the characterized strain range `dlw fit` writes (the first PI config has none, as
+    // older configs do).
     two.second_sensor = Some(SensorConfig::new(
         Divider::new(102.5e3, 5.0).unwrap(),
-        ModelConfig::Pi(pi()),
+        ModelConfig::Pi(PiConfig {
+            min_strain: Some(-0.001),
+            max_strain: Some(0.0146),
+            ..pi()
+        }),
     ));
     two.input_filter = FilterConfig::MovingAverage { samples: 500 };
     vec![linear, with_pi, with_continuous, two]

@@ -23,6 +23,8 @@ fn pi() -> ModelConfig {
         center_ohm: 224.0e3,
         min_ohm: 205.0e3,
         max_ohm: 250.0e3,
+        min_strain: None,
+        max_strain: None,
         initial_state: 0.0,
     })
 }

@@ -126,6 +126,8 @@ fn tanh_model(weights: &[f64], radii: &[f64], loading: [f64; 4], unloading: [f64
         center_ohm: 100.0e3,
         min_ohm: -1.0e9,
         max_ohm: 1.0e9,
+        min_strain: None,
+        max_strain: None,
         initial_state: 0.0,
     }
 }
