@@ -3,9 +3,17 @@
 //! the nominal scenario; clean controls; two effects at once. Every case is printed; the
 //! figures are asserted below and recorded in `docs/discovery.md`.
 //!
-//! CI runs 3 seeds per effect and joint and 10 controls per joint. The full size (10 seeds, 50
-//! controls per joint) runs with `DLW_DISCOVER_FULL=1 cargo test --release --test
-//! discover_matrix -- --nocapture`.
+//! Joint A's recordings are 300 s; Joint C's, whose sensor is about 30 times less sensitive
+//! (GF 1.28 against 15.3, 35 Ω/° against 1.1 kΩ/°), are the paper's 3000 s random run.
+//!
+//! The held-out gap of the affected channel is measured above the noise floor: every effect
+//! case has a clean twin, the same seed without the effect, whose noise the simulator draws
+//! identically (its own random stream), so the twin's held-out RMSE is exactly the floor that
+//! no model can remove, and the gap is `√(RMSE² − floor²)`.
+//!
+//! CI runs 3 seeds per effect and joint and 10 controls per joint besides the twins. The full
+//! size (10 seeds, 50 controls per joint) runs with `DLW_DISCOVER_FULL=1 cargo test --release
+//! --test discover_matrix -- --nocapture`.
 
 mod common;
 use common::shipped_design;
@@ -52,12 +60,28 @@ struct Outcome {
     name: String,
     named: Vec<(String, String)>,
     ambiguous: bool,
-    shrink: Option<f64>,
+    /// Held-out RMSE per channel, before and after.
+    gaps: Vec<(String, f64, f64)>,
+}
+
+impl Outcome {
+    fn gap(&self, channel: &str) -> (f64, f64) {
+        self.gaps
+            .iter()
+            .find(|g| g.0 == channel)
+            .map(|g| (g.1, g.2))
+            .unwrap()
+    }
+}
+
+/// The gap above the noise floor: `√(RMSE² − floor²)`, 0 below it.
+fn above(rmse: f64, floor: f64) -> f64 {
+    (rmse * rmse - floor * floor).max(0.0).sqrt()
 }
 
 fn run(dir: &Path, case: &Case) -> Outcome {
     let bsn = case.design == "joint-c.toml";
-    let duration = if bsn { "600" } else { "300" };
+    let duration = if bsn { "3000" } else { "300" };
     let tag = if case.effects.is_empty() {
         "clean".to_owned()
     } else {
@@ -125,22 +149,25 @@ fn run(dir: &Path, case: &Case) -> Outcome {
             )
         })
         .collect();
-    let shrink = case.effects.first().map(|e| {
-        let g = json["gaps"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|g| g["channel"] == channel(e))
-            .unwrap();
-        1.0 - g["after"].as_f64().unwrap() / g["before"].as_f64().unwrap()
-    });
+    let gaps = json["gaps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| {
+            (
+                g["channel"].as_str().unwrap().to_owned(),
+                g["before"].as_f64().unwrap(),
+                g["after"].as_f64().unwrap(),
+            )
+        })
+        .collect();
     // Nothing is written but the scenario and the report, and the scenario simulates.
     assert!(out.join("report.html").is_file() && out.join("scenario.toml").is_file());
     Outcome {
         name,
         named,
         ambiguous: !json["ambiguous"].as_array().unwrap().is_empty(),
-        shrink,
+        gaps,
     }
 }
 
@@ -168,11 +195,15 @@ fn discovery_matrix() {
                 });
             }
         }
-        for s in 0..controls {
+        // The clean twins of the effect cases, which are controls too, and more controls.
+        for seed in (0..seeds)
+            .map(|s| 1000 + s)
+            .chain((0..controls).map(|s| 2000 + s))
+        {
             cases.push(Case {
                 design,
                 effects: vec![],
-                seed: 2000 + s,
+                seed,
             });
         }
     }
@@ -189,6 +220,13 @@ fn discovery_matrix() {
             });
         }
     }
+    for s in 0..seeds.min(3) {
+        cases.push(Case {
+            design: "joint-a.toml",
+            effects: vec![],
+            seed: 3000 + s,
+        });
+    }
     let dir = tempfile::tempdir().unwrap();
     let queue = Mutex::new(cases.iter());
     let results = Mutex::new(Vec::new());
@@ -203,18 +241,35 @@ fn discovery_matrix() {
         }
     });
     let results = results.into_inner().unwrap();
+    let twin = |case: &Case| {
+        results
+            .iter()
+            .find(|(c, _)| c.effects.is_empty() && c.design == case.design && c.seed == case.seed)
+            .map(|(_, o)| o)
+            .unwrap()
+    };
     let (mut single, mut right, mut wrong, mut false_alarms, mut clean) = (0, 0, Vec::new(), 0, 0);
     let mut both = (0, 0);
-    let mut shrinks = Vec::new();
+    let (mut shrinks, mut rmse_shrinks) = (Vec::new(), Vec::new());
     for (case, o) in &results {
+        // The affected channel's held-out RMSE before and after, its clean twin's, the gap
+        // above that floor before and after.
+        let gap = case.effects.first().map(|e| {
+            let ch = channel(e);
+            let (before, after) = o.gap(ch);
+            let floor = twin(case).gap(ch).0;
+            let shrink = 1.0 - above(after, floor) / above(before, floor);
+            (ch, before, after, floor, shrink, 1.0 - after / before)
+        });
         eprintln!(
             "{:<28} named {:?}{}{}",
             o.name,
             o.named,
             if o.ambiguous { " (ambiguous left)" } else { "" },
-            o.shrink.map_or(String::new(), |s| format!(
-                ", gap shrink {:.0} %",
-                100.0 * s
+            gap.map_or(String::new(), |(ch, b, a, f, s, r)| format!(
+                ", {ch} RMSE {b:.4} → {a:.4} (floor {f:.4}): gap shrink {:.0} %, RMSE shrink {:.0} %",
+                100.0 * s,
+                100.0 * r
             ))
         );
         let truth: Vec<(String, String)> = case
@@ -239,7 +294,9 @@ fn discovery_matrix() {
                 if o.named.first() == truth.first() {
                     right += 1;
                 }
-                shrinks.push(o.shrink.unwrap());
+                let (.., s, r) = gap.unwrap();
+                shrinks.push(s);
+                rmse_shrinks.push(r);
             }
             _ => {
                 both.0 += 1;
@@ -249,28 +306,29 @@ fn discovery_matrix() {
             }
         }
     }
-    shrinks.sort_by(f64::total_cmp);
-    let median = shrinks[shrinks.len() / 2];
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let (median, rmse_median) = (median(shrinks), median(rmse_shrinks));
     eprintln!(
-        "matrix: right effect on the right channel {right}/{single} ({:.0} %), both effects named {}/{}, clean controls with a name {false_alarms}/{clean}, wrong names {}, median held-out gap shrink {:.0} %",
+        "matrix: right effect on the right channel {right}/{single} ({:.0} %), both effects named {}/{}, clean controls with a name {false_alarms}/{clean}, wrong names {}, median held-out gap shrink {:.0} % above the floor ({:.0} % in RMSE)",
         100.0 * right as f64 / single as f64,
         both.1,
         both.0,
         wrong.len(),
-        100.0 * median
+        100.0 * median,
+        100.0 * rmse_median
     );
     // The issue's figures. Never a wrong name; no name on the clean controls (≥ 99 %).
     assert!(wrong.is_empty(), "wrong names: {wrong:?}");
     assert_eq!(false_alarms, 0, "clean controls named something");
-    // The issue asks ≥ 95 % right and a median shrink ≥ 50 %. Measured at these sizes: 86 %
-    // (36/42; the misses are Joint C's three saturation cases, two of its three hysteresis
-    // cases and one creep case left ambiguous: Joint C's sensor reads ~4° of angle of noise
-    // per 25 Hz sample) and a median RMSE shrink of 42 % (the RMSE keeps the noise floor, which
-    // no model removes). The test holds the measured level so that a regression fails;
-    // docs/discovery.md and the issue's note say the targets are not met.
+    // The issue's acceptance figures: ≥ 95 % right, a median gap shrink ≥ 50 %. Measured at
+    // CI size: 41/42 (98 %; the miss is Joint C's hysteresis seed 1002, left ambiguous against
+    // rate) and 93 % above the floor (42 % in RMSE, which keeps the floor).
     assert!(
-        right as f64 >= 0.8 * single as f64,
+        right as f64 >= 0.95 * single as f64,
         "{right} of {single} right"
     );
-    assert!(median >= 0.3, "median shrink {median}");
+    assert!(median >= 0.5, "median gap shrink {median}");
 }

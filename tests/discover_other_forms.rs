@@ -11,8 +11,15 @@ use common::shipped_design;
 
 use std::path::Path;
 
-/// Recording length (s).
-const DURATION_S: f64 = 300.0;
+/// Recording length (s): Joint A's; Joint C's insensitive sensor (GF 1.28) gets the paper's
+/// 3000 s random run, as in `tests/discover_matrix.rs`.
+fn duration_s(design: &str) -> f64 {
+    if design == "joint-c.toml" {
+        3000.0
+    } else {
+        300.0
+    }
+}
 
 /// Runs `dlw discover --json` on a generated recording; returns the JSON.
 fn discover(dir: &Path, design: &str, bench: &Bench, name: &str) -> serde_json::Value {
@@ -52,7 +59,7 @@ fn named(report: &serde_json::Value) -> Vec<(String, String)> {
 
 /// Each effect alone on Joint A (UAN) and, for the sensor effects, on Joint C's sensor 2; plus
 /// clean recordings. Prints every case; asserts no wrong name, no name on the clean ones, and
-/// the right first name on the right channel in at least three quarters of the effect cases.
+/// the right first name on the right channel in at least five sixths of the effect cases.
 #[test]
 fn discover_names_effects_of_other_functional_forms() {
     let dir = tempfile::tempdir().unwrap();
@@ -72,7 +79,7 @@ fn discover_names_effects_of_other_functional_forms() {
     for (design, effect, seed) in cases {
         let bench = Bench {
             effects: effect.into_iter().collect(),
-            duration_s: DURATION_S,
+            duration_s: duration_s(design),
             seed,
         };
         let name = format!(
@@ -107,12 +114,10 @@ fn discover_names_effects_of_other_functional_forms() {
         false_names.is_empty(),
         "clean recordings named: {false_names:?}"
     );
-    // Measured: 9 of 12, never a wrong name. The misses are Joint C's saturation, rate and
-    // creep: its sensor (GF 1.28) reads ~4° of angle of noise per sample at 25 Hz, and these
-    // forms at these sizes stay within it. The 95 % is not met here
-    // (docs/discovery.md); the test holds the measured level.
+    // Measured: 11 of 12, never a wrong name (the miss: Joint C's two-term creep, named
+    // nothing). The test holds five sixths.
     assert!(
-        right * 4 >= effect_cases * 3,
+        right * 6 >= effect_cases * 5,
         "{right} of {effect_cases} effect cases named right"
     );
 }
@@ -134,7 +139,7 @@ fn write_samples() {
     for (design, effect) in cases {
         let bench = Bench {
             effects: effect.into_iter().collect(),
-            duration_s: DURATION_S,
+            duration_s: duration_s(design),
             seed,
         };
         let name = format!(

@@ -40,6 +40,49 @@ pub const CORRELATION_WINDOW_S: f64 = 2.0;
 /// At most this many effects are named.
 pub const MAX_EFFECTS: usize = 4;
 
+/// Golden-section steps of [`refine`]: the bracket shrinks to 0.618¹⁰ ≈ 0.8 % of its width.
+const REFINE_STEPS: usize = 10;
+
+/// `term` with its scale moved, on a log scale between its grid neighbours, to where the
+/// training sum of squares `ss_of` is least (golden-section search); `term` itself when it has
+/// no scale or nothing fits better than its `ss`.
+fn refine(term: Term, ss: f64, grid: &[Term], ss_of: &dyn Fn(&Term) -> Option<f64>) -> Term {
+    let Some((below, above)) = term.neighbours(grid) else {
+        return term;
+    };
+    let at = |log_v: f64| {
+        let t = term.with_scale(log_v.exp());
+        let ss = ss_of(&t).filter(|v| v.is_finite()).unwrap_or(f64::INFINITY);
+        (t, ss)
+    };
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (below.ln(), above.ln());
+    let mut c = b - ratio * (b - a);
+    let mut d = a + ratio * (b - a);
+    let (mut fc, mut fd) = (at(c), at(d));
+    for _ in 0..REFINE_STEPS {
+        if fc.1 < fd.1 {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - ratio * (b - a);
+            fc = at(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + ratio * (b - a);
+            fd = at(d);
+        }
+    }
+    let best = if fc.1 < fd.1 { fc } else { fd };
+    if best.1 < ss {
+        best.0
+    } else {
+        term
+    }
+}
+
 /// Why discovery refused.
 #[derive(Debug, thiserror::Error)]
 pub enum DiscoverError {
@@ -166,6 +209,8 @@ pub struct Gap {
     pub after_deg: Option<f64>,
     /// RMSE after each named effect on this channel, in order.
     pub steps: Vec<(Effect, f64)>,
+    /// The noise's RMS during the rest (channel unit).
+    pub noise_floor: f64,
 }
 
 /// A channel's state for the report: noise, the fitted models, where it disagreed.
@@ -325,6 +370,27 @@ pub fn discover(
         Some((fitted, ss, rmse, n))
     };
 
+    let train_ss = |m: &ChannelModel, term: &Term| {
+        let trial = m.with(term.clone());
+        fit(
+            &trial.design(&data, &proxies.borrow().0),
+            &noises[&m.channel],
+            &train,
+        )
+        .map(|f| f.train_ss)
+    };
+    let lags = (CORRELATION_WINDOW_S / data.dt_s) as usize;
+    // The evidence for adding `term` to `from`, as the candidates are scored.
+    let gain = |from: &ChannelModel, term: &Term| -> Option<f64> {
+        let noise = &noises[&from.channel];
+        let (_, from_ss, _, n) = evaluate(from, noise)?;
+        let with = from.with(term.clone());
+        let (fitted, ss, _, _) = evaluate(&with, noise)?;
+        let residual = fitted.residual(&with.design(&data, &proxies.borrow().0));
+        let tau = correlation_time(&residual, noise, &train, lags);
+        let e = 0.5 * n as f64 * (from_ss / ss).ln() / tau;
+        e.is_finite().then_some(e)
+    };
     let mut discovered: Vec<Discovery> = Vec::new();
     let mut candidates = Vec::new();
     let mut ambiguous = Vec::new();
@@ -352,14 +418,12 @@ pub fn discover(
                 if m.terms.iter().any(|t| t.effect() == effect) {
                     continue;
                 }
-                // The shape that fits the training blocks best, then its held-out score.
+                // The grid's shape that fits the training blocks best, then its held-out
+                // score. Every candidate is scored on the same grid, so none is favoured by a
+                // finer search; the winner's shape is refined once it is named.
                 let chosen = Term::grid(effect, span)
                     .into_iter()
-                    .filter_map(|term| {
-                        let trial = m.with(term.clone());
-                        let f = fit(&trial.design(&data, &proxies.borrow().0), noise, &train)?;
-                        Some((term, f.train_ss))
-                    })
+                    .filter_map(|term| Some((term.clone(), train_ss(m, &term)?)))
                     .min_by(|a, b| a.1.total_cmp(&b.1));
                 let Some((term, _)) = chosen else { continue };
                 let trial = m.with(term.clone());
@@ -413,7 +477,23 @@ pub fn discover(
             if top.evidence < THRESHOLD {
                 continue;
             }
-            let clear = runner.map_or(true, |(_, e)| top.evidence >= CLEAR_RATIO * e.max(0.0));
+            // Clear: ahead of the runner-up by CLEAR_RATIO, or, against every contender
+            // closer than that, nested evidence settles it: the top candidate still clears
+            // the threshold added to a model that has the contender, and the contender no
+            // longer does added to a model that has the top one (it explains what the
+            // contender explains, and more).
+            let ahead = runner.map_or(true, |(_, e)| top.evidence >= CLEAR_RATIO * e.max(0.0));
+            let clear = ahead
+                || scored
+                    .iter()
+                    .skip(1)
+                    .filter(|c| c.evidence * CLEAR_RATIO > top.evidence)
+                    .filter(|c| !(top.effect == Effect::Saturation && c.effect == Effect::Hysteresis))
+                    .all(|c| {
+                        let top_after = gain(&m.with(c.term.clone()), &top.term);
+                        let rival_after = gain(&m.with(top.term.clone()), &c.term);
+                        matches!((top_after, rival_after), (Some(t), Some(r)) if t >= THRESHOLD && r < THRESHOLD)
+                    });
             if clear {
                 best.push((top.clone(), runner));
             } else {
@@ -435,6 +515,19 @@ pub fn discover(
             break;
         };
         let ch = winner.channel;
+        // The named effect's one continuous shape parameter, refined between its grid
+        // neighbours: a coarse width or time constant leaves a residual for which another
+        // effect would be named next on a long recording (Joint C's backlash at 3000 s: then
+        // relaxation).
+        let winner = Candidate {
+            term: {
+                let m = &models[&ch];
+                let ss = train_ss(m, &winner.term).unwrap_or(f64::INFINITY);
+                let grid = Term::grid(winner.effect, span_of(ch));
+                refine(winner.term.clone(), ss, &grid, &|t| train_ss(m, t))
+            },
+            ..winner
+        };
         let updated = models[&ch].with(winner.term.clone());
         let Some((fitted, _, rmse, _)) = evaluate(&updated, &noises[&ch]) else {
             break;
@@ -496,6 +589,7 @@ pub fn discover(
             before_deg,
             after_deg,
             steps: steps.get(&ch).cloned().unwrap_or_default(),
+            noise_floor: noise.sigma,
         });
         reports.push(ChannelReport {
             channel: ch,

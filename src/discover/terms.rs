@@ -172,6 +172,65 @@ impl Term {
         }
     }
 
+    /// The term's one continuous shape parameter (a width, a saturation strain, a time
+    /// constant), for refining between grid points; `None` for the hysteresis and the linear
+    /// drift, whose shapes are not one number.
+    pub fn scale(&self) -> Option<f64> {
+        match *self {
+            Term::Backlash { half_mm } => Some(half_mm),
+            Term::Relaxation { tau_s } | Term::Creep { tau_s } | Term::Rate { tau_s, .. } => {
+                Some(tau_s)
+            }
+            Term::Saturation { strain } => Some(strain),
+            Term::Drift { settle_tau_s } => settle_tau_s,
+            Term::Hysteresis { .. } => None,
+        }
+    }
+
+    /// The same term with its [`Term::scale`] set to `value` (unchanged if it has none).
+    pub fn with_scale(&self, value: f64) -> Term {
+        let mut t = self.clone();
+        match &mut t {
+            Term::Backlash { half_mm: v }
+            | Term::Relaxation { tau_s: v }
+            | Term::Creep { tau_s: v }
+            | Term::Rate { tau_s: v, .. }
+            | Term::Saturation { strain: v } => *v = value,
+            Term::Drift {
+                settle_tau_s: Some(v),
+            } => *v = value,
+            Term::Drift { settle_tau_s: None } | Term::Hysteresis { .. } => {}
+        }
+        t
+    }
+
+    /// The grid points next to this term's scale among the grid's terms of the same form
+    /// (the rate's signed or log form, the drift's settling form): `(below, above)`, a factor
+    /// of 2 beyond the grid's ends.
+    pub fn neighbours(&self, grid: &[Term]) -> Option<(f64, f64)> {
+        let v = self.scale()?;
+        let same_form = |t: &&Term| match (self, *t) {
+            (Term::Rate { signed: a, .. }, Term::Rate { signed: b, .. }) => a == b,
+            _ => t.effect() == self.effect(),
+        };
+        let scales: Vec<f64> = grid
+            .iter()
+            .filter(same_form)
+            .filter_map(Term::scale)
+            .collect();
+        let below = scales
+            .iter()
+            .copied()
+            .filter(|&s| s < v)
+            .fold(v / 2.0, f64::max);
+        let above = scales
+            .iter()
+            .copied()
+            .filter(|&s| s > v)
+            .fold(2.0 * v, f64::min);
+        Some((below, above))
+    }
+
     /// How the term reads in a report.
     pub fn describe(&self) -> String {
         match self {
