@@ -114,8 +114,8 @@ fn discover_names_effects_of_other_functional_forms() {
         false_names.is_empty(),
         "clean recordings named: {false_names:?}"
     );
-    // Measured: 11 of 12, never a wrong name (the miss: Joint C's two-term creep, named
-    // nothing). The test holds five sixths.
+    // Measured: 12 of 12, never a wrong name (docs/discovery.md). The test holds five sixths:
+    // these forms are not the simulator's, and a miss is not a wrong name.
     assert!(
         right * 6 >= effect_cases * 5,
         "{right} of {effect_cases} effect cases named right"

@@ -468,11 +468,16 @@ pub fn discover(
             prefer_simpler(&mut scored);
             let Some(top) = scored.first() else { continue };
             // Hysteresis bends like saturation (its tanh curve): it is no rival to a
-            // saturation that beats it.
+            // saturation that beats it. Creep and the signed rate are one family whose time
+            // constant tells them apart (`Term::same_family`): no rivals either.
+            let rival = |c: &&Candidate| {
+                let bends = top.effect == Effect::Saturation && c.effect == Effect::Hysteresis;
+                !(bends || top.term.same_family(&c.term))
+            };
             let runner = scored
                 .iter()
                 .skip(1)
-                .find(|c| !(top.effect == Effect::Saturation && c.effect == Effect::Hysteresis))
+                .find(rival)
                 .map(|c| (c.effect, c.evidence));
             if top.evidence < THRESHOLD {
                 continue;
@@ -488,7 +493,7 @@ pub fn discover(
                     .iter()
                     .skip(1)
                     .filter(|c| c.evidence * CLEAR_RATIO > top.evidence)
-                    .filter(|c| !(top.effect == Effect::Saturation && c.effect == Effect::Hysteresis))
+                    .filter(rival)
                     .all(|c| {
                         let top_after = gain(&m.with(c.term.clone()), &top.term);
                         let rival_after = gain(&m.with(top.term.clone()), &c.term);
@@ -724,4 +729,28 @@ fn same_rig(a: &Recording, b: &Recording) -> Result<(), DiscoverError> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The refined scale is where the sum of squares is least, between the grid neighbours,
+    /// to within the golden-section bracket; a term whose grid point is best stays.
+    #[test]
+    fn refine_finds_the_minimum_between_the_grid_points() {
+        let grid = Term::grid(Effect::Backlash, 1.0);
+        let best = 0.031;
+        let ss = |t: &Term| t.scale().map(|v| 1.0 + (v.ln() - f64::ln(best)).powi(2));
+        let start = Term::Backlash { half_mm: 0.025 };
+        let refined = refine(start.clone(), ss(&start).unwrap(), &grid, &ss);
+        let v = refined.scale().unwrap();
+        assert!((v / best - 1.0).abs() < 0.01, "{v}");
+        // Nothing better than the grid point: it stays.
+        let flat = |_: &Term| Some(5.0);
+        assert_eq!(refine(start.clone(), 1.0, &grid, &flat), start);
+        // No scale (the hysteresis): unchanged.
+        let h = Term::grid(Effect::Hysteresis, 0.01).remove(0);
+        assert_eq!(refine(h.clone(), 1.0, &grid, &ss), h);
+    }
 }

@@ -16,7 +16,9 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
          noise model is an autoregressive process frozen from the rest at the start, and every \
          candidate effect is scored by its held-out gain in whitened log-likelihood (nats). An \
          effect is named when its evidence exceeds {THRESHOLD} and {CLEAR_RATIO} times the \
-         runner-up's on its channel; then the search repeats on what remains. {} samples at \
+         runner-up's on its channel, or, where a rival comes closer, when it still clears \
+         {THRESHOLD} added after the rival and the rival no longer does added after it; its \
+         shape is then refined and the search repeats on what remains. {} samples at \
          {:.0} Hz after block averaging.",
         outcome.samples,
         1.0 / outcome.dt_s
@@ -120,6 +122,11 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
         ]);
     }
     page.table(cands);
+    page.text(
+        "Each candidate's shape is its best point on the search grid; a named effect's width, \
+         strain or time constant is then refined between the grid points (its parameters \
+         under Result).",
+    );
     for c in &outcome.channels {
         channel_section(&mut page, c);
     }

@@ -218,17 +218,22 @@ impl Term {
             .filter(same_form)
             .filter_map(Term::scale)
             .collect();
-        let below = scales
-            .iter()
-            .copied()
-            .filter(|&s| s < v)
-            .fold(v / 2.0, f64::max);
-        let above = scales
-            .iter()
-            .copied()
-            .filter(|&s| s > v)
-            .fold(2.0 * v, f64::min);
-        Some((below, above))
+        let below = scales.iter().copied().filter(|&s| s < v).reduce(f64::max);
+        let above = scales.iter().copied().filter(|&s| s > v).reduce(f64::min);
+        Some((below.unwrap_or(v / 2.0), above.unwrap_or(2.0 * v)))
+    }
+
+    /// Whether two terms are one family that differs only in its time constant: a lag of the
+    /// strain and a lag of its rate, `LP_τ(x) = x − τ·LP_τ(ẋ)`, so that with the line's slope
+    /// free, `creep` of time constant τ and the signed `rate` of the same τ are the same model.
+    /// Which of the two a recording shows is the time constant, which each one's own grid
+    /// (creep slow, rate fast) fits best: they are not rivals.
+    pub fn same_family(&self, other: &Term) -> bool {
+        matches!(
+            (self, other),
+            (Term::Creep { .. }, Term::Rate { signed: true, .. })
+                | (Term::Rate { signed: true, .. }, Term::Creep { .. })
+        )
     }
 
     /// How the term reads in a report.
@@ -293,4 +298,45 @@ pub fn rate(x: &[f64], dt_s: f64) -> Vec<f64> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_lag_of_the_strain_and_a_lag_of_its_rate_are_one_family() {
+        let creep = Term::Creep { tau_s: 10.0 };
+        let signed = Term::Rate {
+            signed: true,
+            tau_s: 3.0,
+        };
+        let log = Term::Rate {
+            signed: false,
+            tau_s: 3.0,
+        };
+        assert!(creep.same_family(&signed) && signed.same_family(&creep));
+        assert!(!creep.same_family(&log) && !log.same_family(&creep));
+        assert!(!creep.same_family(&Term::Drift { settle_tau_s: None }));
+    }
+
+    #[test]
+    fn neighbours_are_the_grid_points_of_the_same_form() {
+        let grid = Term::grid(Effect::Rate, 0.01);
+        let t = Term::Rate {
+            signed: false,
+            tau_s: 1.0,
+        };
+        assert_eq!(t.neighbours(&grid), Some((0.3, 3.0)));
+        // At the grid's end, a factor of 2 beyond it.
+        let end = Term::Creep { tau_s: 80.0 };
+        assert_eq!(
+            end.neighbours(&Term::grid(Effect::Creep, 0.01)),
+            Some((40.0, 160.0))
+        );
+        assert_eq!(Term::Drift { settle_tau_s: None }.neighbours(&grid), None);
+        let moved = Term::Backlash { half_mm: 0.1 }.with_scale(0.2);
+        assert_eq!(moved, Term::Backlash { half_mm: 0.2 });
+        assert_eq!(moved.scale(), Some(0.2));
+    }
 }
