@@ -316,8 +316,13 @@ pub fn correlation_time(residual: &[f64], noise: &ArNoise, mask: &[bool], max_la
     if var.is_nan() || var <= 0.0 {
         return 1.0;
     }
-    let mut tau = 1.0;
-    for k in 1..=max_lag {
+    // Past `max_lag`, the sum goes on as long as the window stays under a hundredth of the
+    // samples (the partial sums' noise grows as √(window/n)), and the largest partial sum counts:
+    // noise slower than the rest could show leaves correlation there.
+    let longest = max_lag.max((idx.len() / LONG_WINDOW_DIVISOR).min(LONG_WINDOW_FACTOR * max_lag));
+    let mut tau: f64 = 1.0;
+    let mut largest: f64 = 1.0;
+    for k in 1..=longest {
         let (mut c, mut m) = (0.0, 0usize);
         for &i in &idx {
             if i + k < w.len() && mask[i + k] {
@@ -330,9 +335,17 @@ pub fn correlation_time(residual: &[f64], noise: &ArNoise, mask: &[bool], max_la
         }
         let rho = c / m as f64 / var;
         tau += 2.0 * rho;
+        if k >= max_lag {
+            largest = largest.max(tau);
+        }
     }
-    tau.max(1.0)
+    largest.max(1.0)
 }
+
+/// The long window is at most this fraction (1/…) of the samples…
+pub const LONG_WINDOW_DIVISOR: usize = 100;
+/// …and at most this many times the base window.
+pub const LONG_WINDOW_FACTOR: usize = 15;
 
 /// Whitened sum of squares and plain RMS of `residual` over `mask`.
 pub fn score(residual: &[f64], noise: &ArNoise, mask: &[bool]) -> (f64, f64, usize) {
@@ -346,4 +359,31 @@ pub fn score(residual: &[f64], noise: &ArNoise, mask: &[bool]) -> (f64, f64, usi
         }
     }
     (ss, (plain / n.max(1) as f64).sqrt(), n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::discover::noise::tests::ar1;
+
+    /// White residual: about one sample per sample. Noise slower than the base window (an
+    /// AR(1) with a correlation time of 50 samples, whitened as if white, base window 10 lags)
+    /// counts as its integrated autocorrelation, `(1 + φ)/(1 − φ)` = 39, which the base window
+    /// alone misses by half.
+    #[test]
+    fn slow_leftover_correlation_counts_beyond_the_base_window() {
+        let n = 40_000;
+        let all = vec![true; n];
+        let white = ArNoise::white(1.0);
+        let tau = correlation_time(&ar1(0.0, n), &white, &all, 10);
+        assert!((tau - 1.0).abs() < 0.3, "white: {tau}");
+        let slow = ar1(0.95, n);
+        let tau = correlation_time(&slow, &white, &all, 10);
+        assert!((25.0..55.0).contains(&tau), "slow: {tau}");
+        let base_only = {
+            let short = &slow[..2 * 10 + 2 + LONG_WINDOW_DIVISOR * 10 - 1];
+            correlation_time(short, &white, &all[..short.len()], 10)
+        };
+        assert!(base_only < 0.6 * tau, "base window {base_only} vs {tau}");
+    }
 }

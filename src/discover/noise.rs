@@ -94,10 +94,10 @@ impl ArNoise {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn ar1(phi: f64, n: usize) -> Vec<f64> {
+    pub(crate) fn ar1(phi: f64, n: usize) -> Vec<f64> {
         let mut seed = 7u64;
         let mut x = 0.0;
         (0..n)
