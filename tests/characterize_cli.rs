@@ -9,7 +9,6 @@ mod common;
 use common::shipped_design;
 
 use std::path::{Path, PathBuf};
-use std::process::Output;
 
 /// Fast protocol timings, so that every test recording is a few minutes long at most.
 const FAST: &str = r#"
@@ -28,13 +27,7 @@ ramp_s = 1.0
 repeat_s = 60.0
 "#;
 
-fn ok(args: &[&str]) -> Output {
-    common::dlw_ok(args)
-}
-
-fn s(p: &Path) -> String {
-    p.display().to_string()
-}
+use common::{arg as s, dlw_ok as ok};
 
 /// `dlw simulate` of `design` with the fast timings plus `extra` scenario text.
 fn simulate(
@@ -318,22 +311,12 @@ fn estimation_matches_dlw_estimate_and_splits_a_two_sensor_config() {
     // Joint C: tension alone, compression alone and both (Table V).
     let rec = simulate(dir.path(), "randc", "joint-c.toml", "random", 62, "");
     let two = dir.path().join("c.toml");
-    ok(&[
-        "estimator-config",
-        &shipped_design("joint-c.toml"),
-        "--gauge-factor",
-        "1.28",
-        "--r0-ohm",
-        "74e3",
-        "--second-gauge-factor",
-        "0.680",
-        "--second-r0-ohm",
-        "88.9e3",
-        "--second-divider-ohm",
-        "102.5e3",
-        "-o",
-        &s(&two),
-    ]);
+    let design = shipped_design("joint-c.toml");
+    let out = s(&two);
+    let mut args = vec!["estimator-config", &design];
+    args.extend(common::JOINT_C_TABLE_V);
+    args.extend(["-o", &out]);
+    ok(&args);
     let j = characterize(
         "joint-c.toml",
         &rec,

@@ -389,22 +389,12 @@ fn bad_input_is_refused_and_writes_nothing() {
 #[test]
 fn two_sensor_joint_closes_the_loop_on_both_sensors() {
     let s = Setup::new();
-    let o = dlw(&[
-        "estimator-config",
-        &shipped_design("joint-c.toml"),
-        "--gauge-factor",
-        "1.28",
-        "--r0-ohm",
-        "74e3",
-        "--second-gauge-factor",
-        "0.68",
-        "--second-r0-ohm",
-        "88.9e3",
-        "--second-divider-ohm",
-        "102.5e3",
-        "-o",
-        &s.p("c.toml"),
-    ]);
+    let design = shipped_design("joint-c.toml");
+    let out = s.p("c.toml");
+    let mut args = vec!["estimator-config", &design];
+    args.extend(common::JOINT_C_TABLE_V);
+    args.extend(["-o", &out]);
+    let o = dlw(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let (design, config, out, scenario) = (
         shipped_design("joint-c.toml"),

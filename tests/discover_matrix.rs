@@ -332,3 +332,33 @@ fn discovery_matrix() {
     );
     assert!(median >= 0.5, "median gap shrink {median}");
 }
+
+/// The two rules that settle a near tie, each on a recording where it decides (measured with
+/// the rule switched off: both were left ambiguous). Joint A's creep (seed 1005) against a
+/// signed rate of τ = 3 s, which with the line's slope free is the same model of another time
+/// constant (`Term::same_family`); Joint C's hysteresis (seed 1000) against creep, 104.7 to
+/// 70.7, which nested evidence settles: the hysteresis still clears the threshold after the
+/// creep, and the creep no longer does after the hysteresis.
+#[test]
+fn near_ties_are_settled() {
+    let dir = tempfile::tempdir().unwrap();
+    for (design, effect, seed) in [
+        ("joint-a.toml", "creep", 1005),
+        ("joint-c.toml", "hysteresis", 1000),
+    ] {
+        let case = Case {
+            design,
+            effects: vec![effect],
+            seed,
+        };
+        let o = run(dir.path(), &case);
+        assert_eq!(
+            o.named.first(),
+            Some(&(effect.to_owned(), channel(effect).to_owned())),
+            "{}: named {:?}, ambiguous left: {}",
+            o.name,
+            o.named,
+            o.ambiguous
+        );
+    }
+}

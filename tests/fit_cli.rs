@@ -19,13 +19,7 @@ fn run(args: &[&str]) -> Output {
     common::dlw(args)
 }
 
-fn ok(args: &[&str]) -> Output {
-    common::dlw_ok(args)
-}
-
-fn s(p: &Path) -> String {
-    p.display().to_string()
-}
+use common::{arg as s, dlw_ok as ok};
 
 /// `dlw simulate` of `design` into `dir/name`.
 fn simulate(

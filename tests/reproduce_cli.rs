@@ -4,6 +4,46 @@
 
 mod common;
 
+/// The angle RMSE (°) of the one-sensor run of `config` in a joint's JSON.
+fn rmse(joint: &serde_json::Value, config: &str) -> f64 {
+    joint["estimation"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["config"] == config)
+        .unwrap()["rmse_deg"]
+        .as_f64()
+        .unwrap()
+}
+
+/// At half the paper's durations, Joint C's fitted PI model flattens near the ends of its
+/// range, and without the runtime's clamp to the characterized strain range its estimate of
+/// the random run was 25.9° against 6.8° for linear (it read angles far beyond the joint's).
+/// With the clamp, every joint's PI estimate stays within 1.5 times its linear one.
+#[test]
+fn half_size_pi_estimates_stay_near_linear() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("half");
+    let o = common::dlw_ok(&[
+        "reproduce",
+        "--duration-scale",
+        "0.5",
+        "-o",
+        &common::arg(&out),
+        "--json",
+    ]);
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    for x in j["joints"].as_array().unwrap() {
+        eprintln!(
+            "Joint {}: linear {:.2}°, PI {:.2}°",
+            x["joint"],
+            rmse(x, "linear"),
+            rmse(x, "PI")
+        );
+        assert!(rmse(x, "PI") < 1.5 * rmse(x, "linear"), "{x}");
+    }
+}
+
 #[test]
 fn short_reproduction_writes_all_four_tables_and_the_figures() {
     let dir = tempfile::tempdir().unwrap();
@@ -69,20 +109,11 @@ fn short_reproduction_writes_all_four_tables_and_the_figures() {
         c,
         ["one sensor", "one sensor", "tension", "compression", "both"]
     );
-    // No PI config runs far from its linear one: the inverse stays within the characterized
-    // strain range (Joint C's fitted tanh once inverted to 141.6° on a 45° joint).
+    // No PI config runs far from its linear one. At these short durations this holds with or
+    // without the PI inverse's strain clamp; `half_size_pi_estimates_stay_near_linear` below
+    // is the run that needs it.
     for x in joints {
-        let rmse = |config: &str| {
-            x["estimation"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .find(|r| r["config"] == config)
-                .unwrap()["rmse_deg"]
-                .as_f64()
-                .unwrap()
-        };
-        assert!(rmse("PI") < 1.5 * rmse("linear"), "{x}");
+        assert!(rmse(x, "PI") < 1.5 * rmse(x, "linear"), "{x}");
     }
     // Closed loop brings the sensed angle to the desired one.
     let sensed = |k: &str| j[k]["sensed_vs_desired_rmse_deg"].as_f64().unwrap();

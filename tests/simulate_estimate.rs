@@ -215,18 +215,7 @@ fn two_sensor_config_recovers_the_angle_to_within_the_noise() {
         dir.path(),
         &design,
         &scenario(DEFAULT_NOISE, ""),
-        &[
-            "--gauge-factor",
-            "1.28",
-            "--r0-ohm",
-            "74e3",
-            "--second-gauge-factor",
-            "0.680",
-            "--second-r0-ohm",
-            "88.9e3",
-            "--second-divider-ohm",
-            "102.5e3",
-        ],
+        &common::JOINT_C_TABLE_V,
     );
     let rmse = report["rmse_deg"].as_f64().unwrap();
     eprintln!("RMSE {rmse:.3}° within the noise bounds [{lo:.3}, {hi:.3}]°?");

@@ -3,22 +3,11 @@
 /// Pearson's correlation coefficient of `x` and `y`, or `None` with fewer than 3 pairs or a
 /// constant series.
 pub fn pearson(x: &[f64], y: &[f64]) -> Option<f64> {
-    let n = x.len().min(y.len());
-    if n < 3 {
+    let m = crate::fit::moments(x, y);
+    if m.n < 3 {
         return None;
     }
-    let nf = n as f64;
-    let (mx, my) = (
-        x[..n].iter().sum::<f64>() / nf,
-        y[..n].iter().sum::<f64>() / nf,
-    );
-    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    for (a, b) in x[..n].iter().zip(&y[..n]) {
-        sxx += (a - mx) * (a - mx);
-        syy += (b - my) * (b - my);
-        sxy += (a - mx) * (b - my);
-    }
-    let r = sxy / (sxx * syy).sqrt();
+    let r = m.sxy / (m.sxx * m.syy).sqrt();
     r.is_finite().then_some(r)
 }
 

@@ -40,6 +40,13 @@ pub const CORRELATION_WINDOW_S: f64 = 2.0;
 /// At most this many effects are named.
 pub const MAX_EFFECTS: usize = 4;
 
+/// The evidence for a model over the one it extends: the held-out gain in whitened
+/// log-likelihood, `½·n·ln(SS_from/SS_with)` over `n` held-out samples, divided by the
+/// correlation time `tau` of the extended model's training residual.
+fn evidence(n: usize, from_ss: f64, with_ss: f64, tau: f64) -> f64 {
+    0.5 * n as f64 * (from_ss / with_ss).ln() / tau
+}
+
 /// Golden-section steps of [`refine`]: the bracket shrinks to 0.618¹⁰ ≈ 0.8 % of its width.
 const REFINE_STEPS: usize = 10;
 
@@ -380,15 +387,19 @@ pub fn discover(
         .map(|f| f.train_ss)
     };
     let lags = (CORRELATION_WINDOW_S / data.dt_s) as usize;
+    // A model's held-out whitened sum of squares, and the correlation time of its training
+    // residual that divides the evidence for it.
+    let held_out_ss_and_tau = |with: &ChannelModel, noise: &ArNoise| -> Option<(f64, f64)> {
+        let (fitted, ss, _, _) = evaluate(with, noise)?;
+        let residual = fitted.residual(&with.design(&data, &proxies.borrow().0));
+        Some((ss, correlation_time(&residual, noise, &train, lags)))
+    };
     // The evidence for adding `term` to `from`, as the candidates are scored.
     let gain = |from: &ChannelModel, term: &Term| -> Option<f64> {
         let noise = &noises[&from.channel];
         let (_, from_ss, _, n) = evaluate(from, noise)?;
-        let with = from.with(term.clone());
-        let (fitted, ss, _, _) = evaluate(&with, noise)?;
-        let residual = fitted.residual(&with.design(&data, &proxies.borrow().0));
-        let tau = correlation_time(&residual, noise, &train, lags);
-        let e = 0.5 * n as f64 * (from_ss / ss).ln() / tau;
+        let (ss, tau) = held_out_ss_and_tau(&from.with(term.clone()), noise)?;
+        let e = evidence(n, from_ss, ss, tau);
         e.is_finite().then_some(e)
     };
     let mut discovered: Vec<Discovery> = Vec::new();
@@ -426,14 +437,10 @@ pub fn discover(
                     .filter_map(|term| Some((term.clone(), train_ss(m, &term)?)))
                     .min_by(|a, b| a.1.total_cmp(&b.1));
                 let Some((term, _)) = chosen else { continue };
-                let trial = m.with(term.clone());
-                let Some((fitted, ss, _, _)) = evaluate(&trial, noise) else {
+                let Some((ss, tau)) = held_out_ss_and_tau(&m.with(term.clone()), noise) else {
                     continue;
                 };
-                let train_residual = fitted.residual(&trial.design(&data, &proxies.borrow().0));
-                let lags = (CORRELATION_WINDOW_S / data.dt_s) as usize;
-                let tau = correlation_time(&train_residual, noise, &train, lags);
-                let evidence = 0.5 * n as f64 * (current_ss / ss).ln() / tau;
+                let gained = evidence(n, current_ss, ss, tau);
                 // Hysteresis is memory: score the plays against the same curve without them.
                 let memory = match &term {
                     Term::Hysteresis {
@@ -449,14 +456,14 @@ pub fn discover(
                             memory: false,
                         });
                         evaluate(&curve, noise)
-                            .map(|(_, curve_ss, _, _)| 0.5 * n as f64 * (curve_ss / ss).ln() / tau)
+                            .map(|(_, curve_ss, _, _)| evidence(n, curve_ss, ss, tau))
                     }
                     _ => None,
                 };
                 scored.push(Candidate {
                     effect,
                     channel: ch,
-                    evidence: if evidence.is_finite() { evidence } else { 0.0 },
+                    evidence: if gained.is_finite() { gained } else { 0.0 },
                     memory,
                     round,
                     shape: term.describe(),

@@ -38,16 +38,15 @@ pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
     if n < 3 {
         return Err(FitError::TooFewSamples { samples: n, min: 3 });
     }
+    let Moments {
+        mean_x: mx,
+        mean_y: my,
+        sxx,
+        syy,
+        sxy,
+        ..
+    } = moments(strain, ohm);
     let nf = n as f64;
-    let mx = strain[..n].iter().sum::<f64>() / nf;
-    let my = ohm[..n].iter().sum::<f64>() / nf;
-    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
-    for i in 0..n {
-        let (dx, dy) = (strain[i] - mx, ohm[i] - my);
-        sxx += dx * dx;
-        sxy += dx * dy;
-        syy += dy * dy;
-    }
     let slope = sxy / sxx;
     let r2 = if syy > 0.0 {
         sxy * sxy / (sxx * syy)
@@ -81,21 +80,49 @@ pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
 
 /// Least-squares slope of `y` on `x`, or `None` when `x` does not vary.
 pub fn slope(x: &[f64], y: &[f64]) -> Option<f64> {
+    let m = moments(x, y);
+    (m.n >= 2 && m.sxx > 0.0).then(|| m.sxy / m.sxx)
+}
+
+/// The means and centred sums of squares and products of `x` and `y` over their common
+/// length: what a regression line and a correlation coefficient are made of.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Moments {
+    /// Pairs used.
+    pub n: usize,
+    /// Mean of `x`.
+    pub mean_x: f64,
+    /// Mean of `y`.
+    pub mean_y: f64,
+    /// `Σ(x − x̄)²`.
+    pub sxx: f64,
+    /// `Σ(y − ȳ)²`.
+    pub syy: f64,
+    /// `Σ(x − x̄)(y − ȳ)`.
+    pub sxy: f64,
+}
+
+/// [`Moments`] of `x` and `y` (NaN means for no pairs).
+pub(crate) fn moments(x: &[f64], y: &[f64]) -> Moments {
     let n = x.len().min(y.len());
-    if n < 2 {
-        return None;
-    }
     let nf = n as f64;
-    let (mx, my) = (
-        x[..n].iter().sum::<f64>() / nf,
-        y[..n].iter().sum::<f64>() / nf,
-    );
-    let (mut sxx, mut sxy) = (0.0, 0.0);
+    let mean_x = x[..n].iter().sum::<f64>() / nf;
+    let mean_y = y[..n].iter().sum::<f64>() / nf;
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
     for (a, b) in x[..n].iter().zip(&y[..n]) {
-        sxx += (a - mx) * (a - mx);
-        sxy += (a - mx) * (b - my);
+        let (dx, dy) = (a - mean_x, b - mean_y);
+        sxx += dx * dx;
+        syy += dy * dy;
+        sxy += dx * dy;
     }
-    (sxx > 0.0).then(|| sxy / sxx)
+    Moments {
+        n,
+        mean_x,
+        mean_y,
+        sxx,
+        syy,
+        sxy,
+    }
 }
 
 #[cfg(test)]

@@ -27,6 +27,26 @@ pub fn dlw_ok<S: AsRef<OsStr> + std::fmt::Debug>(args: &[S]) -> Output {
     o
 }
 
+/// A path as a command-line argument.
+pub fn arg(p: &Path) -> String {
+    p.display().to_string()
+}
+
+/// `dlw estimator-config` arguments for Joint C's two linear sensors, the paper's Table V:
+/// tension GF 1.28, R₀ 74 kΩ; compression GF 0.680, R₀ 88.9 kΩ on a 102.5 kΩ divider.
+pub const JOINT_C_TABLE_V: [&str; 10] = [
+    "--gauge-factor",
+    "1.28",
+    "--r0-ohm",
+    "74e3",
+    "--second-gauge-factor",
+    "0.680",
+    "--second-r0-ohm",
+    "88.9e3",
+    "--second-divider-ohm",
+    "102.5e3",
+];
+
 /// The path of a design shipped under `designs/`, e.g. `shipped_design("joint-a.toml")`.
 pub fn shipped_design(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
