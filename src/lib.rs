@@ -15,6 +15,9 @@
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
 //! - [`job`]: a design made into a program and a setup sheet for one machine;
 //! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
+//! - [`analysis`]: the one interface every analysis's result implements (JSON, summary, report
+//!   section);
+//! - [`sensor`]: which sensor (`Sensor`, `Sensors`): the one typed sensor identity;
 //! - [`characterize`]: the paper's characterization analyses over a recording (Section IV-A, IV-B);
 //! - [`discover`]: where the simulator and a recording disagree, which effect is missing, and
 //!   the gap once it is added;
@@ -31,6 +34,7 @@
 //! The cross-section and strain math lives in the `dlw-geometry` crate, shared with the
 //! runtime estimator.
 
+pub mod analysis;
 pub mod characterize;
 pub mod control;
 pub mod design;
@@ -49,6 +53,7 @@ pub mod replay;
 pub mod report;
 pub mod reproduce;
 pub mod rules;
+pub mod sensor;
 pub mod sheet;
 pub mod sim;
 pub mod toolpath;
