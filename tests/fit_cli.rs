@@ -215,7 +215,7 @@ fn pi_sensor_fit_within_noise_and_pi_config_beats_linear_on_a_random_recording()
         "joint-a.toml",
         &char,
         &pi,
-        &["--model", "pi", "--report", &s(&report_dir)],
+        &["--model", "pi", "--compare", "--report", &s(&report_dir)],
     );
     let models = report["sensors"][0]["models"].as_array().unwrap();
     let rmse = |m: &str| {
@@ -303,7 +303,7 @@ fn second_generator_pi_beats_linear_and_continuous_pi_runs() {
         "joint-a.toml",
         &char,
         &pi,
-        &["--model", "pi", "--validate", &s(&random)],
+        &["--model", "pi", "--compare", "--validate", &s(&random)],
     );
     fit("joint-a.toml", &char, &cpi, &["--model", "continuous-pi"]);
     for m in report["sensors"][0]["models"].as_array().unwrap() {

@@ -27,6 +27,7 @@ mod linear;
 mod pi;
 mod plays;
 mod report;
+mod request;
 
 use std::time::Instant;
 
@@ -54,6 +55,10 @@ pub use pi::{fit_plays, PlayFit, Problem, FTOL, GTOL, SLOPE_RESTARTS, XTOL};
 pub use plays::{PlayKind, PlayModel, Unpacked, BRANCH_PARAMS, PARTIAL_SUM_MARGIN};
 /// The fit report page.
 pub use report::{report_page, Validation};
+/// `dlw fit` as a library call.
+pub use request::{
+    fit, FitRequest, FitResult, PlayReport, Restart, SensorReport, Timings, MAX_ORDER, MIN_ORDER,
+};
 
 use crate::sim::Recording;
 
@@ -141,6 +146,22 @@ pub enum FitError {
         /// Its value.
         value: f64,
     },
+    /// A play order outside what the runtime runs.
+    #[error("order {order} must lie between {min} and {max} play operators")]
+    Order {
+        /// The order asked for.
+        order: usize,
+        /// The least accepted.
+        min: usize,
+        /// The most accepted.
+        max: usize,
+    },
+    /// A sensor the joint does not carry.
+    #[error("{sensors} needs a BSN joint (two sensors); the design is UAN (one sensor)")]
+    NoSuchSensor {
+        /// The sensors asked for.
+        sensors: crate::sensor::Sensors,
+    },
     /// The runtime crate refused a fitted model.
     #[error("the fitted model is not one the runtime can run: {0}")]
     Model(EstimatorError),
@@ -156,6 +177,11 @@ pub enum ModelKind {
     Pi,
     /// The continuous (envelope) PI.
     ContinuousPi,
+}
+
+impl ModelKind {
+    /// Every model, in the order reports list them.
+    pub const ALL: [ModelKind; 3] = [ModelKind::Linear, ModelKind::Pi, ModelKind::ContinuousPi];
 }
 
 /// Everything `fit_recording` needs besides the recording.
@@ -235,6 +261,23 @@ pub fn fit_sensor(
     options: &FitOptions,
     progress: &dyn Fn(&str),
 ) -> Result<SensorFit, FitError> {
+    fit_sensor_models(recording, joint, plane, options, &ModelKind::ALL, progress)
+}
+
+/// Fits the linear model and the play models among `models` to the sensor on `plane` of
+/// `recording` (the linear model is always fitted: every play fit starts from it). Models not
+/// asked for have no summary and no config.
+///
+/// # Errors
+/// As [`fit_sensor`].
+pub fn fit_sensor_models(
+    recording: &Recording,
+    joint: &Joint,
+    plane: SensorPlane,
+    options: &FitOptions,
+    models: &[ModelKind],
+    progress: &dyn Fn(&str),
+) -> Result<SensorFit, FitError> {
     let clock = Instant::now();
     let obs = observe(
         recording,
@@ -260,7 +303,10 @@ pub fn fit_sensor(
     } else {
         None
     };
-    let fit_pi = |kind: PlayKind| -> (Result<PlayFit, FitError>, f64) {
+    let fit_pi = |kind: PlayKind| -> (Option<Result<PlayFit, FitError>>, f64) {
+        if !models.contains(&kind_model(kind)) {
+            return (None, 0.0);
+        }
         let clock = Instant::now();
         let result = match &characteristic {
             None => Err(FitError::TooFewCycles {
@@ -277,7 +323,7 @@ pub fn fit_sensor(
                 fit_plays(kind, options.order, &obs.strain, &obs.ohm, points)
             }
         };
-        (result, clock.elapsed().as_secs_f64())
+        (Some(result), clock.elapsed().as_secs_f64())
     };
     let (pi, t_pi) = fit_pi(PlayKind::Generalized);
     let (cpi, t_cpi) = fit_pi(PlayKind::Continuous);
@@ -299,6 +345,13 @@ pub fn fit_sensor(
         (PlayKind::Generalized, ModelKind::Pi, pi),
         (PlayKind::Continuous, ModelKind::ContinuousPi, cpi),
     ] {
+        let Some(result) = result else {
+            results.push(Err(format!(
+                "not asked for (--model {})",
+                model_name(options.model)
+            )));
+            continue;
+        };
         let built = result.and_then(|fit| {
             let model_config = play_config(kind, &fit, &obs, noise)?;
             model_config.validate().map_err(FitError::Model)?;
@@ -441,6 +494,13 @@ fn summary(
         parameters: k,
         bic,
         skipped,
+    }
+}
+
+fn kind_model(kind: PlayKind) -> ModelKind {
+    match kind {
+        PlayKind::Generalized => ModelKind::Pi,
+        PlayKind::Continuous => ModelKind::ContinuousPi,
     }
 }
 

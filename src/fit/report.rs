@@ -1,6 +1,7 @@
 //! The fit's report page: resistance against strain per cycle with the fitted models drawn
 //! over it (the paper's Fig. 4(d-f)), residuals over time, and the fitted parameters.
 
+use crate::analysis::Placement;
 use crate::report::{Chart, Legend, Page, Series, Table, PALETTE};
 
 use super::{model_name, SensorFit};
@@ -20,6 +21,18 @@ pub struct Validation {
 /// The report of `fits` (one per sensor) of the recording called `name`.
 pub fn report_page(name: &str, fits: &[SensorFit], validation: &[Validation]) -> Page {
     let mut page = Page::new(format!("Sensor fit: {name}"));
+    add_sections(&mut page, fits, validation, Placement::ALONE);
+    page
+}
+
+/// Adds the fit's sections for `fits` (one per sensor) to `page`, headings and figure names
+/// placed by `at`.
+pub fn add_sections(
+    page: &mut Page,
+    fits: &[SensorFit],
+    validation: &[Validation],
+    at: Placement<'_>,
+) {
     page.text(
         "Resistance from the divider voltage (Eq. 4), strain from the tracker angle (Eq. 3), both \
          through the same prefilter. Each model is fitted to every sensor; the table ranks them \
@@ -61,22 +74,29 @@ pub fn report_page(name: &str, fits: &[SensorFit], validation: &[Validation]) ->
             ]);
         }
     }
-    page.heading("Model choice");
+    page.heading(format!("{}Model choice", label(at)));
     page.table(models);
     for fit in fits {
-        sensor_section(&mut page, fit);
+        sensor_section(page, fit, at);
     }
-    page
+}
+
+fn label(at: Placement<'_>) -> String {
+    if at.label.is_empty() {
+        String::new()
+    } else {
+        format!("{}: ", at.label)
+    }
 }
 
 fn sensor_name(fit: &SensorFit) -> String {
     format!("v{}_V", fit.plane.column())
 }
 
-fn sensor_section(page: &mut Page, fit: &SensorFit) {
+fn sensor_section(page: &mut Page, fit: &SensorFit, at: Placement<'_>) {
     let name = sensor_name(fit);
     let obs = &fit.observations;
-    page.heading(format!("Sensor {name}"));
+    page.heading(format!("{}Sensor {name}", label(at)));
     let strain_pct: Vec<f64> = obs.strain.iter().map(|e| e * 100.0).collect();
     let kohm: Vec<f64> = obs.ohm.iter().map(|r| r / 1e3).collect();
     let mut loops = Chart::new(
@@ -198,13 +218,13 @@ fn sensor_section(page: &mut Page, fit: &SensorFit) {
         ]);
     }
     page.figure(
-        format!("loops-v{}", fit.plane.column()),
+        format!("{}loops-v{}", at.figure_prefix, fit.plane.column()),
         loops,
         "Each loading/unloading cycle in its own colour; the fitted models drawn over the data \
          (cf. the paper's Fig. 4(d-f)).",
     );
     page.figure(
-        format!("residuals-v{}", fit.plane.column()),
+        format!("{}residuals-v{}", at.figure_prefix, fit.plane.column()),
         residuals,
         "Model minus measured resistance over the recording.",
     );
