@@ -528,3 +528,71 @@ fn bad_input_is_refused_with_a_clear_error_and_no_config() {
     let config = d.join("good.toml");
     fit("joint-a.toml", &good, &config, &["--model", "linear"]);
 }
+
+/// The README tour's fit, run as written: the lines that simulate `rec` and `char` for Joint D
+/// and `dlw fit --design designs/joint-d.toml char --validate rec -o fitted.toml --report
+/// fit-report`, taken from README.md itself. Before a restart that ran out of patience could
+/// win, this ended in "the pi fit did not converge (LostPatience)".
+///
+/// Its PI fit takes 15-20 s on an idle 2-core machine and minutes under load, so it runs with
+/// `DLW_FIT_TOUR=1 cargo test --test fit_cli readme` (and is skipped, saying so, otherwise).
+#[test]
+fn readme_tour_fit_lines_run_as_written() {
+    if std::env::var("DLW_FIT_TOUR").is_err() {
+        eprintln!("skipped: set DLW_FIT_TOUR=1 to run the README tour's fit lines");
+        return;
+    }
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let line = |starts: &str, has: &str| -> Vec<String> {
+        let l = readme
+            .lines()
+            .find(|l| l.starts_with(starts) && l.contains(has))
+            .unwrap_or_else(|| panic!("README has no line starting {starts:?} with {has:?}"));
+        l.split_whitespace().skip(1).map(str::to_owned).collect()
+    };
+    let lines = [
+        line("dlw simulate --design designs/joint-d.toml", "-o rec"),
+        line("dlw simulate --design designs/joint-d.toml", "-o char"),
+        line(
+            "dlw fit --design designs/joint-d.toml char",
+            "--report fit-report",
+        ),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::create_dir(d.join("designs")).unwrap();
+    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("designs/joint-d.toml");
+    std::fs::copy(shipped, d.join("designs/joint-d.toml")).unwrap();
+    let mut stdout = String::new();
+    for args in &lines {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_dlw"))
+            .args(args)
+            .current_dir(d)
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "dlw {args:?} failed: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    }
+    assert_finite_config(&std::fs::read_to_string(d.join("fitted.toml")).unwrap());
+    assert!(d.join("fit-report/report.html").is_file());
+    // The summary's RMSE lines: PI is never worse than the line on its own samples.
+    let rmse = |model: &str| -> f64 {
+        let l = stdout
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(model) && l.contains("RMSE"))
+            .unwrap_or_else(|| panic!("no {model} RMSE in {stdout}"));
+        l.split_whitespace().nth(2).unwrap().parse().unwrap()
+    };
+    eprintln!("README tour: {stdout}");
+    assert!(
+        rmse("pi") <= 1.01 * rmse("linear"),
+        "PI {} Ω against linear {} Ω",
+        rmse("pi"),
+        rmse("linear")
+    );
+}
