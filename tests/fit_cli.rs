@@ -142,6 +142,12 @@ fn linear_sensor_gauge_factor_and_r0_within_one_percent_on_joints_a_to_d() {
         let fitted = report["sensors"].as_array().unwrap();
         assert_eq!(fitted.len(), sensors, "{design}");
         for (i, sensor) in fitted.iter().enumerate() {
+            // `--model linear` fits the line alone: no PI fit, no PI line in the comparison.
+            let models = sensor["models"].as_array().unwrap();
+            assert_eq!(models.len(), 1, "{design}: {models:?}");
+            assert_eq!(models[0]["model"], "linear");
+            assert!(sensor.get("pi").is_none() && sensor.get("continuous_pi").is_none());
+            assert!(report["timings_s"]["pi"].as_f64().unwrap() == 0.0);
             let table = format!("sensor{}", i + 1);
             let gf = f(&scenario, &[&table, "gauge_factor"]);
             let r0 = f(&scenario, &[&table, "r0_ohm"]);
