@@ -447,3 +447,67 @@ fn sensor_report(fit: &SensorFit) -> SensorReport {
         models: fit.summaries.clone(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::design::Design;
+    use crate::sim::{plan, ProtocolKind, Scenario};
+
+    fn joint_a_characterization() -> (Design, Recording) {
+        let design = Design::from_toml(include_str!("../../designs/joint-a.toml")).unwrap();
+        let scenario = Scenario {
+            protocol: Some(ProtocolKind::Characterization),
+            duration_s: Some(200.0),
+            seed: 3,
+            ..Scenario::default()
+        };
+        let p = plan(&design, scenario, None).unwrap();
+        let recording = Recording {
+            rig: p.rig(),
+            samples: p.run().unwrap().samples,
+        };
+        (design, recording)
+    }
+
+    #[test]
+    fn a_linear_request_fits_the_line_alone_and_its_json_is_the_analysis_json() {
+        let (design, recording) = joint_a_characterization();
+        let mut request = FitRequest::new(&design.joint, &recording);
+        request.model = ModelKind::Linear;
+        let result = fit(&request, &|_| {}).unwrap();
+        assert_eq!(result.sensor, Sensors::Single(Sensor::One));
+        assert_eq!(result.sensors.len(), 1);
+        let models: Vec<ModelKind> = result.sensors[0].models.iter().map(|m| m.model).collect();
+        assert_eq!(models, [ModelKind::Linear]);
+        let json = result.to_json().unwrap();
+        assert_eq!(json["model"], "linear");
+        assert_eq!(json["sensor"], "sensor1");
+        assert!(
+            json.get("config").is_none(),
+            "no config path until one is written"
+        );
+        assert!(json["sensors"][0].get("pi").is_none());
+        let gf = json["sensors"][0]["gauge_factor"].as_f64().unwrap();
+        assert!((gf / 15.3 - 1.0).abs() < 0.01, "GF {gf}");
+        let text = result.config_text(ConfigFormat::Toml).unwrap();
+        assert!(text.contains("[sensor.model.linear]"), "{text}");
+        assert!(result.summary().contains("linear"));
+        let mut page = Page::new("t");
+        result.add_to_page(&mut page, Placement::ALONE);
+        assert!(!page.files().unwrap().is_empty());
+    }
+
+    #[test]
+    fn an_order_out_of_range_or_a_sensor_the_joint_lacks_is_a_named_error() {
+        let (design, recording) = joint_a_characterization();
+        let mut request = FitRequest::new(&design.joint, &recording);
+        request.order = 1;
+        let e = fit(&request, &|_| {}).unwrap_err().to_string();
+        assert!(e.contains("order 1") && e.contains("16"), "{e}");
+        request.order = 10;
+        request.sensors = Some(Sensors::Both);
+        let e = fit(&request, &|_| {}).unwrap_err().to_string();
+        assert!(e.contains("BSN") && e.contains("UAN"), "{e}");
+    }
+}
