@@ -27,17 +27,27 @@ pub const DLW_ERR_NULL: c_int = -1;
 pub const DLW_ERR_PANIC: c_int = -2;
 
 /// Flag: a divider voltage at or beyond a rail (`V <= 0` or `V >= V+`).
-pub const DLW_FLAG_RAIL: u32 = Flags::RAIL.bits() as u32;
+pub const DLW_FLAG_RAIL: u32 = 1 << 0;
 /// Flag: the resistance or strain lay outside the model's characterized range and was clamped.
-pub const DLW_FLAG_RESISTANCE_CLAMPED: u32 = Flags::RESISTANCE_CLAMPED.bits() as u32;
+pub const DLW_FLAG_RESISTANCE_CLAMPED: u32 = 1 << 1;
 /// Flag: the argument of atanh in the PI inverse was clamped.
-pub const DLW_FLAG_ATANH_CLAMPED: u32 = Flags::ATANH_CLAMPED.bits() as u32;
+pub const DLW_FLAG_ATANH_CLAMPED: u32 = 1 << 2;
 /// Flag: the PI inverse switched branch (a reversal of the strain) at this sample.
-pub const DLW_FLAG_REVERSAL: u32 = Flags::REVERSAL.bits() as u32;
+pub const DLW_FLAG_REVERSAL: u32 = 1 << 3;
 /// Flag: an input, or a value computed from it, was NaN or infinite.
-pub const DLW_FLAG_NON_FINITE: u32 = Flags::NON_FINITE.bits() as u32;
+pub const DLW_FLAG_NON_FINITE: u32 = 1 << 4;
 /// Flag: the angle is the last good one, held because this sample could not be used.
-pub const DLW_FLAG_HELD: u32 = Flags::HELD.bits() as u32;
+pub const DLW_FLAG_HELD: u32 = 1 << 5;
+
+// The C flag bits are the runtime crate's, checked at compile time.
+const _: () = {
+    assert!(DLW_FLAG_RAIL == Flags::RAIL.bits() as u32);
+    assert!(DLW_FLAG_RESISTANCE_CLAMPED == Flags::RESISTANCE_CLAMPED.bits() as u32);
+    assert!(DLW_FLAG_ATANH_CLAMPED == Flags::ATANH_CLAMPED.bits() as u32);
+    assert!(DLW_FLAG_REVERSAL == Flags::REVERSAL.bits() as u32);
+    assert!(DLW_FLAG_NON_FINITE == Flags::NON_FINITE.bits() as u32);
+    assert!(DLW_FLAG_HELD == Flags::HELD.bits() as u32);
+};
 
 /// An estimator: opaque to C, created by `dlw_estimator_from_toml`, freed by
 /// `dlw_estimator_free`.
