@@ -17,7 +17,7 @@
 use std::ffi::{c_char, c_int, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use dlw_estimator::{Estimator, EstimatorConfig, Flags};
+use runtime::{Estimator, EstimatorConfig, Flags};
 
 /// Success.
 pub const DLW_OK: c_int = 0;

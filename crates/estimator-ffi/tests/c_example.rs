@@ -8,7 +8,7 @@ use std::process::Command;
 use dlw::design::Design;
 use dlw::replay::{config_text, replay, ConfigFormat};
 use dlw::sim::{self, ProtocolKind, Recording, Scenario};
-use dlw_estimator::{
+use runtime::{
     nominal_divider, EstimatorConfig, JointConfig, LinearModel, ModelConfig, SensorConfig,
 };
 
@@ -30,6 +30,14 @@ fn profile_dir() -> PathBuf {
 
 fn compile(dir: &Path) -> PathBuf {
     let exe = dir.join("estimate_recording");
+    // `cargo test` builds only the rlib: build the static library (a no-op when current).
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let built = Command::new(cargo)
+        .args(["build", "--quiet", "--lib", "-p", "dlw-estimator-ffi"])
+        .current_dir(workspace())
+        .status()
+        .expect("cargo runs");
+    assert!(built.success(), "cargo build -p dlw-estimator-ffi failed");
     let lib = profile_dir().join("libdlw_estimator.a");
     assert!(lib.exists(), "{} was not built", lib.display());
     let out = Command::new("cc")
