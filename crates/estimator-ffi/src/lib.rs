@@ -186,3 +186,91 @@ pub unsafe extern "C" fn dlw_estimator_free(e: *mut DlwEstimator) {
         let _ = catch_unwind(AssertUnwindSafe(|| drop(Box::from_raw(e))));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use runtime::{nominal_divider, JointConfig};
+
+    fn config_toml() -> std::ffi::CString {
+        let joint = JointConfig {
+            style: dlw_geometry::NotchStyle::Uan,
+            outer_radius_mm: 1.24,
+            inner_radius_mm: 0.875,
+            notch_arc_mm: 5.61,
+            notch_width_mm: 0.5,
+            notch_spacing_mm: 0.5,
+            notch_count: 10,
+            joint_length_mm: 9.5,
+            sensor_arc_mm: 0.4,
+        };
+        let config =
+            EstimatorConfig::nominal_linear(joint, 15.3, 215.0e3, nominal_divider()).unwrap();
+        std::ffi::CString::new(toml::to_string(&config).unwrap()).unwrap()
+    }
+
+    #[test]
+    fn null_pointers_are_refused_not_dereferenced() {
+        let (mut angle, mut flags) = (0.0, 0u32);
+        unsafe {
+            assert_eq!(
+                dlw_estimator_step(std::ptr::null_mut(), 2.5, 0.0, &mut angle, &mut flags),
+                DLW_ERR_NULL
+            );
+            let e = dlw_estimator_from_toml(config_toml().as_ptr(), std::ptr::null_mut(), 0);
+            assert!(!e.is_null());
+            assert_eq!(
+                dlw_estimator_step(e, 2.5, 0.0, std::ptr::null_mut(), &mut flags),
+                DLW_ERR_NULL
+            );
+            dlw_estimator_reset(std::ptr::null_mut());
+            dlw_estimator_free(std::ptr::null_mut());
+            dlw_estimator_free(e);
+            assert!(dlw_estimator_from_toml(std::ptr::null(), std::ptr::null_mut(), 0).is_null());
+        }
+    }
+
+    #[test]
+    fn step_reset_and_flags_match_the_runtime_crate() {
+        let text = config_toml();
+        let config: EstimatorConfig = toml::from_str(text.to_str().unwrap()).unwrap();
+        let mut direct = Box::new(Estimator::new(&config).unwrap());
+        let (mut angle, mut flags) = (0.0, 0u32);
+        unsafe {
+            let e = dlw_estimator_from_toml(text.as_ptr(), std::ptr::null_mut(), 0);
+            for v in [2.6, 2.4, 5.0, f64::NAN, 2.5] {
+                assert_eq!(
+                    dlw_estimator_step(e, v, 0.0, &mut angle, &mut flags),
+                    DLW_OK
+                );
+                let want = direct.step(v);
+                assert_eq!(angle.to_bits(), want.angle_deg.to_bits());
+                assert_eq!(flags, u32::from(want.flags.bits()));
+            }
+            dlw_estimator_step(e, 5.0, 0.0, &mut angle, &mut flags);
+            assert_eq!(flags, DLW_FLAG_RAIL | DLW_FLAG_HELD);
+            dlw_estimator_reset(e);
+            direct.reset();
+            dlw_estimator_step(e, 2.6, 0.0, &mut angle, &mut flags);
+            assert_eq!(angle.to_bits(), direct.step(2.6).angle_deg.to_bits());
+            dlw_estimator_free(e);
+        }
+    }
+
+    #[test]
+    fn a_bad_config_names_the_reason_truncated_and_terminated() {
+        let bad = std::ffi::CString::new("sensor = 3").unwrap();
+        let mut buf = [0x55 as c_char; 16];
+        unsafe {
+            let e = dlw_estimator_from_toml(bad.as_ptr(), buf.as_mut_ptr(), buf.len());
+            assert!(e.is_null());
+            let message = CStr::from_ptr(buf.as_ptr()).to_str().unwrap();
+            assert_eq!(message.len(), 15, "truncated to the buffer: {message:?}");
+            assert!(message.starts_with("estimator conf"));
+            let mut big = [0 as c_char; 512];
+            dlw_estimator_from_toml(bad.as_ptr(), big.as_mut_ptr(), big.len());
+            let full = CStr::from_ptr(big.as_ptr()).to_str().unwrap();
+            assert!(full.contains("sensor"), "{full}");
+        }
+    }
+}
