@@ -38,6 +38,20 @@ pub struct Args {
     /// it, in place of the tracker column, which may then be empty.
     #[arg(long)]
     truth: Option<PathBuf>,
+    /// Decimal places of estimate_deg and error_deg in the CSV (0 to 15; 12 or more to compare
+    /// with the C or Python estimator to 1e-9).
+    #[arg(long, default_value_t = dlw::replay::ESTIMATE_DECIMALS, value_parser = parse_precision)]
+    precision: u32,
+}
+
+fn parse_precision(s: &str) -> Result<u32, String> {
+    let max = dlw::replay::MAX_ESTIMATE_DECIMALS;
+    match s.parse::<u32>() {
+        Ok(n) if n <= max => Ok(n),
+        _ => Err(format!(
+            "precision {s:?} is not a number of decimals from 0 to {max}"
+        )),
+    }
 }
 
 pub(super) fn parse_filter(s: &str) -> Result<FilterConfig, String> {
@@ -94,7 +108,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let output = args
         .output
         .unwrap_or_else(|| args.recording.join(DEFAULT_OUTPUT));
-    write_atomic(&output, &result.csv_bytes(&recording))?;
+    write_atomic(&output, &result.csv_bytes_with(&recording, args.precision))?;
     let m = &result.metrics;
     if args.json {
         let report = Report {
@@ -145,7 +159,7 @@ fn run_with_truth(
         .output
         .clone()
         .unwrap_or_else(|| args.recording.join(DEFAULT_OUTPUT));
-    write_atomic(&output, &result.csv_bytes(&recording))?;
+    write_atomic(&output, &result.csv_bytes_with(&recording, args.precision))?;
     let t = &result.truth;
     if args.json {
         let report = TruthReport {

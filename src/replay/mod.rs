@@ -263,9 +263,20 @@ impl Replay {
     /// is the recorded angle, `error_deg = estimate_deg − angle_deg` and `flags` the estimator's
     /// flag names joined by `|` (`none` when clean).
     pub fn csv_bytes(&self, recording: &Recording) -> Vec<u8> {
-        estimates_csv(&self.estimate_deg, &self.flags, recording)
+        estimates_csv(&self.estimate_deg, &self.flags, recording, ESTIMATE_DECIMALS)
+    }
+
+    /// [`Replay::csv_bytes`] with `estimate_deg` and `error_deg` to `decimals` places (e.g. 12,
+    /// to compare with another implementation to 1e-9).
+    pub fn csv_bytes_with(&self, recording: &Recording, decimals: u32) -> Vec<u8> {
+        estimates_csv(&self.estimate_deg, &self.flags, recording, decimals)
     }
 }
+
+/// Decimal places of `estimate_deg` and `error_deg` in `estimates.csv` by default.
+pub const ESTIMATE_DECIMALS: u32 = 4;
+/// The most decimal places `estimates.csv` can be asked for (beyond this, f64 has no digits).
+pub const MAX_ESTIMATE_DECIMALS: u32 = 15;
 
 /// `time_s,angle_deg,estimate_deg,error_deg,flags`; `angle_deg` and `error_deg` are empty when
 /// the recording has no tracker angle.
@@ -273,6 +284,7 @@ pub(crate) fn estimates_csv(
     estimate_deg: &[f64],
     flags: &[Flags],
     recording: &Recording,
+    decimals: u32,
 ) -> Vec<u8> {
     let s = &recording.samples;
     let mut out = Vec::with_capacity(s.len() * 48 + 64);
@@ -285,10 +297,10 @@ pub(crate) fn estimates_csv(
             push_fixed(&mut out, a, 4);
         }
         out.push(b',');
-        push_fixed(&mut out, estimate_deg[i], 4);
+        push_fixed(&mut out, estimate_deg[i], decimals);
         out.push(b',');
         if let Some(a) = angle {
-            push_fixed(&mut out, estimate_deg[i] - a, 4);
+            push_fixed(&mut out, estimate_deg[i] - a, decimals);
         }
         out.push(b',');
         out.extend_from_slice(flags[i].to_string().as_bytes());

@@ -152,7 +152,12 @@ impl TruthReplay {
     /// The estimates as CSV, as [`Replay::csv_bytes`](super::Replay::csv_bytes); `angle_deg` and
     /// `error_deg` are empty for a recording without the tracker's angle.
     pub fn csv_bytes(&self, recording: &Recording) -> Vec<u8> {
-        estimates_csv(&self.estimate_deg, &self.flags, recording)
+        self.csv_bytes_with(recording, super::ESTIMATE_DECIMALS)
+    }
+
+    /// [`TruthReplay::csv_bytes`] with the estimates to `decimals` places.
+    pub fn csv_bytes_with(&self, recording: &Recording, decimals: u32) -> Vec<u8> {
+        estimates_csv(&self.estimate_deg, &self.flags, recording, decimals)
     }
 }
 
