@@ -18,13 +18,19 @@
 //! such a recording, so every reader that needs the tracker angle keeps its check;
 //! [`Recording::read_allowing_empty_angle`] reads it, with an empty `Samples::angle_deg`. Writing builds the folder under a temporary name next to the destination and
 //! renames it into place, so a failure never leaves a partial recording.
+//!
+//! This module is the sensing side's ground floor: it depends on nothing above it (not on the
+//! simulator, not on design files). A simulated recording keeps its design and scenario as TOML
+//! tables, which the simulator reads back with its own types.
+
+pub mod provenance;
+
+pub use provenance::{ImportInfo, ImportSource, Provenance, SimulationInfo};
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::scenario::Scenario;
-use crate::design::DesignFile;
 use crate::fixed::push_fixed;
 use crate::output::{write_folder_atomic, OutputError};
 
@@ -198,25 +204,24 @@ pub struct Rig {
     /// Free text.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub notes: Option<String>,
+    /// The protocol the recording follows, by the simulator's protocol name (`characterization`,
+    /// `rate-dependence`, `relaxation`, `random`, `custom`), when the bench states it. A
+    /// simulated recording states it in `[scenario]` instead; [`Rig::protocol`] reads either.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub protocol: Option<String>,
     /// What made a simulated recording.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulation: Option<SimulationInfo>,
-    /// The design simulated, as its design file (with defaults filled in).
+    /// The design simulated, as its design file's table (with defaults filled in).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub design: Option<DesignFile>,
-    /// The resolved scenario simulated (every parameter, seed included).
+    pub design: Option<toml::Table>,
+    /// The resolved scenario simulated (every parameter, seed included), as its TOML table; the
+    /// simulator reads it back as its `Scenario`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub scenario: Option<Scenario>,
-}
-
-/// `[simulation]` of a simulated recording.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SimulationInfo {
-    /// The `dlw` version that simulated.
-    pub dlw_version: String,
-    /// The design's checksum (as in program headers).
-    pub design_checksum: String,
+    pub scenario: Option<toml::Table>,
+    /// Where an imported recording came from: its source files and the alignment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub import: Option<ImportInfo>,
 }
 
 /// The samples of a recording, one vector per column.
@@ -280,6 +285,30 @@ pub fn header(channels: usize) -> String {
 }
 
 impl Rig {
+    /// The protocol the rig states: the top-level `protocol`, else the simulated scenario's
+    /// `protocol`; `None` when neither states one.
+    pub fn protocol(&self) -> Option<&str> {
+        self.protocol.as_deref().or_else(|| {
+            self.scenario
+                .as_ref()
+                .and_then(|s| s.get("protocol"))
+                .and_then(toml::Value::as_str)
+        })
+    }
+
+    /// Where the recording came from.
+    pub fn provenance(&self) -> Provenance<'_> {
+        match (&self.simulation, &self.import) {
+            (Some(sim), _) => Provenance::Simulated {
+                info: sim,
+                design: self.design.as_ref(),
+                scenario: self.scenario.as_ref(),
+            },
+            (None, Some(import)) => Provenance::Imported(import),
+            (None, None) => Provenance::Unknown,
+        }
+    }
+
     fn check(&self, path: &Path) -> Result<(), RecordingError> {
         let bad = |key, value, limit| {
             Err(RecordingError::RigValue {
@@ -557,6 +586,8 @@ mod tests {
             simulation: None,
             design: None,
             scenario: None,
+            protocol: None,
+            import: None,
         }
     }
 
