@@ -47,6 +47,7 @@ pub mod drawing;
 pub mod fit;
 pub mod fixed;
 pub mod fluoro;
+pub mod import;
 pub mod job;
 pub mod layout;
 pub mod machine;
