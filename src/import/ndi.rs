@@ -255,6 +255,15 @@ mod tests {
     }
 
     #[test]
+    fn a_missing_status_wins_over_stale_numbers_and_empty_fields_are_missing() {
+        let text =
+            "Frame#,TransformStatus,Q0,Qx,Qy,Qz\n1,Missing,1,0,0,0\n2,OK,,,,\n3,OK,1,0,0,0\n";
+        let log = TrackerLog::parse(text, &[1], 40.0).unwrap();
+        assert_eq!(log.missing(0), 2);
+        assert!(log.tools[0][2].is_some());
+    }
+
+    #[test]
     fn timespec_columns_give_the_time_when_present() {
         let text = "Frame#,timespec_s,timespec_ns,TransformStatus,Q0,Qx,Qy,Qz\n\
                     7,1000,500000000,OK,1,0,0,0\n9,1000,530000000,OK,1,0,0,0\n";
