@@ -25,6 +25,10 @@
 //! - [`reproduce`]: the paper's Section IV on the simulator, Tables III-VI side by side;
 //! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
 //!   config files;
+//! - [`recording`]: recording folders (`rig.toml`, `data.csv`), read, checked and written, with
+//!   their provenance (simulated or imported); depends on nothing above it;
+//! - [`stats`]: the shared statistics (`min_max`, `moments`, `slope`, `rmse`, medians) and their
+//!   one NaN policy;
 //! - [`fixed`]: fixed-point CSV number formatting;
 //! - [`fluoro`]: the joint angle from fluoroscopy frames (the phantom's ground truth), and
 //!   synthetic frames to try it on;
@@ -43,6 +47,7 @@ pub mod drawing;
 pub mod fit;
 pub mod fixed;
 pub mod fluoro;
+pub mod import;
 pub mod job;
 pub mod layout;
 pub mod machine;
@@ -51,9 +56,11 @@ pub mod post;
 pub mod process;
 pub mod replay;
 pub mod report;
+pub mod recording;
 pub mod reproduce;
 pub mod rules;
 pub mod sensor;
 pub mod sheet;
 pub mod sim;
+pub mod stats;
 pub mod toolpath;

@@ -69,12 +69,23 @@ impl Kind {
         }
     }
 
-    /// The analysis for the protocol a simulated recording's `rig.toml` records.
+    /// The analysis for the protocol a recording's `rig.toml` states: its top-level `protocol`
+    /// (which an imported recording may state), else a simulated recording's scenario's.
     ///
     /// # Errors
-    /// [`CharacterizeError::NoKind`] when the rig records no protocol, or `custom`.
+    /// [`CharacterizeError::NoKind`] when the rig states no protocol, an unknown one, or `custom`.
     pub fn of_recording(recording: &Recording) -> Result<Self, CharacterizeError> {
-        let protocol = recording.rig.scenario.as_ref().and_then(|s| s.protocol);
+        let stated = recording.rig.protocol();
+        let protocol = match stated {
+            Some(name) => Some(
+                toml::Value::String(name.to_string()).try_into::<ProtocolKind>().map_err(
+                    |_| CharacterizeError::NoKind {
+                        protocol: name.to_string(),
+                    },
+                )?,
+            ),
+            None => None,
+        };
         match protocol {
             Some(ProtocolKind::Characterization) => Ok(Self::Loops),
             Some(ProtocolKind::RateDependence) => Ok(Self::Rate),
@@ -244,11 +255,5 @@ pub(crate) fn titled(label: &str, title: &str) -> String {
     }
 }
 
-/// Smallest and largest finite value.
-pub(crate) fn min_max(v: &[f64]) -> (f64, f64) {
-    v.iter()
-        .filter(|x| x.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-            (lo.min(x), hi.max(x))
-        })
-}
+/// Moved to [`crate::stats`] (one NaN policy); re-exported here this round.
+pub(crate) use crate::stats::min_max;

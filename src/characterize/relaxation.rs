@@ -269,18 +269,7 @@ pub fn relaxation(
     })
 }
 
-fn median(v: &mut [f64]) -> Option<f64> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    Some(if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    })
-}
+use crate::stats::median;
 
 impl RelaxationResult {
     /// Adds the holds' table and Fig. 6(b), (c) for each sensor.

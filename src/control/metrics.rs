@@ -58,15 +58,8 @@ impl SchemeMetrics {
     }
 }
 
-/// `√(mean((a − b)²))` over the common length (0 for none).
-pub fn rmse(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len());
-    if n == 0 {
-        return 0.0;
-    }
-    let sum: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum();
-    (sum / n as f64).sqrt()
-}
+/// Moved to [`crate::stats`] (one NaN policy); re-exported here this round.
+pub use crate::stats::rmse;
 
 #[cfg(test)]
 mod tests {

@@ -121,9 +121,13 @@ pub fn observe(
         column,
         columns: s.volts.len(),
     })?;
+    // Rows whose angle the tracker did not measure (`tracker_valid = 0`) are left out.
     let (lo, hi) = s
         .angle_deg
         .iter()
+        .enumerate()
+        .filter(|&(i, _)| s.angle_valid(i))
+        .map(|(_, a)| a)
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &a| {
             (lo.min(a), hi.max(a))
         });
@@ -176,7 +180,7 @@ pub fn observe(
         let ohm = divider.resistance(volts[i]).unwrap_or(f64::NAN);
         let (strain, ohm) = (strain_filter.step(strain), ohm_filter.step(ohm));
         out.ohm_range = (out.ohm_range.0.min(ohm), out.ohm_range.1.max(ohm));
-        if i % step == 0 {
+        if i % step == 0 && s.angle_valid(i) {
             out.time_s.push(s.time_s[i]);
             out.strain.push(strain);
             out.ohm.push(ohm);

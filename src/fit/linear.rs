@@ -78,52 +78,10 @@ pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
     })
 }
 
-/// Least-squares slope of `y` on `x`, or `None` when `x` does not vary.
-pub fn slope(x: &[f64], y: &[f64]) -> Option<f64> {
-    let m = moments(x, y);
-    (m.n >= 2 && m.sxx > 0.0).then(|| m.sxy / m.sxx)
-}
-
-/// The means and centred sums of squares and products of `x` and `y` over their common
-/// length: what a regression line and a correlation coefficient are made of.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Moments {
-    /// Pairs used.
-    pub n: usize,
-    /// Mean of `x`.
-    pub mean_x: f64,
-    /// Mean of `y`.
-    pub mean_y: f64,
-    /// `Σ(x − x̄)²`.
-    pub sxx: f64,
-    /// `Σ(y − ȳ)²`.
-    pub syy: f64,
-    /// `Σ(x − x̄)(y − ȳ)`.
-    pub sxy: f64,
-}
-
-/// [`Moments`] of `x` and `y` (NaN means for no pairs).
-pub(crate) fn moments(x: &[f64], y: &[f64]) -> Moments {
-    let n = x.len().min(y.len());
-    let nf = n as f64;
-    let mean_x = x[..n].iter().sum::<f64>() / nf;
-    let mean_y = y[..n].iter().sum::<f64>() / nf;
-    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    for (a, b) in x[..n].iter().zip(&y[..n]) {
-        let (dx, dy) = (a - mean_x, b - mean_y);
-        sxx += dx * dx;
-        syy += dy * dy;
-        sxy += dx * dy;
-    }
-    Moments {
-        n,
-        mean_x,
-        mean_y,
-        sxx,
-        syy,
-        sxy,
-    }
-}
+/// Moved to [`crate::stats`] (one NaN policy); re-exported here this round.
+pub use crate::stats::slope;
+/// Moved to [`crate::stats`]; re-exported here this round.
+pub(crate) use crate::stats::{moments, Moments};
 
 #[cfg(test)]
 mod tests {

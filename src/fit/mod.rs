@@ -520,10 +520,5 @@ pub fn model_name(model: ModelKind) -> &'static str {
     }
 }
 
-/// Smallest and largest value.
-pub(crate) fn min_max(v: &[f64]) -> (f64, f64) {
-    v.iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-            (lo.min(x), hi.max(x))
-        })
-}
+/// Moved to [`crate::stats`] (one NaN policy); re-exported here this round.
+pub(crate) use crate::stats::min_max;

@@ -126,12 +126,17 @@ pub fn replay(config: &EstimatorConfig, recording: &Recording) -> Result<Replay,
 pub(crate) fn tracker_metrics(run: &Run, recording: &Recording) -> Metrics {
     let samples = &recording.samples;
     let (mut sum_sq, mut max_abs) = (0.0f64, 0.0f64);
-    for (e, a) in run.estimate_deg.iter().zip(&samples.angle_deg) {
+    // Rows the tracker did not measure (`tracker_valid = 0`) are not compared.
+    let mut n = 0usize;
+    for (i, (e, a)) in run.estimate_deg.iter().zip(&samples.angle_deg).enumerate() {
+        if !samples.angle_valid(i) {
+            continue;
+        }
+        n += 1;
         let err = e - a;
         sum_sq += err * err;
         max_abs = max_abs.max(err.abs());
     }
-    let n = samples.len();
     Metrics {
         rmse_deg: (sum_sq / n.max(1) as f64).sqrt(),
         max_abs_error_deg: max_abs,

@@ -47,7 +47,6 @@ mod measure;
 mod pi_default;
 mod plant;
 mod protocol;
-mod recording;
 mod rng;
 mod scenario;
 mod sensor;
@@ -73,7 +72,8 @@ pub use protocol::{
     StrokeProfile, DEFAULT_REST_START_S,
 };
 /// Recording folders: reading, checking and writing.
-pub use recording::{
+/// Moved to [`crate::recording`]; these re-exports keep old paths compiling this round.
+pub use crate::recording::{
     header, Recording, RecordingError, Rig, Samples, SimulationInfo, DATA_FILE, RIG_FILE,
 };
 /// Seeded random streams.
@@ -271,10 +271,25 @@ impl Plan {
                 dlw_version: env!("CARGO_PKG_VERSION").to_string(),
                 design_checksum: self.design.checksum.clone(),
             }),
-            design: Some(self.design.file.clone()),
-            scenario: Some(self.scenario.clone()),
+            protocol: None,
+            design: toml::Table::try_from(&self.design.file).ok(),
+            scenario: toml::Table::try_from(&self.scenario).ok(),
+            import: None,
         }
     }
+}
+
+/// The scenario a simulated recording's `rig.toml` records, read back as the simulator's type;
+/// `None` for a recording that records none (imported, or written by hand).
+///
+/// # Errors
+/// The TOML deserializer's message, naming the key, when the `[scenario]` table is not a
+/// scenario this version reads.
+pub fn scenario_of(rig: &Rig) -> Result<Option<Scenario>, String> {
+    rig.scenario
+        .clone()
+        .map(|t| t.try_into::<Scenario>().map_err(|e| format!("rig.toml [scenario]: {e}")))
+        .transpose()
 }
 
 /// Joint A (UAN) or Joint C (BSN) of the paper's Table I, for tests.
@@ -386,8 +401,10 @@ mod tests {
         let plan = plan(&design, scenario(ProtocolKind::Relaxation, 10.0), None).unwrap();
         let rig = plan.rig();
         assert_eq!(rig.divider_ohm, vec![99.6e3, 102.5e3]);
-        assert_eq!(rig.design.as_ref().unwrap(), &design.file);
-        let sc = rig.scenario.as_ref().unwrap();
+        let file: crate::design::DesignFile =
+            rig.design.clone().unwrap().try_into().unwrap();
+        assert_eq!(file, design.file);
+        let sc = scenario_of(&rig).unwrap().unwrap();
         assert_eq!(sc.duration_s, Some(10.0));
         assert!(sc.protocols.amplitude_mm.is_some());
         let text = toml::to_string(&rig).unwrap();

@@ -6,7 +6,9 @@
 //! - `rig.toml`: `sample_hz`, `supply_v`, `divider_ohm` (one entry per sensor), an optional
 //!   `notes` string, and for simulated recordings `[simulation]`, `[design]` and `[scenario]`;
 //! - `data.csv`: the header `time_s,stroke_mm,angle_deg,v1_V` (plus `,v2_V` for a second
-//!   sensor), then one row per sample.
+//!   sensor), then one row per sample; an imported recording whose tracker lost frames adds a
+//!   last column `tracker_valid` (`1` or `0`): where it is `0`, `angle_deg` holds a number that
+//!   no analysis may use (every reader stays a plain CSV reader; see [`Samples::tracker_valid`]).
 //!
 //! Reading refuses, naming the file, line and value: a wrong header, a row with missing or extra
 //! fields, a field that is not a number or not finite, a time that does not increase, and a
@@ -18,13 +20,19 @@
 //! such a recording, so every reader that needs the tracker angle keeps its check;
 //! [`Recording::read_allowing_empty_angle`] reads it, with an empty `Samples::angle_deg`. Writing builds the folder under a temporary name next to the destination and
 //! renames it into place, so a failure never leaves a partial recording.
+//!
+//! This module is the sensing side's ground floor: it depends on nothing above it (not on the
+//! simulator, not on design files). A simulated recording keeps its design and scenario as TOML
+//! tables, which the simulator reads back with its own types.
+
+pub mod provenance;
+
+pub use provenance::{ImportInfo, ImportSource, Provenance, SimulationInfo};
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::scenario::Scenario;
-use crate::design::DesignFile;
 use crate::fixed::push_fixed;
 use crate::output::{write_folder_atomic, OutputError};
 
@@ -198,25 +206,24 @@ pub struct Rig {
     /// Free text.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub notes: Option<String>,
+    /// The protocol the recording follows, by the simulator's protocol name (`characterization`,
+    /// `rate-dependence`, `relaxation`, `random`, `custom`), when the bench states it. A
+    /// simulated recording states it in `[scenario]` instead; [`Rig::protocol`] reads either.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub protocol: Option<String>,
     /// What made a simulated recording.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulation: Option<SimulationInfo>,
-    /// The design simulated, as its design file (with defaults filled in).
+    /// The design simulated, as its design file's table (with defaults filled in).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub design: Option<DesignFile>,
-    /// The resolved scenario simulated (every parameter, seed included).
+    pub design: Option<toml::Table>,
+    /// The resolved scenario simulated (every parameter, seed included), as its TOML table; the
+    /// simulator reads it back as its `Scenario`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub scenario: Option<Scenario>,
-}
-
-/// `[simulation]` of a simulated recording.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SimulationInfo {
-    /// The `dlw` version that simulated.
-    pub dlw_version: String,
-    /// The design's checksum (as in program headers).
-    pub design_checksum: String,
+    pub scenario: Option<toml::Table>,
+    /// Where an imported recording came from: its source files and the alignment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub import: Option<ImportInfo>,
 }
 
 /// The samples of a recording, one vector per column.
@@ -232,6 +239,11 @@ pub struct Samples {
     pub angle_deg: Vec<f64>,
     /// `v1_V`, `v2_V`: one vector of divider voltages (V) per sensor.
     pub volts: Vec<Vec<f64>>,
+    /// `tracker_valid`: whether row `i`'s `angle_deg` is a tracker measurement. Empty when the
+    /// column is absent (every angle valid); otherwise one entry per row, `false` where the
+    /// tracker lost the tool for more than the importer's gap limit. Use
+    /// [`Samples::angle_valid`] or [`Samples::valid_angle_rows`] rather than reading it directly.
+    pub tracker_valid: Vec<bool>,
 }
 
 impl Samples {
@@ -242,7 +254,26 @@ impl Samples {
             stroke_mm: Vec::with_capacity(rows),
             angle_deg: Vec::with_capacity(rows),
             volts: (0..channels).map(|_| Vec::with_capacity(rows)).collect(),
+            tracker_valid: Vec::new(),
         }
+    }
+
+    /// Whether row `i` has a usable tracker angle: the angle column is present and the row is
+    /// not marked invalid.
+    pub fn angle_valid(&self, i: usize) -> bool {
+        i < self.angle_deg.len() && self.tracker_valid.get(i).copied().unwrap_or(true)
+    }
+
+    /// The rows with a usable tracker angle, in order.
+    pub fn valid_angle_rows(&self) -> Vec<usize> {
+        (0..self.angle_deg.len())
+            .filter(|&i| self.angle_valid(i))
+            .collect()
+    }
+
+    /// Rows marked invalid by the `tracker_valid` column.
+    pub fn invalid_angle_rows(&self) -> usize {
+        self.tracker_valid.iter().filter(|v| !**v).count()
     }
 
     /// Rows.
@@ -270,6 +301,9 @@ pub struct Recording {
     pub samples: Samples,
 }
 
+/// What the optional `tracker_valid` column adds to the header.
+pub const VALID_COLUMN_SUFFIX: &str = ",tracker_valid";
+
 /// The header line for `channels` sensors.
 pub fn header(channels: usize) -> String {
     let mut h = String::from("time_s,stroke_mm,angle_deg");
@@ -280,6 +314,30 @@ pub fn header(channels: usize) -> String {
 }
 
 impl Rig {
+    /// The protocol the rig states: the top-level `protocol`, else the simulated scenario's
+    /// `protocol`; `None` when neither states one.
+    pub fn protocol(&self) -> Option<&str> {
+        self.protocol.as_deref().or_else(|| {
+            self.scenario
+                .as_ref()
+                .and_then(|s| s.get("protocol"))
+                .and_then(toml::Value::as_str)
+        })
+    }
+
+    /// Where the recording came from.
+    pub fn provenance(&self) -> Provenance<'_> {
+        match (&self.simulation, &self.import) {
+            (Some(sim), _) => Provenance::Simulated {
+                info: sim,
+                design: self.design.as_ref(),
+                scenario: self.scenario.as_ref(),
+            },
+            (None, Some(import)) => Provenance::Imported(import),
+            (None, None) => Provenance::Unknown,
+        }
+    }
+
     fn check(&self, path: &Path) -> Result<(), RecordingError> {
         let bad = |key, value, limit| {
             Err(RecordingError::RigValue {
@@ -389,6 +447,10 @@ impl Recording {
         let channels = s.volts.len();
         let mut out = Vec::with_capacity(s.len() * (40 + 10 * channels) + 64);
         out.extend_from_slice(header(channels).as_bytes());
+        let marked = !s.tracker_valid.is_empty();
+        if marked {
+            out.extend_from_slice(VALID_COLUMN_SUFFIX.as_bytes());
+        }
         out.push(b'\n');
         for i in 0..s.len() {
             push_fixed(&mut out, s.time_s[i], 6);
@@ -401,6 +463,9 @@ impl Recording {
             for v in &s.volts {
                 out.push(b',');
                 push_fixed(&mut out, v[i], 6);
+            }
+            if marked {
+                out.extend_from_slice(if s.tracker_valid[i] { b",1" } else { b",0" });
             }
             out.push(b'\n');
         }
@@ -421,6 +486,17 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
     let columns: Vec<String> = expected.split(',').map(str::to_string).collect();
     let mut lines = text.split('\n').enumerate();
     let first = lines.next().map_or("", |(_, l)| l.trim_end_matches('\r'));
+    let marked = first.strip_suffix(VALID_COLUMN_SUFFIX) == Some(expected.as_str());
+    let expected = if marked {
+        format!("{expected}{VALID_COLUMN_SUFFIX}")
+    } else {
+        expected
+    };
+    let mut columns = columns;
+    if marked {
+        columns.push("tracker_valid".to_string());
+    }
+    let valid_at = 3 + channels;
     if first != expected {
         return Err(RecordingError::Header {
             path: path.to_path_buf(),
@@ -430,7 +506,7 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
         });
     }
     let mut samples = Samples::with_capacity(channels, text.len() / (30 + 9 * channels));
-    let mut row = [0.0f64; 5];
+    let mut row = [0.0f64; 6];
     let mut blank = None;
     // Whether the first data row's angle_deg is empty, and its line.
     let mut angle_empty: Option<(usize, bool)> = None;
@@ -456,6 +532,19 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
         for field in text.split(',') {
             if n == 2 && field.is_empty() {
                 empty = true;
+            } else if marked && n == valid_at {
+                row[n] = match field.trim() {
+                    "1" => 1.0,
+                    "0" => 0.0,
+                    _ => {
+                        return Err(RecordingError::Number {
+                            path: path.to_path_buf(),
+                            line,
+                            column: "tracker_valid (must be 0 or 1)".to_string(),
+                            text: field.to_string(),
+                        })
+                    }
+                };
             } else if n < columns.len() {
                 row[n] = parse_field(field, line, &columns[n], path)?;
             }
@@ -516,6 +605,9 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
         if !empty {
             samples.angle_deg.push(row[2]);
         }
+        if marked {
+            samples.tracker_valid.push(row[valid_at] == 1.0);
+        }
     }
     if samples.is_empty() {
         return Err(RecordingError::NoRows {
@@ -557,6 +649,8 @@ mod tests {
             simulation: None,
             design: None,
             scenario: None,
+            protocol: None,
+            import: None,
         }
     }
 
@@ -611,6 +705,48 @@ mod tests {
     }
 
     #[test]
+    fn the_tracker_valid_column_marks_gaps_and_round_trips() {
+        let path = Path::new("data.csv");
+        let text = "time_s,stroke_mm,angle_deg,v1_V,tracker_valid\n0,0,1,1.5,1\n0.002,0.1,1.1,1.6,0\n0.004,0.2,1.2,1.7,1\n";
+        let s = parse_data(text, &rig(1), path).unwrap();
+        assert_eq!(s.tracker_valid, vec![true, false, true]);
+        assert_eq!(s.valid_angle_rows(), vec![0, 2]);
+        assert_eq!(s.invalid_angle_rows(), 1);
+        assert!(!s.angle_valid(1) && s.angle_valid(2) && !s.angle_valid(3));
+        let bad = "time_s,stroke_mm,angle_deg,v1_V,tracker_valid\n0,0,1,1.5,yes\n";
+        let err = parse_data(bad, &rig(1), path).unwrap_err().to_string();
+        assert!(
+            err.contains("line 2") && err.contains("tracker_valid"),
+            "{err}"
+        );
+        // Without the column every angle is valid.
+        let plain = parse_data(
+            "time_s,stroke_mm,angle_deg,v1_V\n0,0,1,1.5\n",
+            &rig(1),
+            path,
+        );
+        assert_eq!(plain.unwrap().valid_angle_rows(), vec![0]);
+
+        let dir = tempfile::tempdir().unwrap();
+        let dest = dir.path().join("rec");
+        let rec = Recording {
+            rig: rig(1),
+            samples: s,
+        };
+        rec.write(&dest, false).unwrap();
+        let written = std::fs::read_to_string(dest.join(DATA_FILE)).unwrap();
+        assert_eq!(
+            written.lines().next(),
+            Some("time_s,stroke_mm,angle_deg,v1_V,tracker_valid")
+        );
+        assert_eq!(
+            written.lines().nth(2),
+            Some("0.002000,0.100000,1.1000,1.600000,0")
+        );
+        assert_eq!(Recording::read(&dest).unwrap(), rec);
+    }
+
+    #[test]
     fn an_empty_angle_column_is_read_only_when_allowed() {
         let path = Path::new("data.csv");
         let empty = "time_s,stroke_mm,angle_deg,v1_V\n0,0,,1.5\n0.002,0.1,,1.6\n";
@@ -660,6 +796,7 @@ mod tests {
         let rec = Recording {
             rig: rig(2),
             samples: Samples {
+                tracker_valid: Vec::new(),
                 time_s: vec![0.0, 0.002],
                 stroke_mm: vec![0.0, 0.001],
                 angle_deg: vec![0.0, 0.0355],
