@@ -95,13 +95,18 @@ pub enum OutputError {
 /// [`OutputError::IsInput`] when `output` is an input or a folder holding one (even with
 /// `force`); [`OutputError::Exists`] when it is an existing file or non-empty folder and `force`
 /// is false. `-`, FIFOs and character devices are always accepted.
-pub fn claim(output: &Path, inputs: &[&Path], force: bool) -> Result<(), OutputError> {
+pub fn claim<P: AsRef<Path>>(
+    output: &Path,
+    inputs: impl IntoIterator<Item = P>,
+    force: bool,
+) -> Result<(), OutputError> {
     install_signal_cleanup();
     if is_stdout(output) || is_stream(output) {
         return Ok(());
     }
     let out = resolved(output);
     for input in inputs {
+        let input = input.as_ref();
         if is_stdout(input) {
             continue;
         }
@@ -146,7 +151,12 @@ pub fn claim(output: &Path, inputs: &[&Path], force: bool) -> Result<(), OutputE
 ///
 /// # Errors
 /// As [`claim`], and [`OutputError::SameOutput`] when two outputs are the same file.
-pub fn claim_all(outputs: &[&Path], inputs: &[&Path], force: bool) -> Result<(), OutputError> {
+pub fn claim_all<P: AsRef<Path>>(
+    outputs: &[&Path],
+    inputs: impl IntoIterator<Item = P>,
+    force: bool,
+) -> Result<(), OutputError> {
+    let inputs: Vec<PathBuf> = inputs.into_iter().map(|p| p.as_ref().to_path_buf()).collect();
     for (i, first) in outputs.iter().enumerate() {
         for second in &outputs[i + 1..] {
             if !is_stdout(first) && resolved(first) == resolved(second) {
@@ -156,7 +166,7 @@ pub fn claim_all(outputs: &[&Path], inputs: &[&Path], force: bool) -> Result<(),
                 });
             }
         }
-        claim(first, inputs, force)?;
+        claim(first, &inputs, force)?;
     }
     Ok(())
 }
@@ -597,7 +607,7 @@ mod tests {
         std::fs::write(&target, b"old").unwrap();
         let link = root.path().join("link.csv");
         std::os::unix::fs::symlink(&target, &link).unwrap();
-        claim(&link, &[], true).unwrap();
+        claim(&link, [&link; 0], true).unwrap();
         write_atomic(&link, b"new").unwrap();
         assert!(std::fs::symlink_metadata(&link)
             .unwrap()
@@ -642,10 +652,10 @@ mod tests {
         assert!(matches!(err, OutputError::Exists { .. }), "{err:?}");
         assert!(dir.join("stale.txt").exists());
         assert!(matches!(
-            claim(&dir, &[], false),
+            claim(&dir, [&dir; 0], false),
             Err(OutputError::Exists { .. })
         ));
-        claim(&dir, &[], true).unwrap();
+        claim(&dir, [&dir; 0], true).unwrap();
         write_folder_atomic(&dir, &files("two")).unwrap();
         assert_eq!(std::fs::read(dir.join("a.txt")).unwrap(), b"two");
         assert!(!dir.join("stale.txt").exists());
