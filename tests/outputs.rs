@@ -45,7 +45,6 @@ fn fixture() -> Fixture {
     let config = root.path().join("c.toml");
     let mut a = vec![
         "estimator-config".to_string(),
-        "--design".into(),
         arg(&design),
     ];
     a.extend(common::JOINT_C_TABLE_V.iter().map(|s| s.to_string()));
@@ -115,7 +114,7 @@ fn commands() -> Vec<Row> {
                 a.extend(common::JOINT_C_TABLE_V.iter().map(|s| s.to_string()));
                 a
             },
-            input: |f| f.config.clone(),
+            input: |f| f.design.clone(),
         },
         Row {
             name: "program",
@@ -184,7 +183,7 @@ fn every_command_follows_the_output_policy() {
         let w = work.path();
 
         // An existing file: refused without --force, untouched; with it, replaced.
-        let existing = w.join("existing");
+        let existing = w.join("existing.toml");
         std::fs::write(&existing, b"keep me").unwrap();
         if row.kind == Kind::Folder {
             // A non-empty folder.
@@ -278,9 +277,9 @@ fn file_cases(row: &Row, f: &Fixture, w: &Path) {
     assert_eq!(snapshot(w), before);
 
     // A symlink: followed with --force; the link stays, its target is replaced.
-    let target = w.join("target.out");
+    let target = w.join("target.toml");
     std::fs::write(&target, b"old").unwrap();
-    let link = w.join("link.out");
+    let link = w.join("link.toml");
     std::os::unix::fs::symlink(&target, &link).unwrap();
     refused(row, &run(row, f, &arg(&link), false), "already exists");
     let o = run(row, f, &arg(&link), true);
