@@ -147,6 +147,14 @@ pub fn claim<P: AsRef<Path>>(
     Ok(())
 }
 
+/// Lets this process replace `path` (a library caller's explicit `replace`, the same as a
+/// [`claim`] with `--force` and no inputs).
+pub fn allow_replace(path: &Path) {
+    lock(&REPLACEABLE)
+        .get_or_insert_with(HashSet::new)
+        .insert(resolved(path));
+}
+
 /// [`claim`] for several outputs of one command, which must also differ from each other.
 ///
 /// # Errors
@@ -156,7 +164,10 @@ pub fn claim_all<P: AsRef<Path>>(
     inputs: impl IntoIterator<Item = P>,
     force: bool,
 ) -> Result<(), OutputError> {
-    let inputs: Vec<PathBuf> = inputs.into_iter().map(|p| p.as_ref().to_path_buf()).collect();
+    let inputs: Vec<PathBuf> = inputs
+        .into_iter()
+        .map(|p| p.as_ref().to_path_buf())
+        .collect();
     for (i, first) in outputs.iter().enumerate() {
         for second in &outputs[i + 1..] {
             if !is_stdout(first) && resolved(first) == resolved(second) {
