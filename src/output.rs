@@ -1,14 +1,68 @@
-//! Writing output files so that a failed command leaves no partial file behind.
+//! The one output policy every command follows (documented for users in `docs/outputs.md`).
 //!
-//! Every file `dlw` writes goes through [`write_atomic`]: the bytes land in a temporary file in
-//! the destination's folder, which is renamed over the destination only once complete.
+//! - A command first [`claim`]s each output, naming its inputs and whether `--force` was given:
+//!   an existing output (a file, or a non-empty folder) is refused without `--force`, and an
+//!   output that is one of the inputs, or a folder holding one, is refused even with it.
+//! - Files are written through [`write_atomic`]: `-` means standard output; a FIFO or character
+//!   device is written to directly; a symlink is followed and its target replaced; anything else
+//!   gets a temporary file beside it that takes its place only once complete, with a no-replace
+//!   rename unless the output was claimed with `--force`, so a file that appeared meanwhile is
+//!   never lost.
+//! - Folders are written through [`write_folder_atomic`] into a `.dlw-staging-<pid>-*` folder
+//!   beside the destination. Staging folders are removed on SIGINT and SIGTERM, and a stale one
+//!   whose process is gone is removed by the next run in that folder, which says so.
 
+use std::collections::HashSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// The output name that means standard output.
+pub const STDOUT: &str = "-";
+
+/// Outputs claimed with `--force` in this process: only these may be replaced. A registry rather
+/// than a token passed along, so that library writers (`Page::write`, `Recording::write`) stay
+/// safe by default without changing their signatures.
+static REPLACEABLE: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
+
+/// Staging folders and files being written by this process, removed if a signal ends it.
+static STAGING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
 /// Why an output file could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum OutputError {
+    /// The output exists and `--force` was not given.
+    #[error("output {path} already exists{what} (pass --force to replace it)")]
+    Exists {
+        /// The output.
+        path: PathBuf,
+        /// ` and is not empty` for a folder.
+        what: &'static str,
+    },
+    /// The output is one of the command's inputs, or a folder holding one.
+    #[error("output {output} {relation} input {input}; refused even with --force, since writing it would destroy the input")]
+    IsInput {
+        /// The output.
+        output: PathBuf,
+        /// The input.
+        input: PathBuf,
+        /// `is the`, `holds the` or `is part of the`.
+        relation: &'static str,
+    },
+    /// Two outputs of one command are the same file.
+    #[error("outputs {first} and {second} are the same file; give different paths")]
+    SameOutput {
+        /// The first output.
+        first: PathBuf,
+        /// The second output.
+        second: PathBuf,
+    },
+    /// Something appeared at the output while the command ran.
+    #[error("output {path} appeared while this run was writing it (another run?); nothing was replaced, run again or pass --force")]
+    Appeared {
+        /// The output.
+        path: PathBuf,
+    },
     /// The destination's folder does not exist or cannot be written.
     #[error("cannot write {path}")]
     Io {
@@ -34,58 +88,245 @@ pub enum OutputError {
     },
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
+/// Checks that `output` may be written by a command reading `inputs`, and records a `force`
+/// permission to replace it. Call once per output, before the work starts.
 ///
 /// # Errors
-/// [`OutputError::Io`] naming the path; the destination is then untouched.
+/// [`OutputError::IsInput`] when `output` is an input or a folder holding one (even with
+/// `force`); [`OutputError::Exists`] when it is an existing file or non-empty folder and `force`
+/// is false. `-`, FIFOs and character devices are always accepted.
+pub fn claim<P: AsRef<Path>>(
+    output: &Path,
+    inputs: impl IntoIterator<Item = P>,
+    force: bool,
+) -> Result<(), OutputError> {
+    install_signal_cleanup();
+    if is_stdout(output) || is_stream(output) {
+        return Ok(());
+    }
+    let out = resolved(output);
+    for input in inputs {
+        let input = input.as_ref();
+        if is_stdout(input) {
+            continue;
+        }
+        let inp = resolved(input);
+        let relation = if inp == out {
+            "is the"
+        } else if inp.starts_with(&out) {
+            "holds the"
+        } else if out.starts_with(&inp) && std::fs::symlink_metadata(&out).is_ok() {
+            // An existing file inside an input folder is part of that input.
+            "is part of the"
+        } else {
+            continue;
+        };
+        return Err(OutputError::IsInput {
+            output: output.to_path_buf(),
+            input: input.to_path_buf(),
+            relation,
+        });
+    }
+    let what = match std::fs::metadata(&out) {
+        Err(_) => return Ok(()),
+        Ok(m) if m.is_dir() => match std::fs::read_dir(&out).map(|mut e| e.next().is_none()) {
+            Ok(true) => return Ok(()),
+            _ => " and is not empty",
+        },
+        Ok(_) => "",
+    };
+    if !force {
+        return Err(OutputError::Exists {
+            path: output.to_path_buf(),
+            what,
+        });
+    }
+    lock(&REPLACEABLE)
+        .get_or_insert_with(HashSet::new)
+        .insert(out);
+    Ok(())
+}
+
+/// Lets this process replace `path` (a library caller's explicit `replace`, the same as a
+/// [`claim`] with `--force` and no inputs).
+pub fn allow_replace(path: &Path) {
+    lock(&REPLACEABLE)
+        .get_or_insert_with(HashSet::new)
+        .insert(resolved(path));
+}
+
+/// [`claim`] for several outputs of one command, which must also differ from each other.
+///
+/// # Errors
+/// As [`claim`], and [`OutputError::SameOutput`] when two outputs are the same file.
+pub fn claim_all<P: AsRef<Path>>(
+    outputs: &[&Path],
+    inputs: impl IntoIterator<Item = P>,
+    force: bool,
+) -> Result<(), OutputError> {
+    let inputs: Vec<PathBuf> = inputs
+        .into_iter()
+        .map(|p| p.as_ref().to_path_buf())
+        .collect();
+    for (i, first) in outputs.iter().enumerate() {
+        for second in &outputs[i + 1..] {
+            if !is_stdout(first) && resolved(first) == resolved(second) {
+                return Err(OutputError::SameOutput {
+                    first: first.to_path_buf(),
+                    second: second.to_path_buf(),
+                });
+            }
+        }
+        claim(first, &inputs, force)?;
+    }
+    Ok(())
+}
+
+/// Whether `path` is `-`, standard output.
+pub fn is_stdout(path: &Path) -> bool {
+    path.as_os_str() == STDOUT
+}
+
+/// Whether `path` is a FIFO or character device: written to directly, never replaced.
+fn is_stream(path: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if let Ok(m) = std::fs::metadata(path) {
+            let t = m.file_type();
+            return t.is_fifo() || t.is_char_device();
+        }
+    }
+    false
+}
+
+/// The absolute path `path` stands for, symlinks followed; for a path that does not exist yet,
+/// its resolved folder joined with its name.
+fn resolved(path: &Path) -> PathBuf {
+    if let Ok(p) = std::fs::canonicalize(path) {
+        return p;
+    }
+    let parent = folder_of(path);
+    match (std::fs::canonicalize(parent), path.file_name()) {
+        (Ok(p), Some(name)) => p.join(name),
+        _ => std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf()),
+    }
+}
+
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+fn may_replace(path: &Path) -> bool {
+    lock(&REPLACEABLE)
+        .as_ref()
+        .is_some_and(|set| set.contains(&resolved(path)))
+}
+
+/// Writes `bytes` to `path`: `-` is standard output, a FIFO or character device is written to
+/// directly, and anything else through a temporary file beside the (symlink-followed) target
+/// and a rename that replaces an existing file only if it was [`claim`]ed with `--force`.
+///
+/// # Errors
+/// [`OutputError::Io`] naming the path, [`OutputError::Exists`] for an unclaimed existing file,
+/// [`OutputError::Appeared`] when the file appeared after the claim; the destination is then
+/// untouched.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
-    persist(path, stage(path, bytes)?)
+    let io = |source| OutputError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    if is_stdout(path) {
+        let mut out = std::io::stdout().lock();
+        return out.write_all(bytes).and_then(|()| out.flush()).map_err(io);
+    }
+    if is_stream(path) {
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .map_err(io)?;
+        return f.write_all(bytes).and_then(|()| f.flush()).map_err(io);
+    }
+    let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    persist(path, &target, stage(&target, bytes)?)
 }
 
 /// Writes several files so that either all of them appear or (up to a failing rename at the very
 /// end) none: every temporary file is written completely first, then all are renamed.
 ///
 /// # Errors
-/// [`OutputError::Io`] naming the first path that could not be written; no destination has been
-/// touched when a temporary file cannot be created or written.
+/// [`OutputError::SameOutput`] when two paths are the same file; [`OutputError::Io`] naming
+/// the first path that could not be written; no destination has been touched when a temporary
+/// file cannot be created or written.
 pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError> {
-    let staged = files
-        .iter()
-        .map(|(path, bytes)| Ok((path, stage(path, bytes)?)))
-        .collect::<Result<Vec<_>, OutputError>>()?;
-    for (path, tmp) in staged {
-        persist(path, tmp)?;
+    for (i, (first, _)) in files.iter().enumerate() {
+        for (second, _) in &files[i + 1..] {
+            if !is_stdout(first) && resolved(first) == resolved(second) {
+                return Err(OutputError::SameOutput {
+                    first: first.clone(),
+                    second: second.clone(),
+                });
+            }
+        }
+    }
+    let mut direct = Vec::new();
+    let mut staged = Vec::new();
+    for (path, bytes) in files {
+        if is_stdout(path) || is_stream(path) {
+            direct.push((path, bytes));
+        } else {
+            let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.clone());
+            let tmp = stage(&target, bytes)?;
+            staged.push((path, target, tmp));
+        }
+    }
+    for (path, target, tmp) in staged {
+        persist(path, &target, tmp)?;
+    }
+    for (path, bytes) in direct {
+        write_atomic(path, bytes)?;
     }
     Ok(())
 }
 
 /// Writes `files` (names relative to `dir`) as the folder `dir`, so that either the whole new
-/// folder appears or nothing changes: the files are written into a temporary folder beside
-/// `dir`, which then takes `dir`'s place. An existing `dir` is replaced; whether it may be is
-/// the caller's decision, made before calling.
+/// folder appears or nothing changes: the files are written into a staging folder beside
+/// `dir`, which then takes `dir`'s place. A missing or empty `dir` is taken with a rename that
+/// fails if anything appeared in it meanwhile; a non-empty one is replaced only if it was
+/// [`claim`]ed with `--force`.
 ///
 /// # Errors
-/// [`OutputError::Staging`] naming the parent folder and why the temporary folder could not be
-/// made in it (it does not exist, is not a folder, cannot be written); [`OutputError::Io`]
-/// naming the path for anything else. `dir` is then as it was.
+/// [`OutputError::Staging`] naming the parent folder and why the staging folder could not be
+/// made in it; [`OutputError::Exists`] or [`OutputError::Appeared`] for an occupied `dir`;
+/// [`OutputError::Io`] naming the path for anything else. `dir` is then as it was.
 pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
+    install_signal_cleanup();
     let io = |path: &Path| {
         let path = path.to_path_buf();
         move |source| OutputError::Io { path, source }
     };
+    let dir_target = match std::fs::read_link(dir) {
+        Ok(_) => std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf()),
+        Err(_) => dir.to_path_buf(),
+    };
+    let dir_shown = dir;
+    let dir = dir_target.as_path();
     let parent = folder_of(dir);
     let staging_err = |what: &'static str| {
         move |reason| OutputError::Staging {
             what,
             parent: parent.to_path_buf(),
-            dir: dir.to_path_buf(),
+            dir: dir_shown.to_path_buf(),
             reason,
         }
     };
-    let staging = tempfile::Builder::new()
-        .prefix(".dlw-staging-")
-        .tempdir_in(parent)
-        .map_err(staging_err("staging"))?;
+    sweep_stale(parent);
+    let staging = Staged::new(
+        tempfile::Builder::new()
+            .prefix(&staging_prefix())
+            .tempdir_in(parent)
+            .map_err(staging_err("staging"))?,
+    );
     for (name, bytes) in files {
         write_atomic(&staging.path().join(name), bytes)?;
     }
@@ -96,25 +337,158 @@ pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<()
         std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755))
             .map_err(io(dir))?;
     }
-    if std::fs::symlink_metadata(dir).is_err() {
-        std::fs::rename(staging.path(), dir).map_err(io(dir))?;
-        let _ = staging.keep();
-        return Ok(());
+    let occupied = match std::fs::read_dir(dir) {
+        Ok(mut entries) => entries.next().is_some(),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
+        Err(_) => true,
+    };
+    if !occupied || !may_replace(dir) {
+        if occupied {
+            return Err(OutputError::Exists {
+                path: dir_shown.to_path_buf(),
+                what: " and is not empty",
+            });
+        }
+        // rename(2) replaces only an empty folder: anything that appeared meanwhile makes it
+        // fail instead of being lost.
+        return match std::fs::rename(staging.path(), dir) {
+            Ok(()) => {
+                staging.keep();
+                Ok(())
+            }
+            Err(e)
+                if matches!(
+                    e.raw_os_error(),
+                    Some(libc::ENOTEMPTY | libc::EEXIST | libc::ENOTDIR | libc::EISDIR)
+                ) =>
+            {
+                Err(OutputError::Appeared {
+                    path: dir_shown.to_path_buf(),
+                })
+            }
+            Err(e) => Err(io(dir_shown)(e)),
+        };
     }
     // rename cannot replace a non-empty folder: move the old one aside first, and back if the
     // new one cannot take its place.
-    let old = tempfile::Builder::new()
-        .prefix(".dlw-replaced-")
-        .tempdir_in(parent)
-        .map_err(staging_err("set-aside"))?;
+    let old = Staged::new(
+        tempfile::Builder::new()
+            .prefix(&staging_prefix())
+            .tempdir_in(parent)
+            .map_err(staging_err("set-aside"))?,
+    );
     let aside = old.path().join("old");
-    std::fs::rename(dir, &aside).map_err(io(dir))?;
+    std::fs::rename(dir, &aside).map_err(io(dir_shown))?;
     if let Err(source) = std::fs::rename(staging.path(), dir) {
         let _ = std::fs::rename(&aside, dir);
-        return Err(io(dir)(source));
+        old.keep_if_restore_failed(&aside);
+        return Err(io(dir_shown)(source));
     }
-    let _ = staging.keep();
+    staging.keep();
     Ok(())
+}
+
+/// A staging folder registered for removal on a signal, removed when dropped unless kept.
+struct Staged {
+    dir: Option<tempfile::TempDir>,
+    path: PathBuf,
+}
+
+impl Staged {
+    fn new(dir: tempfile::TempDir) -> Self {
+        let path = dir.path().to_path_buf();
+        lock(&STAGING).push(path.clone());
+        Self {
+            dir: Some(dir),
+            path,
+        }
+    }
+
+    fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The folder has been renamed into place: nothing to remove.
+    fn keep(mut self) {
+        if let Some(dir) = self.dir.take() {
+            let _ = dir.keep();
+        }
+    }
+
+    /// The old folder could not be moved back: keep it rather than delete the user's data.
+    fn keep_if_restore_failed(self, aside: &Path) {
+        if aside.exists() {
+            self.keep();
+        }
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        lock(&STAGING).retain(|p| p != &self.path);
+    }
+}
+
+/// `.dlw-staging-<pid>-`: the pid lets a later run tell a dead run's leftovers from a live one's.
+fn staging_prefix() -> String {
+    format!(".dlw-staging-{}-", std::process::id())
+}
+
+/// Removes `.dlw-staging-<pid>-*` entries in `folder` whose process is gone, saying so.
+fn sweep_stale(folder: &Path) {
+    let Ok(entries) = std::fs::read_dir(folder) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(".dlw-staging-")) else {
+            continue;
+        };
+        let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<i32>().ok()) else {
+            continue;
+        };
+        if pid <= 0 || process_alive(pid) {
+            continue;
+        }
+        let path = entry.path();
+        let removed = if path.is_dir() {
+            std::fs::remove_dir_all(&path)
+        } else {
+            std::fs::remove_file(&path)
+        };
+        if removed.is_ok() {
+            eprintln!(
+                "removed {}, left by an interrupted dlw run (process {pid}, no longer running)",
+                path.display()
+            );
+        }
+    }
+}
+
+fn process_alive(pid: i32) -> bool {
+    // kill(pid, 0) sends nothing; ESRCH means no such process. EPERM: alive, someone else's.
+    // SAFETY: signal 0 performs only the existence and permission check.
+    let r = unsafe { libc::kill(pid, 0) };
+    r == 0 || std::io::Error::last_os_error().raw_os_error() != Some(libc::ESRCH)
+}
+
+/// Installs (once) a SIGINT/SIGTERM handler that removes this process's staging folders and
+/// files, then exits with 128 + the signal's number as a shell would report.
+fn install_signal_cleanup() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let _ = ctrlc::set_handler(|| {
+            for path in lock(&STAGING).iter() {
+                let _ = if path.is_dir() {
+                    std::fs::remove_dir_all(path)
+                } else {
+                    std::fs::remove_file(path)
+                };
+            }
+            eprintln!("interrupted; removed the partial output");
+            std::process::exit(130);
+        });
+    });
 }
 
 /// The folder a path lives in (`.` for a bare file name).
@@ -131,7 +505,11 @@ fn stage(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, OutputErr
         path: path.to_path_buf(),
         source,
     };
-    let mut tmp = tempfile::NamedTempFile::new_in(folder_of(path)).map_err(io)?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(&staging_prefix())
+        .tempfile_in(folder_of(path))
+        .map_err(io)?;
+    lock(&STAGING).push(tmp.path().to_path_buf());
     tmp.write_all(bytes).map_err(io)?;
     tmp.flush().map_err(io)?;
     // Temporary files are created private (0600); an output file is an ordinary document.
@@ -145,10 +523,28 @@ fn stage(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, OutputErr
     Ok(tmp)
 }
 
-fn persist(path: &Path, tmp: tempfile::NamedTempFile) -> Result<(), OutputError> {
-    tmp.persist(path).map(drop).map_err(|e| OutputError::Io {
-        path: path.to_path_buf(),
-        source: e.error,
+/// Renames the staged file onto `target` (`shown` is the path the user gave): replacing only
+/// a file claimed with `--force`, otherwise with a no-replace rename.
+fn persist(shown: &Path, target: &Path, tmp: tempfile::NamedTempFile) -> Result<(), OutputError> {
+    let tmp_path = tmp.path().to_path_buf();
+    let result = if may_replace(target) {
+        tmp.persist(target).map(drop)
+    } else {
+        tmp.persist_noclobber(target).map(drop)
+    };
+    lock(&STAGING).retain(|p| p != &tmp_path);
+    result.map_err(|e| {
+        if e.error.kind() == std::io::ErrorKind::AlreadyExists {
+            OutputError::Exists {
+                path: shown.to_path_buf(),
+                what: "",
+            }
+        } else {
+            OutputError::Io {
+                path: shown.to_path_buf(),
+                source: e.error,
+            }
+        }
     })
 }
 
@@ -175,6 +571,73 @@ mod tests {
     }
 
     #[test]
+    fn inputs_are_refused_even_with_force_and_files_are_not_replaced_unclaimed() {
+        let root = tempfile::tempdir().unwrap();
+        let rec = root.path().join("rec");
+        std::fs::create_dir(&rec).unwrap();
+        let data = rec.join("data.csv");
+        std::fs::write(&data, b"x").unwrap();
+        for (out, relation) in [
+            (&rec, "is the"),
+            (&data, "is part of the"),
+            (&root.path().to_path_buf(), "holds the"),
+        ] {
+            let err = claim(out, &[&rec], true).unwrap_err();
+            let text = err.to_string();
+            assert!(
+                text.contains(relation) && text.contains(&rec.display().to_string()),
+                "{text}"
+            );
+        }
+        let err = claim(&data, &[&data], true).unwrap_err().to_string();
+        assert!(err.contains("refused even with --force"), "{err}");
+        // An existing file is kept without a claim, replaced with one.
+        let other = root.path().join("other.csv");
+        std::fs::write(&other, b"old").unwrap();
+        assert!(matches!(
+            write_atomic(&other, b"new"),
+            Err(OutputError::Exists { .. })
+        ));
+        assert_eq!(std::fs::read(&other).unwrap(), b"old");
+        claim(&other, &[&rec], true).unwrap();
+        write_atomic(&other, b"new").unwrap();
+        assert_eq!(std::fs::read(&other).unwrap(), b"new");
+        // Two outputs that are the same file.
+        let err = write_all_atomic(&[
+            (other.clone(), b"1".to_vec()),
+            (other.clone(), b"2".to_vec()),
+        ]);
+        assert!(matches!(err, Err(OutputError::SameOutput { .. })));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn symlinks_are_followed_and_stale_staging_is_swept() {
+        let root = tempfile::tempdir().unwrap();
+        let target = root.path().join("target.csv");
+        std::fs::write(&target, b"old").unwrap();
+        let link = root.path().join("link.csv");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        claim(&link, [&link; 0], true).unwrap();
+        write_atomic(&link, b"new").unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(std::fs::read(&target).unwrap(), b"new");
+        // A staging folder of a process that is gone (pid beyond pid_max) is removed.
+        let stale = root.path().join(".dlw-staging-2147483646-abc");
+        std::fs::create_dir(&stale).unwrap();
+        let live = root
+            .path()
+            .join(format!(".dlw-staging-{}-abc", std::process::id()));
+        std::fs::create_dir(&live).unwrap();
+        write_folder_atomic(&root.path().join("out"), &[("a".into(), b"x".to_vec())]).unwrap();
+        assert!(!stale.exists());
+        assert!(live.exists());
+    }
+
+    #[test]
     fn writes_all_or_nothing() {
         let dir = tempfile::tempdir().unwrap();
         let (a, b) = (dir.path().join("a"), dir.path().join("b"));
@@ -195,6 +658,15 @@ mod tests {
         let files = |text: &str| vec![("a.txt".to_string(), text.as_bytes().to_vec())];
         write_folder_atomic(&dir, &files("one")).unwrap();
         std::fs::write(dir.join("stale.txt"), b"x").unwrap();
+        // Not claimed with --force: the folder is kept.
+        let err = write_folder_atomic(&dir, &files("two")).unwrap_err();
+        assert!(matches!(err, OutputError::Exists { .. }), "{err:?}");
+        assert!(dir.join("stale.txt").exists());
+        assert!(matches!(
+            claim(&dir, [&dir; 0], false),
+            Err(OutputError::Exists { .. })
+        ));
+        claim(&dir, [&dir; 0], true).unwrap();
         write_folder_atomic(&dir, &files("two")).unwrap();
         assert_eq!(std::fs::read(dir.join("a.txt")).unwrap(), b"two");
         assert!(!dir.join("stale.txt").exists());

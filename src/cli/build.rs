@@ -31,6 +31,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(&args.output, [&args.design], args.force)?;
     let inputs = resolve_inputs(&args.design, None, args.machine.as_deref())?;
     for w in &inputs.warnings {
         eprintln!("warning: {w}");

@@ -47,6 +47,10 @@ pub struct Args {
     /// Output folder: report.html and its SVG figures (replaced if it exists).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
+    #[arg(long)]
+    force: bool,
     /// Print every number as JSON.
     #[arg(long)]
     json: bool,
@@ -63,6 +67,7 @@ struct Report<'a, T: Serialize> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(&args.output, [&args.design, &args.recording].into_iter().chain(&args.config), args.force)?;
     if !(2..=MAX_PLAYS).contains(&args.order) {
         anyhow::bail!(
             "--order {} must lie between 2 and {MAX_PLAYS} play operators",

@@ -125,6 +125,7 @@ impl From<(f64, f64, f64)> for PaperRow {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(&args.output, [&args.design, &args.config].into_iter().chain(&args.scenario).chain(&args.profile), args.force)?;
     let occupied = match std::fs::read_dir(&args.output) {
         Ok(mut entries) => entries.next().is_some(),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,

@@ -29,6 +29,10 @@ pub struct Args {
     /// Output folder: report.html, its SVGs and scenario.toml (replaced if it exists).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
+    #[arg(long)]
+    force: bool,
     /// Print the result as JSON.
     #[arg(long)]
     json: bool,
@@ -66,6 +70,7 @@ struct Scored {
 
 /// Runs `dlw discover`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(&args.output, [&args.design, &args.recording].into_iter().chain(&args.scenario).chain(&args.holdout), args.force)?;
     let design = Design::load(&args.design)?;
     let recording = Recording::read(&args.recording)?;
     let holdout = args

@@ -23,9 +23,21 @@ pub struct Args {
     /// Write the cross-section through a notch (the paper's Fig. 3) as an SVG sheet.
     #[arg(long, value_name = "FILE")]
     section: Option<PathBuf>,
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
+    #[arg(long)]
+    force: bool,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let outputs: Vec<&std::path::Path> = args
+        .dxf
+        .iter()
+        .chain(&args.svg)
+        .chain(&args.section)
+        .map(|p| p.as_path())
+        .collect();
+    dlw::output::claim_all(&outputs, [&args.design], args.force)?;
     if args.dxf.is_none() && args.svg.is_none() && args.section.is_none() {
         anyhow::bail!("nothing to draw: give --dxf, --svg and/or --section FILE");
     }

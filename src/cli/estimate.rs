@@ -33,6 +33,10 @@ pub struct Args {
     /// Estimates CSV (default: estimates.csv in the recording folder).
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
+    #[arg(long)]
+    force: bool,
     /// Ground truth from fluoroscopy (`dlw fluoro`'s angles.csv, or any CSV with time_s and
     /// angle_deg columns): the estimates are interpolated at its frame times and compared with
     /// it, in place of the tracker column, which may then be empty.
@@ -95,6 +99,14 @@ struct TruthReport {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let inputs = [&args.config, &args.recording]
+        .into_iter()
+        .chain(&args.truth);
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| args.recording.join(DEFAULT_OUTPUT));
+    dlw::output::claim(&output, inputs, args.force)?;
     let mut config = load_config(&args.config)?;
     if let Some(filter) = args.filter {
         config.output_filter = filter;

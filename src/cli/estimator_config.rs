@@ -43,9 +43,14 @@ pub struct Args {
     /// Output file: .toml or .json (the extension picks the format).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
+    #[arg(long)]
+    force: bool,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(&args.output, [&args.design], args.force)?;
     let format = ConfigFormat::of(&args.output)?;
     let design = Design::load(&args.design)?;
     let divider = Divider::new(args.divider_ohm, args.supply_v).context("divider")?;

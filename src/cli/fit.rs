@@ -45,6 +45,10 @@ pub struct Args {
     /// Output config (.toml or .json), as `dlw estimate` and the runtime crate read it.
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
+    #[arg(long)]
+    force: bool,
     /// Print every fitted number and the timings as JSON.
     #[arg(long)]
     json: bool,
@@ -73,6 +77,8 @@ impl From<SensorArg> for Sensors {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output).chain(&args.report).map(|p| p.as_path()).collect();
+    dlw::output::claim_all(&outputs, [&args.design, &args.recording].into_iter().chain(&args.validate), args.force)?;
     let start = Instant::now();
     let format = ConfigFormat::of(&args.output)?;
     if !(MIN_ORDER..=MAX_ORDER).contains(&args.order) {

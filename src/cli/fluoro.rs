@@ -96,6 +96,11 @@ struct Summary {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
+        .chain(&args.overlay)
+        .map(|p| p.as_path())
+        .collect();
+    dlw::output::claim_all(&outputs, [&args.frames], args.force)?;
     let settings = Settings {
         crop: args.crop,
         threshold: args.threshold,

@@ -48,6 +48,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(&args.output, [&args.recording], args.force)?;
     if !(args.fps.is_finite() && args.fps > 0.0) {
         anyhow::bail!(
             "--fps {} is out of range (finite and greater than 0)",

@@ -38,6 +38,10 @@ pub struct Args {
     /// Program file to write.
     #[arg(short, long, value_name = "FILE")]
     output: PathBuf,
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
+    #[arg(long)]
+    force: bool,
     /// Also write the operator's setup sheet (Markdown) here.
     #[arg(long, value_name = "FILE.md")]
     sheet: Option<PathBuf>,
@@ -104,6 +108,18 @@ pub(crate) fn job(inputs: &Inputs, program_file: &str) -> anyhow::Result<Job> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
+        .chain(&args.sheet)
+        .map(|p| p.as_path())
+        .collect();
+    dlw::output::claim_all(
+        &outputs,
+        args.design
+            .iter()
+            .chain(&args.design_flag)
+            .chain(&args.from_dxf),
+        args.force,
+    )?;
     if args.from_dxf.is_none() && args.drawing.units.is_some() {
         bail!("--units is for reading a drawing: give it with --from-dxf DRAWING.dxf");
     }

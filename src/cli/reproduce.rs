@@ -14,6 +14,10 @@ pub struct Args {
     /// Output folder: report.html and its SVG figures (replaced if it exists).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
+    #[arg(long)]
+    force: bool,
     /// Every protocol timing times F, in (0, 1]; 1 (the default) is the paper's 1000 s
     /// characterization and 3000 s of each other protocol.
     #[arg(long, conflicts_with = "short")]
@@ -50,6 +54,7 @@ struct Report {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(&args.output, [&args.output; 0], args.force)?;
     let start = Instant::now();
     let settings = Settings {
         duration_scale: if args.short {

@@ -64,6 +64,13 @@ pub(super) fn parse_protocol(s: &str) -> Result<ProtocolKind, String> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(
+        &args.output,
+        std::iter::once(&args.design)
+            .chain(&args.scenario)
+            .chain(&args.profile),
+        args.force,
+    )?;
     let design = Design::load(&args.design)?;
     let mut scenario = match &args.scenario {
         Some(path) => Scenario::load(path)?,

@@ -428,6 +428,9 @@ impl Recording {
                 path: dest.to_path_buf(),
             });
         }
+        if replace {
+            crate::output::allow_replace(dest);
+        }
         let rig = toml::to_string(&self.rig).map_err(|e| RecordingError::RigWrite {
             message: e.to_string(),
         })?;

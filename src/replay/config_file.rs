@@ -61,6 +61,10 @@ impl ConfigFormat {
     /// # Errors
     /// [`ConfigFileError::Extension`] for anything but `.toml` and `.json` (any case).
     pub fn of(path: &Path) -> Result<Self, ConfigFileError> {
+        // `-o -` (standard output) writes TOML.
+        if path.as_os_str() == "-" {
+            return Ok(Self::Toml);
+        }
         let ext = path
             .extension()
             .and_then(|e| e.to_str())

@@ -1,0 +1,439 @@
+//! The output policy (docs/outputs.md), once per command: a table of commands, each run against
+//! every output case, asserting what is refused, what is written, and that nothing else in the
+//! surrounding folder changed. Adding a command is one row in [`commands`].
+
+mod common;
+use common::{arg, dlw, shipped_design};
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// What a command writes at `-o`.
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    /// One file: `-o -`, FIFOs and symlinks apply.
+    File,
+    /// A folder.
+    Folder,
+}
+
+/// One row: a command, what it writes, and its arguments for an output path, given the fixture.
+struct Row {
+    name: &'static str,
+    kind: Kind,
+    /// Arguments without `--force`; `out` is the output path.
+    args: fn(&Fixture, &str) -> Vec<String>,
+    /// The input that the "input itself" case points the output at.
+    input: fn(&Fixture) -> PathBuf,
+}
+
+/// Inputs shared by every row, made once, outside the folders the cases look at.
+struct Fixture {
+    _root: tempfile::TempDir,
+    design: PathBuf,
+    recording: PathBuf,
+    config: PathBuf,
+}
+
+fn fixture() -> Fixture {
+    let root = tempfile::tempdir().unwrap();
+    let design = root.path().join("joint-c.toml");
+    std::fs::copy(shipped_design("joint-c.toml"), &design).unwrap();
+    let recording = root.path().join("rec");
+    let o = dlw(&simulate_args(&design, &recording, "2"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let config = root.path().join("c.toml");
+    let mut a = vec![
+        "estimator-config".to_string(),
+        arg(&design),
+    ];
+    a.extend(common::JOINT_C_TABLE_V.iter().map(|s| s.to_string()));
+    a.extend(["-o".into(), arg(&config)]);
+    let o = dlw(&a);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    Fixture {
+        _root: root,
+        design,
+        recording,
+        config,
+    }
+}
+
+fn simulate_args(design: &Path, out: &Path, duration_s: &str) -> Vec<String> {
+    [
+        "simulate",
+        "--design",
+        &arg(design),
+        "--protocol",
+        "characterization",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .chain([
+        "--duration-s".into(),
+        duration_s.into(),
+        "-o".into(),
+        arg(out),
+    ])
+    .collect()
+}
+
+fn strings(a: &[&str]) -> Vec<String> {
+    a.iter().map(|s| s.to_string()).collect()
+}
+
+/// Every command that writes; one row each.
+fn commands() -> Vec<Row> {
+    vec![
+        Row {
+            name: "simulate",
+            kind: Kind::Folder,
+            args: |f, out| simulate_args(&f.design, Path::new(out), "2"),
+            input: |f| f.design.clone(),
+        },
+        Row {
+            name: "estimate",
+            kind: Kind::File,
+            args: |f, out| {
+                strings(&[
+                    "estimate",
+                    "--config",
+                    &arg(&f.config),
+                    &arg(&f.recording),
+                    "-o",
+                    out,
+                ])
+            },
+            input: |f| f.recording.join("data.csv"),
+        },
+        Row {
+            name: "estimator-config",
+            kind: Kind::File,
+            args: |f, out| {
+                let mut a = strings(&["estimator-config", &arg(&f.design), "-o", out]);
+                a.extend(common::JOINT_C_TABLE_V.iter().map(|s| s.to_string()));
+                a
+            },
+            input: |f| f.design.clone(),
+        },
+        Row {
+            name: "program",
+            kind: Kind::File,
+            args: |f, out| strings(&["program", &arg(&f.design), "-o", out]),
+            input: |f| f.design.clone(),
+        },
+        Row {
+            name: "build",
+            kind: Kind::Folder,
+            args: |f, out| strings(&["build", &arg(&f.design), "-o", out]),
+            input: |f| f.design.clone(),
+        },
+        Row {
+            name: "draw",
+            kind: Kind::File,
+            args: |f, out| strings(&["draw", &arg(&f.design), "--dxf", out]),
+            input: |f| f.design.clone(),
+        },
+    ]
+}
+
+/// Every file under `dir` (symlinks not followed) with its bytes, or `<fifo>`, `<link → …>`.
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, String> {
+    let mut out = BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            let t = std::fs::symlink_metadata(&p).unwrap().file_type();
+            let v = if t.is_symlink() {
+                format!("<link → {}>", std::fs::read_link(&p).unwrap().display())
+            } else if t.is_dir() {
+                stack.push(p.clone());
+                "<dir>".into()
+            } else if t.is_file() {
+                String::from_utf8_lossy(&std::fs::read(&p).unwrap()).into_owned()
+            } else {
+                "<special>".into()
+            };
+            out.insert(p.strip_prefix(dir).unwrap().to_path_buf(), v);
+        }
+    }
+    out
+}
+
+fn run(row: &Row, f: &Fixture, out: &str, force: bool) -> std::process::Output {
+    let mut a = (row.args)(f, out);
+    if force {
+        a.push("--force".into());
+    }
+    dlw(&a)
+}
+
+fn refused(row: &Row, o: &std::process::Output, needle: &str) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{}: accepted", row.name);
+    assert!(err.contains(needle), "{}: {err}", row.name);
+}
+
+#[test]
+fn every_command_follows_the_output_policy() {
+    let f = fixture();
+    for row in commands() {
+        let work = tempfile::tempdir().unwrap();
+        let w = work.path();
+
+        // An existing file: refused without --force, untouched; with it, replaced.
+        let existing = w.join("existing.toml");
+        std::fs::write(&existing, b"keep me").unwrap();
+        if row.kind == Kind::Folder {
+            // A non-empty folder.
+            std::fs::create_dir(w.join("full")).unwrap();
+            std::fs::write(w.join("full/thesis.tex"), b"keep me").unwrap();
+        }
+        let before = snapshot(w);
+        let target = if row.kind == Kind::Folder {
+            w.join("full")
+        } else {
+            existing.clone()
+        };
+        refused(&row, &run(&row, &f, &arg(&target), false), "already exists");
+        assert_eq!(snapshot(w), before, "{}: the folder changed", row.name);
+        let o = run(&row, &f, &arg(&target), true);
+        assert!(
+            o.status.success(),
+            "{}: {}",
+            row.name,
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let after = snapshot(w);
+        let changed: Vec<_> = after
+            .iter()
+            .filter(|(k, v)| {
+                before.get(*k) != Some(*v) && !k.starts_with(target.strip_prefix(w).unwrap())
+            })
+            .collect();
+        assert!(changed.is_empty(), "{}: also changed {changed:?}", row.name);
+        let gone: Vec<_> = before
+            .keys()
+            .filter(|k| !after.contains_key(*k) && !k.starts_with(target.strip_prefix(w).unwrap()))
+            .collect();
+        assert!(gone.is_empty(), "{}: removed {gone:?}", row.name);
+
+        // The input itself: refused even with --force, and the input is unchanged.
+        let input = (row.input)(&f);
+        let input_before = std::fs::read(if input.is_dir() {
+            input.join("data.csv")
+        } else {
+            input.clone()
+        })
+        .ok();
+        let o = run(&row, &f, &arg(&input), true);
+        refused(&row, &o, "refused even with --force");
+        assert!(
+            String::from_utf8_lossy(&o.stderr).contains(&arg(&input)),
+            "{}",
+            row.name
+        );
+        let input_after = std::fs::read(if input.is_dir() {
+            input.join("data.csv")
+        } else {
+            input.clone()
+        })
+        .ok();
+        assert_eq!(input_before, input_after, "{}: the input changed", row.name);
+
+        if row.kind == Kind::File {
+            file_cases(&row, &f, w);
+        }
+
+        // No staging or temporary files are left anywhere in the folder.
+        let leftovers: Vec<_> = snapshot(w)
+            .into_keys()
+            .filter(|k| k.to_string_lossy().contains(".dlw-staging-"))
+            .collect();
+        assert!(leftovers.is_empty(), "{}: {leftovers:?}", row.name);
+    }
+}
+
+/// `-o -`, a symlink and a FIFO, for commands that write one file.
+fn file_cases(row: &Row, f: &Fixture, w: &Path) {
+    // `-o -`: written to standard output, no file named `-`.
+    let before = snapshot(w);
+    let cwd_dash = Path::new("-").exists();
+    let o = run(row, f, "-", false);
+    assert!(
+        o.status.success(),
+        "{}: {}",
+        row.name,
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(o.stdout.len() > 20, "{}: nothing on stdout", row.name);
+    assert_eq!(
+        Path::new("-").exists(),
+        cwd_dash,
+        "{}: wrote a file named -",
+        row.name
+    );
+    assert_eq!(snapshot(w), before);
+
+    // A symlink: followed with --force; the link stays, its target is replaced.
+    let target = w.join("target.toml");
+    std::fs::write(&target, b"old").unwrap();
+    let link = w.join("link.toml");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    refused(row, &run(row, f, &arg(&link), false), "already exists");
+    let o = run(row, f, &arg(&link), true);
+    assert!(
+        o.status.success(),
+        "{}: {}",
+        row.name,
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink(),
+        "{}",
+        row.name
+    );
+    assert_ne!(std::fs::read(&target).unwrap(), b"old", "{}", row.name);
+
+    // A FIFO: written to directly, and still a FIFO afterwards.
+    let fifo = w.join("pipe.toml");
+    let c = std::ffi::CString::new(fifo.as_os_str().as_encoded_bytes()).unwrap();
+    // SAFETY: a valid NUL-terminated path.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o644) }, 0);
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read(fifo).unwrap())
+    };
+    let o = run(row, f, &arg(&fifo), false);
+    assert!(
+        o.status.success(),
+        "{}: {}",
+        row.name,
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let got = reader.join().unwrap();
+    assert!(
+        got.len() > 20,
+        "{}: {} bytes through the FIFO",
+        row.name,
+        got.len()
+    );
+    use std::os::unix::fs::FileTypeExt;
+    assert!(
+        std::fs::symlink_metadata(&fifo)
+            .unwrap()
+            .file_type()
+            .is_fifo(),
+        "{}",
+        row.name
+    );
+}
+
+#[test]
+fn two_simulate_runs_with_one_output_one_wins() {
+    let work = tempfile::tempdir().unwrap();
+    let design = work.path().join("joint-c.toml");
+    std::fs::copy(shipped_design("joint-c.toml"), &design).unwrap();
+    let out = work.path().join("rec");
+    let spawn = || {
+        std::process::Command::new(env!("CARGO_BIN_EXE_dlw"))
+            .args(simulate_args(&design, &out, "20"))
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let (a, b) = (spawn(), spawn());
+    let results = [a.wait_with_output().unwrap(), b.wait_with_output().unwrap()];
+    let ok = results.iter().filter(|o| o.status.success()).count();
+    assert_eq!(
+        ok,
+        1,
+        "{:?}",
+        results
+            .iter()
+            .map(|o| String::from_utf8_lossy(&o.stderr).into_owned())
+            .collect::<Vec<_>>()
+    );
+    let loser = results.iter().find(|o| !o.status.success()).unwrap();
+    let err = String::from_utf8_lossy(&loser.stderr);
+    assert!(
+        err.contains("appeared while this run was writing") || err.contains("already exists"),
+        "{err}"
+    );
+    let names: Vec<_> = std::fs::read_dir(work.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+}
+
+#[test]
+fn sigterm_during_simulate_leaves_no_staging_folder() {
+    let work = tempfile::tempdir().unwrap();
+    let design = work.path().join("joint-c.toml");
+    std::fs::copy(shipped_design("joint-c.toml"), &design).unwrap();
+    let out = work.path().join("rec");
+    for wait_ms in [50, 200, 400, 800] {
+        let child = std::process::Command::new(env!("CARGO_BIN_EXE_dlw"))
+            .args(simulate_args(&design, &out, "3000"))
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(wait_ms));
+        // SAFETY: signalling the child we spawned.
+        unsafe { libc::kill(child.id() as i32, libc::SIGTERM) };
+        let o = child.wait_with_output().unwrap();
+        let names: Vec<_> = std::fs::read_dir(work.path())
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .collect();
+        assert!(
+            !names.iter().any(|n| n.starts_with(".dlw-staging-")),
+            "after {wait_ms} ms: {names:?}, {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let _ = std::fs::remove_dir_all(&out);
+    }
+}
+
+#[test]
+fn a_stale_staging_folder_is_removed_and_reported() {
+    let work = tempfile::tempdir().unwrap();
+    let design = work.path().join("joint-c.toml");
+    std::fs::copy(shipped_design("joint-c.toml"), &design).unwrap();
+    let stale = work.path().join(".dlw-staging-2147483646-xyz");
+    std::fs::create_dir(&stale).unwrap();
+    std::fs::write(stale.join("data.csv"), b"x").unwrap();
+    let o = dlw(&simulate_args(&design, &work.path().join("rec"), "2"));
+    assert!(o.status.success());
+    assert!(!stale.exists());
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("2147483646"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+#[test]
+fn program_refuses_a_sheet_over_the_program() {
+    let work = tempfile::tempdir().unwrap();
+    let p = arg(&work.path().join("x.ngc"));
+    let o = dlw(&[
+        "program",
+        &shipped_design("joint-c.toml"),
+        "-o",
+        &p,
+        "--sheet",
+        &p,
+    ]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("same file"));
+    assert_eq!(std::fs::read_dir(work.path()).unwrap().count(), 0);
+}
