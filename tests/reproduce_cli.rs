@@ -193,3 +193,82 @@ fn a_bad_duration_scale_is_refused_and_nothing_written() {
         assert!(!out.exists());
     }
 }
+
+/// `dlw reproduce --json` at `duration_scale`, parsed.
+fn reproduce_json(duration_scale: &str) -> serde_json::Value {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r");
+    let o = common::dlw_ok(&[
+        "reproduce",
+        "--duration-scale",
+        duration_scale,
+        "-o",
+        &common::arg(&out),
+        "--json",
+    ]);
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+/// The names of the patterns that did not hold, with dlw's numbers.
+fn not_held(j: &serde_json::Value) -> Vec<String> {
+    j["patterns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["held"] != true)
+        .map(|p| format!("{} (paper {}, dlw {})", p["name"], p["paper"], p["dlw"]))
+        .collect()
+}
+
+/// The pattern list is computed from the run: every one of the paper's 11 checks is there with
+/// its numbers, and the Table VI check says held exactly when closed loop's actual-vs-desired
+/// RMSE is below open loop's in the same JSON (the report claimed the paper's pattern next to
+/// 4.22° → 8.72°).
+#[test]
+fn patterns_are_listed_and_agree_with_the_numbers() {
+    let j = reproduce_json("0.1");
+    let patterns = j["patterns"].as_array().unwrap();
+    assert_eq!(patterns.len(), 11, "{patterns:?}");
+    for p in patterns {
+        for key in ["name", "paper", "dlw"] {
+            assert!(!p[key].as_str().unwrap().is_empty(), "{key} empty in {p}");
+        }
+        assert!(p["held"].is_boolean(), "{p}");
+    }
+    let open = j["control_open_loop"]["actual_vs_desired_rmse_deg"]
+        .as_f64()
+        .unwrap();
+    let closed = j["control_closed_loop"]["actual_vs_desired_rmse_deg"]
+        .as_f64()
+        .unwrap();
+    let vi = patterns
+        .iter()
+        .find(|p| p["name"].as_str().unwrap().contains("Table VI"))
+        .unwrap();
+    assert_eq!(vi["held"], closed < open, "{vi} against {open} → {closed}");
+}
+
+/// Every pattern of the paper holds at `--short` and at half size. NOT YET TRUE (issue 16):
+/// at `--short` only the relaxation τ checks and Joint A's rate check hold; run with
+/// `cargo test --test reproduce_cli every_pattern -- --ignored`.
+#[test]
+#[ignore = "issue 16: the patterns do not all hold yet (Table VI open 4.22° → closed 6.16° at --short)"]
+fn every_pattern_holds_short_and_half() {
+    for scale in ["0.1", "0.5"] {
+        let j = reproduce_json(scale);
+        assert!(
+            not_held(&j).is_empty(),
+            "scale {scale}: {:#?}",
+            not_held(&j)
+        );
+    }
+}
+
+/// Every pattern at the paper's full durations (a few minutes):
+/// `cargo test --test reproduce_cli every_pattern_holds_full -- --ignored`.
+#[test]
+#[ignore = "full size; issue 16: the patterns do not all hold yet"]
+fn every_pattern_holds_full_size() {
+    let j = reproduce_json("1");
+    assert!(not_held(&j).is_empty(), "{:#?}", not_held(&j));
+}

@@ -46,6 +46,7 @@ struct JointNumbers {
 #[derive(Debug, Serialize)]
 struct Report {
     duration_scale: f64,
+    patterns: Vec<dlw::reproduce::Pattern>,
     seconds: f64,
     joints: Vec<JointNumbers>,
     control_open_loop: dlw::control::SchemeMetrics,
@@ -88,6 +89,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if args.json {
         let out = Report {
             duration_scale: settings.duration_scale,
+            patterns: dlw::reproduce::patterns(&r),
             seconds: start.elapsed().as_secs_f64(),
             joints: r
                 .joints
@@ -146,6 +148,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "Joint D control RMSE (°): open loop {:.2} / {:.2} / {:.2}, closed loop {:.2} / {:.2} / {:.2} (sensed-actual / actual-desired / sensed-desired)",
         o[0], o[1], o[2], c[0], c[1], c[2]
     );
+    for p in dlw::reproduce::patterns(&r) {
+        println!(
+            "pattern {}: {} (paper: {}; dlw: {})",
+            if p.held { "held" } else { "NOT held" },
+            p.name,
+            p.paper,
+            p.dlw
+        );
+    }
     println!(
         "report {} ({:.1} s)",
         report.display(),

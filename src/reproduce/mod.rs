@@ -19,6 +19,7 @@
 
 mod joints;
 pub mod paper;
+mod patterns;
 mod report;
 
 use std::sync::Mutex;
@@ -35,6 +36,8 @@ use crate::sim::{plan, ProtocolKind, Recording, SimError};
 
 /// The simulated joints and their scenarios.
 pub use joints::{joints, scaled, SimJoint, JOINT_B_PI};
+/// The paper's patterns as named checks.
+pub use patterns::{patterns, Pattern, MAX_RATE_CORRELATION, RELAXATION_TAU_TOLERANCE};
 /// The report page.
 pub use report::page;
 

@@ -15,6 +15,27 @@ fn k(ohm: f64) -> String {
 }
 
 /// The page of a reproduction.
+/// The paper's patterns, held or not, at the top of the report.
+fn patterns_section(page: &mut Page, r: &Reproduction) {
+    let list = super::patterns(r);
+    let held = list.iter().filter(|p| p.held).count();
+    page.heading("The paper's patterns");
+    page.text(format!(
+        "{held} of the paper's {} patterns hold in this run.",
+        list.len()
+    ));
+    let mut t = Table::new(["pattern", "held", "paper", "dlw"]);
+    for p in &list {
+        t.row([
+            p.name.clone(),
+            if p.held { "held" } else { "NOT held" }.to_owned(),
+            p.paper.clone(),
+            p.dlw.clone(),
+        ]);
+    }
+    page.table(t);
+}
+
 pub fn page(r: &Reproduction) -> Page {
     let mut page = Page::new("The paper's Section IV reproduced on the simulator (dlw reproduce)");
     let scale = r.settings.duration_scale;
@@ -38,6 +59,7 @@ pub fn page(r: &Reproduction) -> Page {
              are larger than a full run's."
         ));
     }
+    patterns_section(&mut page, r);
     table_iii(&mut page, r);
     rate(&mut page, r);
     relaxation(&mut page, r);
