@@ -39,7 +39,8 @@ fn assert_ok(out: &Output, what: &str) {
 
 /// Draws `design` with the real binary into `dir`, returning the DXF path and the layout.
 fn draw(design: &Path, dir: &Path) -> (PathBuf, Layout, DesignFile) {
-    let dxf = dir.join("drawing.dxf");
+    let stem = design.file_stem().unwrap().to_string_lossy();
+    let dxf = dir.join(format!("{stem}.dxf"));
     let out = Command::new(env!("CARGO_BIN_EXE_dlw"))
         .arg("draw")
         .arg(design)
@@ -124,7 +125,8 @@ fn the_tube_layer_and_the_split_note() {
         assert_eq!(out.status.code(), Some(1), "{}", design.display());
     }
     // The imported layout ignores the TUBE layer: the drawing still reads back exactly.
-    let (dxf, layout, _) = draw(&shipped[1], dir.path());
+    let again = tempfile::tempdir().unwrap();
+    let (dxf, layout, _) = draw(&shipped[1], again.path());
     let back = layout_from_dxf(&std::fs::read(&dxf).unwrap()).unwrap();
     assert!(layout.max_difference_mm(&back.layout).unwrap() <= 1e-9);
 }
