@@ -140,6 +140,7 @@ fn fluoroscopy_truth_gives_the_tracker_rmse() {
         "--truth",
         &p("angles.csv"),
         "--json",
+        "--force",
     ]);
     assert_eq!(both["tracker"]["rmse_deg"], tracker["rmse_deg"], "{both}");
     assert_eq!(both["tracker"]["samples"], 20_000, "{both}");
@@ -191,6 +192,8 @@ fn fluoroscopy_truth_gives_the_tracker_rmse() {
             "--truth",
             &angles,
             "--json",
+            // The second --smooth replaces the first run's estimates.csv.
+            "--force",
         ]);
         let t = &report["truth"];
         assert_eq!(t["frames"], 80, "{report}");

@@ -50,6 +50,8 @@ fn program(design: &Path, dir: &Path, extra: &[&str]) -> PathBuf {
         design.as_os_str(),
         "-o".as_ref(),
         out.as_os_str(),
+        // Each case reruns into the same job.ngc once rs274 has read the previous one.
+        "--force".as_ref(),
     ];
     args.extend(extra.iter().map(|s| std::ffi::OsStr::new(*s)));
     let o = dlw(&args);

@@ -99,8 +99,18 @@ struct TruthReport {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let inputs = [&args.config, &args.recording]
-        .into_iter()
+    // A recording folder's own files are the input: estimates.csv written beside them by an
+    // earlier run is an output, replaced with --force like any other.
+    let recording_files = if args.recording.is_dir() {
+        vec![
+            args.recording.join(dlw::recording::DATA_FILE),
+            args.recording.join(dlw::recording::RIG_FILE),
+        ]
+    } else {
+        vec![args.recording.clone()]
+    };
+    let inputs = std::iter::once(&args.config)
+        .chain(&recording_files)
         .chain(&args.truth);
     let output = args
         .output
