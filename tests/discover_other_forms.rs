@@ -81,6 +81,7 @@ fn discover_names_effects_of_other_functional_forms() {
             effects: effect.into_iter().collect(),
             duration_s: duration_s(design),
             seed,
+            ..Bench::default()
         };
         let name = format!(
             "{}-{}-{seed}",
@@ -141,6 +142,7 @@ fn write_samples() {
             effects: effect.into_iter().collect(),
             duration_s: duration_s(design),
             seed,
+            ..Bench::default()
         };
         let name = format!(
             "{}-{}",

@@ -441,7 +441,9 @@ pub fn discover(
                     continue;
                 };
                 let gained = evidence(n, current_ss, ss, tau);
-                // Hysteresis is memory: score the plays against the same curve without them.
+                // Hysteresis is memory: score the plays against a memoryless curve of any
+                // shape (the tanh and a piecewise-linear curve), both with that curve, so that
+                // a saturation of another shape than tanh earns the plays nothing.
                 let memory = match &term {
                     Term::Hysteresis {
                         radii,
@@ -449,14 +451,23 @@ pub fn discover(
                         width,
                         ..
                     } => {
-                        let curve = m.with(Term::Hysteresis {
-                            radii: radii.clone(),
-                            center: *center,
-                            width: *width,
-                            memory: false,
-                        });
-                        evaluate(&curve, noise)
-                            .map(|(_, curve_ss, _, _)| evidence(n, curve_ss, ss, tau))
+                        let flexible = |memory| {
+                            m.with(Term::Hysteresis {
+                                radii: radii.clone(),
+                                center: *center,
+                                width: *width,
+                                memory,
+                                knots: Term::static_knots(span),
+                            })
+                        };
+                        let curve = evaluate(&flexible(false), noise);
+                        let loops = held_out_ss_and_tau(&flexible(true), noise);
+                        match (curve, loops) {
+                            (Some((_, curve_ss, _, _)), Some((loop_ss, loop_tau))) => {
+                                Some(evidence(n, curve_ss, loop_ss, loop_tau))
+                            }
+                            _ => None,
+                        }
                     }
                     _ => None,
                 };
@@ -629,20 +640,11 @@ pub fn discover(
 }
 
 /// Hysteresis (the generalized PI: a tanh curve centred anywhere, plays, a direction switch)
-/// can bend like saturation (a tanh centred at zero strain). It stays in the round only when
-/// it shows what saturation cannot: memory (its plays buy [`THRESHOLD`] over its own curve
-/// alone), or a curve saturation cannot draw (evidence over twice saturation's, plus
-/// [`THRESHOLD`]). Otherwise the static nonlinearity is saturation's to name.
+/// can bend like saturation. It stays in the round only when it shows memory: its plays buy
+/// [`THRESHOLD`] over a memoryless curve of any shape ([`Term::static_knots`]). A curve that
+/// bends without a loop is saturation's to name, whatever its shape.
 fn prefer_simpler(scored: &mut Vec<Candidate>) {
-    let saturation = scored
-        .iter()
-        .find(|c| c.effect == Effect::Saturation)
-        .map_or(0.0, |c| c.evidence.max(0.0));
-    scored.retain(|c| {
-        c.effect != Effect::Hysteresis
-            || c.memory.unwrap_or(0.0) >= THRESHOLD
-            || c.evidence >= 2.0 * saturation + THRESHOLD
-    });
+    scored.retain(|c| c.effect != Effect::Hysteresis || c.memory.unwrap_or(0.0) >= THRESHOLD);
 }
 
 /// A PI sensor model's loading curve is a tanh (Eqs. 8-11): a loop that also bends is one

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::data::Data;
 use super::noise::ArNoise;
-use super::terms::{low_pass, play, rate, Term, LOG_REFERENCE_RATE};
+use super::terms::{hats, low_pass, play, rate, Term, LOG_REFERENCE_RATE};
 
 /// Which channel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -133,6 +133,7 @@ impl ChannelModel {
                     center,
                     width,
                     memory,
+                    knots,
                 } => {
                     let nu: Vec<f64> = driver
                         .iter()
@@ -140,6 +141,10 @@ impl ChannelModel {
                         .collect();
                     columns.push(nu.clone());
                     labels.push("curve");
+                    for hat in hats(&driver, knots) {
+                        columns.push(hat);
+                        labels.push("static");
+                    }
                     if !memory {
                         continue;
                     }

@@ -108,6 +108,7 @@ pub fn known(scenario: &Scenario) -> Known {
                     center: 0.0,
                     width: 0.0,
                     memory: true,
+                    knots: Vec::new(),
                 },
             ));
         }

@@ -58,6 +58,11 @@ impl Effect {
     }
 }
 
+/// Intervals of the memoryless piecewise-linear curve on each side of zero strain
+/// ([`Term::static_knots`]): 12 follow a power law `ε^0.8` or a knee to well under the noise
+/// of a 300 s recording's held-out blocks.
+pub const STATIC_KNOTS_PER_SIDE: usize = 12;
+
 /// Reference strain rate of the log form (1/s), the simulator's default.
 pub const LOG_REFERENCE_RATE: f64 = 1e-3;
 
@@ -87,6 +92,10 @@ pub enum Term {
         /// With the plays and the direction switch (the memory); without, the curve alone,
         /// a static nonlinearity, against which the memory is scored.
         memory: bool,
+        /// Knots (strain) of a piecewise-linear memoryless curve added beside the tanh: empty
+        /// for the candidate; [`Term::static_knots`] when the memory is scored, so that plays
+        /// are credited only for what no memoryless curve of any shape draws.
+        knots: Vec<f64>,
     },
     /// `ε_s·tanh(x/ε_s)`.
     Saturation {
@@ -146,6 +155,7 @@ impl Term {
                         center: c * span,
                         width: w * span,
                         memory: true,
+                        knots: Vec::new(),
                     })
                 })
                 .collect(),
@@ -170,6 +180,16 @@ impl Term {
                 .map(|settle_tau_s| Term::Drift { settle_tau_s })
                 .collect(),
         }
+    }
+
+    /// Knots of the memoryless curve against which a hysteresis candidate's memory is scored:
+    /// [`STATIC_KNOTS_PER_SIDE`] intervals on each side of zero strain, out to `span` (the peak
+    /// |felt strain|).
+    pub fn static_knots(span: f64) -> Vec<f64> {
+        let k = STATIC_KNOTS_PER_SIDE as i32;
+        (-k..=k)
+            .map(|i| span * f64::from(i) / f64::from(k))
+            .collect()
     }
 
     /// The term's one continuous shape parameter (a width, a saturation strain, a time
@@ -339,4 +359,23 @@ mod tests {
         assert_eq!(moved, Term::Backlash { half_mm: 0.2 });
         assert_eq!(moved.scale(), Some(0.2));
     }
+}
+
+/// The piecewise-linear basis over `knots` (equally spaced): at each knot a hat that is 1 there
+/// and falls to 0 at its neighbours.
+pub fn hats(x: &[f64], knots: &[f64]) -> Vec<Vec<f64>> {
+    let Some(h) = knots.windows(2).map(|w| w[1] - w[0]).reduce(f64::min) else {
+        return Vec::new();
+    };
+    if !(h > 0.0) {
+        return Vec::new();
+    }
+    knots
+        .iter()
+        .map(|k| {
+            x.iter()
+                .map(|v| (1.0 - (v - k).abs() / h).max(0.0))
+                .collect()
+        })
+        .collect()
 }

@@ -14,16 +14,18 @@
 //!   - [`Effect::Backlash`]: a *soft* dead band. While the stroke moves away from the joint's
 //!     side of the gap, the joint follows with the weight `smoothstep(|gap|/h)`: it does not
 //!     move at a reversal, engages gradually and follows fully once the gap reaches `h`
-//!     (`h` = `BACKLASH_MM`). The simulator's play operator engages at once.
+//!     (`h` = `BACKLASH_MM`, wider on the unloading side with [`Forms::backlash_asymmetry`]).
+//!     The simulator's play operator engages at once.
 //! - **Sensor** (Eq. 3 strain from the geometry crate; sensor 2 of a BSN joint feels `−ε`):
 //!   `R = R₀·(1 + G·f(ε)) + extras` with, when on,
 //!   - [`Effect::Hysteresis`]: a Bouc-Wen state added to the strain (no play operators);
-//!   - [`Effect::Saturation`]: a rational curve `f(ε) = ε/(1 + |ε|/ε_s)` instead of tanh;
+//!   - [`Effect::Saturation`]: a rational curve `f(ε) = ε/(1 + |ε|/ε_s)` instead of tanh, or
+//!     another memoryless shape ([`Saturation`]: algebraic, power law, piecewise linear);
 //!   - [`Effect::Rate`]: a signed square-root response `c·sign(ṙ)·√(|ṙ|/ṙ₀)` to the low-passed
 //!     strain rate (not proportional, not logarithmic);
 //!   - [`Effect::Creep`]: two first-order creeps (3 s and 40 s) of the resistance change;
-//!   - [`Effect::Drift`]: an exponential warm-up of the baseline, `D·(1 − e^(−t/T))`, not linear
-//!     in time and not a random walk.
+//!   - [`Effect::Drift`]: an exponential warm-up of the baseline, `D·(1 − e^(−t/T))`, or a
+//!     square root of time ([`Forms::drift_sqrt`]); neither linear in time nor a random walk.
 //! - **Noise**, on the divider voltage and on the tracker angle: white plus AR(1) with other
 //!   correlation times than the simulator's (0.7 s on the voltage, 2.5 s on the angle).
 //!
@@ -120,8 +122,38 @@ impl Effect {
     }
 }
 
+/// The memoryless curve of [`Effect::Saturation`]: four shapes, none of them the simulator's
+/// `ε_s·tanh(ε/ε_s)`, all with a sensitivity that falls with strain.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Saturation {
+    /// Rational: `ε/(1 + |ε|/ε_s)`.
+    #[default]
+    Rational,
+    /// Algebraic: `ε/√(1 + (ε/ε_s)²)`.
+    Algebraic,
+    /// Power law: `sign(ε)·ε_p·(|ε|/ε_p)^0.8`, with `ε_p` the peak strain: a sublinear curve
+    /// with no knee.
+    Power,
+    /// Piecewise linear: slope 1 up to half the peak strain, slope 0.55 beyond (a knee).
+    Piecewise,
+}
+
+/// Extra forms of the plant and the drift (all off by default, as the generator always was).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Forms {
+    /// The saturation's shape.
+    pub saturation: Saturation,
+    /// Backlash asymmetry: the gap on the unloading side is this many times the loading side's
+    /// (1: symmetric, the default).
+    pub backlash_asymmetry: Option<f64>,
+    /// Drift as a square root of time, `D·√(t/T_end)`, instead of the exponential warm-up.
+    pub drift_sqrt: bool,
+    /// The plant effects' size, times the constants above (1 when `None`).
+    pub plant_scale: Option<f64>,
+}
+
 /// What to generate.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Bench {
     /// Effects switched on, with the sensor (1 or 2) a sensor effect acts on.
     pub effects: Vec<(Effect, usize)>,
@@ -129,6 +161,8 @@ pub struct Bench {
     pub duration_s: f64,
     /// Seed of the pattern and the noise.
     pub seed: u64,
+    /// The shapes of the effects.
+    pub forms: Forms,
 }
 
 fn smoothstep(u: f64) -> f64 {
@@ -189,17 +223,21 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
     let mut last_stroke = 0.0_f64;
     let mut prony = [0.0_f64; 2];
     let mut angles = Vec::with_capacity(n);
+    let plant_scale = bench.forms.plant_scale.unwrap_or(1.0);
+    let asymmetry = bench.forms.backlash_asymmetry.unwrap_or(1.0);
     for &s in &strokes {
         let s_used = if has(Effect::Backlash, 0) {
             let ds = s - last_stroke;
+            // The gap's width on the side the stroke moves toward.
+            let h = plant_scale * BACKLASH_MM * if ds >= 0.0 { 1.0 } else { asymmetry };
             let gap = s - s_eff;
             if ds * gap > 0.0 {
-                s_eff += ds * smoothstep(gap.abs() / BACKLASH_MM);
+                s_eff += ds * smoothstep(gap.abs() / h);
             }
             // A gap never exceeds h: past it the joint follows exactly.
             let gap = s - s_eff;
-            if gap.abs() > BACKLASH_MM {
-                s_eff = s - BACKLASH_MM * gap.signum();
+            if gap.abs() > h {
+                s_eff = s - h * gap.signum();
             }
             s_eff
         } else {
@@ -210,7 +248,7 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
         let mut theta = elastic;
         if has(Effect::Relaxation, 0) {
             for (state, (fraction, tau)) in prony.iter_mut().zip(RELAXATION) {
-                *state += (fraction * elastic - *state) * (1.0 - (-dt / tau).exp());
+                *state += (plant_scale * fraction * elastic - *state) * (1.0 - (-dt / tau).exp());
                 theta -= *state;
             }
         }
@@ -244,7 +282,23 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
             last = felt;
             let mut x = felt;
             if has(Effect::Saturation, sensor) {
-                x = felt / (1.0 + felt.abs() / SATURATION_STRAIN);
+                x = match bench.forms.saturation {
+                    Saturation::Rational => felt / (1.0 + felt.abs() / SATURATION_STRAIN),
+                    Saturation::Algebraic => {
+                        felt / (1.0 + (felt / (0.5 * SATURATION_STRAIN)).powi(2)).sqrt()
+                    }
+                    Saturation::Power => {
+                        felt.signum() * PEAK_STRAIN * (felt.abs() / PEAK_STRAIN).powf(0.8)
+                    }
+                    Saturation::Piecewise => {
+                        let knee = 0.5 * PEAK_STRAIN;
+                        if felt.abs() <= knee {
+                            felt
+                        } else {
+                            felt.signum() * (knee + 0.55 * (felt.abs() - knee))
+                        }
+                    }
+                };
             }
             if has(Effect::Hysteresis, sensor) {
                 let (beta, gamma, weight) = BOUC_WEN;
@@ -266,7 +320,13 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
             }
             if has(Effect::Drift, sensor) {
                 let (size, tau) = DRIFT;
-                ohm += size * span_ohm * (1.0 - (-t / tau).exp());
+                ohm += size
+                    * span_ohm
+                    * if bench.forms.drift_sqrt {
+                        (t / bench.duration_s).sqrt()
+                    } else {
+                        1.0 - (-t / tau).exp()
+                    };
             }
             let reading = divider.voltage(ohm) + noise.next(&mut rng);
             v.push(reading.clamp(1e-3, SUPPLY_V - 1e-3));
