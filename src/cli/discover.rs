@@ -44,6 +44,7 @@ struct Json {
     discovered: Vec<Named>,
     candidates: Vec<Scored>,
     ambiguous: Vec<discover::Ambiguity>,
+    unexplained: Vec<discover::unexplained::Unexplained>,
     gaps: Vec<discover::Gap>,
     scenario: PathBuf,
     report: PathBuf,
@@ -70,7 +71,14 @@ struct Scored {
 
 /// Runs `dlw discover`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.design, &args.recording].into_iter().chain(&args.scenario).chain(&args.holdout), args.force)?;
+    dlw::output::claim(
+        &args.output,
+        [&args.design, &args.recording]
+            .into_iter()
+            .chain(&args.scenario)
+            .chain(&args.holdout),
+        args.force,
+    )?;
     let design = Design::load(&args.design)?;
     let recording = Recording::read(&args.recording)?;
     let holdout = args
@@ -170,6 +178,7 @@ fn json(outcome: &Outcome, scenario: PathBuf, report: PathBuf) -> Json {
             })
             .collect(),
         ambiguous: outcome.ambiguous.clone(),
+        unexplained: outcome.unexplained.clone(),
         gaps: outcome.gaps.clone(),
         scenario,
         report,
@@ -201,6 +210,14 @@ fn print_text(outcome: &Outcome, scenario: &std::path::Path, report: &std::path:
                 .map(|(e, v)| format!("{} {v:.1}", e.name()))
                 .collect::<Vec<_>>()
                 .join(", ")
+        );
+    }
+    for u in &outcome.unexplained {
+        println!(
+            "unexplained on {}: evidence {:.1} for structure no candidate explains, {}",
+            u.channel.name(),
+            u.evidence,
+            u.place
         );
     }
     for g in &outcome.gaps {

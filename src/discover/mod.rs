@@ -15,6 +15,7 @@ pub mod noise;
 pub mod report;
 pub mod scenario;
 pub mod terms;
+pub mod unexplained;
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
@@ -29,6 +30,7 @@ use locate::{locate, Place};
 use model::{correlation_time, fit, score, Channel, ChannelModel, Fitted};
 use noise::ArNoise;
 use terms::{Effect, Term};
+use unexplained::{Residuals, Unexplained};
 
 /// Evidence (nats of held-out whitened likelihood) a candidate needs to be named. Calibrated on
 /// clean recordings with correlated noise (`docs/discovery.md`).
@@ -43,7 +45,7 @@ pub const MAX_EFFECTS: usize = 4;
 /// The evidence for a model over the one it extends: the held-out gain in whitened
 /// log-likelihood, `½·n·ln(SS_from/SS_with)` over `n` held-out samples, divided by the
 /// correlation time `tau` of the extended model's training residual.
-fn evidence(n: usize, from_ss: f64, with_ss: f64, tau: f64) -> f64 {
+pub(crate) fn evidence(n: usize, from_ss: f64, with_ss: f64, tau: f64) -> f64 {
     0.5 * n as f64 * (from_ss / with_ss).ln() / tau
 }
 
@@ -258,6 +260,9 @@ pub struct Outcome {
     pub ambiguous: Vec<Ambiguity>,
     /// Held-out gaps per channel.
     pub gaps: Vec<Gap>,
+    /// Channels with structure left after the named effects that no candidate explains
+    /// ([`unexplained`]); a channel left ambiguous is not tested again.
+    pub unexplained: Vec<Unexplained>,
     /// Per channel, for the report.
     pub channels: Vec<ChannelReport>,
     /// Samples (decimated) and rate used.
@@ -580,6 +585,7 @@ pub fn discover(
     merge_saturating_hysteresis(&mut discovered);
     progress("measuring the gaps");
     let mut gaps = Vec::new();
+    let mut unexplained = Vec::new();
     let mut reports = Vec::new();
     for &ch in &channels {
         let noise = &noises[&ch];
@@ -614,6 +620,21 @@ pub fn discover(
             steps: steps.get(&ch).cloned().unwrap_or_default(),
             noise_floor: noise.sigma,
         });
+        if !ambiguous.iter().any(|a| a.channel == ch) {
+            let train_design = models[&ch].design(&data, &p.0);
+            let residuals = Residuals {
+                train_design: &train_design,
+                test_design: &final_design,
+                data: &data,
+                test_data: &test_data,
+                train: &train,
+                test: &test,
+                noise,
+                lags,
+                span: span_of(ch),
+            };
+            unexplained.extend(residuals.test(ch));
+        }
         reports.push(ChannelReport {
             channel: ch,
             noise: noise.clone(),
@@ -633,6 +654,7 @@ pub fn discover(
         candidates,
         ambiguous,
         gaps,
+        unexplained,
         channels: reports,
         samples: data.len(),
         dt_s: data.dt_s,

@@ -51,6 +51,7 @@ pub struct ChannelModel {
 }
 
 /// The columns and the target of a model over one recording.
+#[derive(Debug, Clone)]
 pub struct Design {
     /// Regressors, one per coefficient; the first is the constant, the second the input.
     pub columns: Vec<Vec<f64>>,
@@ -190,6 +191,17 @@ impl ChannelModel {
                             .collect(),
                     );
                     labels.push("drift");
+                }
+                Term::GainDrift => {
+                    let t0 = data.time_s[0];
+                    columns.push(
+                        input
+                            .iter()
+                            .zip(&data.time_s)
+                            .map(|(x, t)| x * (t - t0))
+                            .collect(),
+                    );
+                    labels.push("gain_drift");
                 }
                 Term::Backlash { .. } | Term::Saturation { .. } => {}
             }

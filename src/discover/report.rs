@@ -68,6 +68,29 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
                 .join(", ")
         ));
     }
+    if !outcome.unexplained.is_empty() {
+        page.heading("What the library does not explain");
+        page.text(format!(
+            "After the named effects, generic regressors (a curve of any shape, plays, lags, \
+             time) still buy at least {} nats of held-out evidence on these channels: a real \
+             effect outside the simulator's library, or one of another form.",
+            super::unexplained::UNEXPLAINED_NATS
+        ));
+        let mut table = Table::new(["channel", "evidence", "where", "by kind"]);
+        for u in &outcome.unexplained {
+            table.row([
+                u.channel.name(),
+                format!("{:.1}", u.evidence),
+                u.place.to_owned(),
+                u.by_kind
+                    .iter()
+                    .map(|(k, e)| format!("{k:?} {e:.1}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            ]);
+        }
+        page.table(table);
+    }
     page.heading("Gap between simulation and measurement (held out)");
     let mut gaps = Table::new([
         "channel",

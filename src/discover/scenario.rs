@@ -47,6 +47,12 @@ pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
         Term::Saturation { strain } => {
             p.insert("strain".into(), *strain);
         }
+        Term::GainDrift => {
+            p.insert(
+                "fade_per_hour".into(),
+                -fitted.get("gain_drift").unwrap_or(0.0) / gain * 3600.0,
+            );
+        }
         Term::Rate { signed, tau_s } => {
             let c = fitted.get("rate").unwrap_or(0.0);
             if *signed {
@@ -136,6 +142,9 @@ pub fn known(scenario: &Scenario) -> Known {
                     tau_s: s.creep.tau_s,
                 },
             ));
+        }
+        if s.gain_drift.enabled {
+            k.push((ch, Term::GainDrift));
         }
         if s.drift.enabled {
             k.push((
@@ -256,6 +265,10 @@ fn write_sensor(sensor: &mut SensorParams, ch: &ChannelReport) -> Result<(), Str
                         sensor.drift.settle_tau_s = *tau;
                     }
                 }
+            }
+            Term::GainDrift => {
+                sensor.gain_drift.enabled = true;
+                sensor.gain_drift.fade_per_hour = -f.get("gain_drift").unwrap_or(0.0) / b * 3600.0;
             }
             Term::Backlash { .. } | Term::Relaxation { .. } => {}
         }

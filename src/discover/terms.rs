@@ -30,16 +30,20 @@ pub enum Effect {
     Relaxation,
     /// Plant: tendon backlash.
     Backlash,
+    /// Sensor: the sensitivity changes over the run (fatigue). Not one of the simulator's
+    /// original seven: the first effect added from the paper's open questions.
+    GainDrift,
 }
 
 impl Effect {
     /// The sensor channel's candidates.
-    pub const SENSOR: [Effect; 5] = [
+    pub const SENSOR: [Effect; 6] = [
         Effect::Hysteresis,
         Effect::Saturation,
         Effect::Rate,
         Effect::Creep,
         Effect::Drift,
+        Effect::GainDrift,
     ];
     /// The plant channel's candidates.
     pub const PLANT: [Effect; 2] = [Effect::Relaxation, Effect::Backlash];
@@ -54,6 +58,7 @@ impl Effect {
             Effect::Drift => "drift",
             Effect::Relaxation => "relaxation",
             Effect::Backlash => "backlash",
+            Effect::GainDrift => "gain_drift",
         }
     }
 }
@@ -114,6 +119,8 @@ pub enum Term {
         /// Time constant (s).
         tau_s: f64,
     },
+    /// `x·(t − t₀)`: the sensitivity changing linearly over the run.
+    GainDrift,
     /// `t − t₀` (linear), or `1 − e^(−(t − t₀)/τ)` (settling).
     Drift {
         /// `None`: linear in time; `Some(τ)`: settling with time constant `τ` (s).
@@ -132,6 +139,7 @@ impl Term {
             Term::Rate { .. } => Effect::Rate,
             Term::Creep { .. } => Effect::Creep,
             Term::Drift { .. } => Effect::Drift,
+            Term::GainDrift => Effect::GainDrift,
         }
     }
 
@@ -175,6 +183,7 @@ impl Term {
                 .iter()
                 .map(|&tau_s| Term::Creep { tau_s })
                 .collect(),
+            Effect::GainDrift => vec![Term::GainDrift],
             Effect::Drift => [None, Some(60.0), Some(150.0), Some(400.0)]
                 .into_iter()
                 .map(|settle_tau_s| Term::Drift { settle_tau_s })
@@ -203,7 +212,7 @@ impl Term {
             }
             Term::Saturation { strain } => Some(strain),
             Term::Drift { settle_tau_s } => settle_tau_s,
-            Term::Hysteresis { .. } => None,
+            Term::Hysteresis { .. } | Term::GainDrift => None,
         }
     }
 
@@ -219,7 +228,7 @@ impl Term {
             Term::Drift {
                 settle_tau_s: Some(v),
             } => *v = value,
-            Term::Drift { settle_tau_s: None } | Term::Hysteresis { .. } => {}
+            Term::Drift { settle_tau_s: None } | Term::Hysteresis { .. } | Term::GainDrift => {}
         }
         t
     }
@@ -277,6 +286,7 @@ impl Term {
             ),
             Term::Creep { tau_s } => format!("τ = {tau_s} s"),
             Term::Drift { settle_tau_s: None } => "linear in time".to_owned(),
+            Term::GainDrift => "sensitivity linear in time".to_owned(),
             Term::Drift {
                 settle_tau_s: Some(tau),
             } => format!("settling, τ = {tau} s"),
@@ -367,7 +377,7 @@ pub fn hats(x: &[f64], knots: &[f64]) -> Vec<Vec<f64>> {
     let Some(h) = knots.windows(2).map(|w| w[1] - w[0]).reduce(f64::min) else {
         return Vec::new();
     };
-    if !(h > 0.0) {
+    if h.is_nan() || h <= 0.0 {
         return Vec::new();
     }
     knots

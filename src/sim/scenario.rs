@@ -282,6 +282,7 @@ pub enum SensorModelKind {
 /// | `drift` | off, 0 Ω/s, 20 Ω/√s | 0 Ω/s, 0.7 Ω/√s | the spread of R0 over 3000 s (Section IV-A2): 1.10 kΩ (A), 0.038 kΩ (C) |
 /// | `rate` | off, `log`, 0.1 per decade, 1e-3 /s, 1 s; `signed`: 0.05 s·R0·GF | same | illustrative (the paper found no correlation) |
 /// | `creep` | off, 0.03, 30 s | same | illustrative (Section IV-A3: the resistance barely changed during holds) |
+/// | `gain_drift` | off, `fade_per_hour = 0.2` | same | illustrative: fatigue, the durability the paper's conclusion leaves open |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SensorParams {
@@ -307,6 +308,8 @@ pub struct SensorParams {
     pub rate: RateDependence,
     /// Creep of the resistance under held strain.
     pub creep: Creep,
+    /// The sensitivity fading over the run (fatigue).
+    pub gain_drift: GainDrift,
 }
 
 impl Default for SensorParams {
@@ -322,6 +325,30 @@ impl Default for SensorParams {
             drift: Drift::default(),
             rate: RateDependence::default(),
             creep: Creep::default(),
+            gain_drift: GainDrift::default(),
+        }
+    }
+}
+
+/// Gain drift (`[sensorN.gain_drift]`): the sensor's resistance change `ΔR` is scaled by
+/// `1 − fade_per_hour·t/3600 s`, a sensitivity that fades over the run (fatigue of the
+/// graphene trace: one of the paper's open questions, durability). The change is measured from
+/// the model's resistance at zero strain, so the baseline stays and the gain goes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GainDrift {
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
+    pub enabled: bool,
+    /// Fraction of the sensitivity lost per hour (negative: it grows).
+    pub fade_per_hour: f64,
+}
+
+impl Default for GainDrift {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            fade_per_hour: 0.2,
         }
     }
 }
@@ -345,6 +372,9 @@ impl Default for Saturation {
         }
     }
 }
+
+/// The largest `|gain_drift.fade_per_hour|`: the sensitivity gone in 6 minutes.
+pub const MAX_FADE_PER_HOUR: f64 = 10.0;
 
 /// Baseline drift (`[sensorN.drift]`): `R += rate·t + settle·(1 − e^(−t/τ)) + W(t)`, `W` a
 /// random walk with `σ_W(t) = random_walk_ohm_per_sqrt_s·√t`.
@@ -719,6 +749,13 @@ impl Scenario {
             c.positive(&k("divider_ohm"), s.divider_ohm.unwrap_or(f64::NAN));
             c.positive(&k("saturation.strain"), s.saturation.strain);
             c.finite(&k("drift.rate_ohm_per_s"), s.drift.rate_ohm_per_s);
+            c.finite(&k("gain_drift.fade_per_hour"), s.gain_drift.fade_per_hour);
+            c.at_most(
+                &k("gain_drift.fade_per_hour"),
+                s.gain_drift.fade_per_hour.abs(),
+                MAX_FADE_PER_HOUR,
+                "|fade_per_hour| at most 10 (the sensitivity gone in 6 minutes)",
+            );
             c.finite(&k("drift.settle_ohm"), s.drift.settle_ohm);
             c.positive(&k("drift.settle_tau_s"), s.drift.settle_tau_s);
             c.non_negative(

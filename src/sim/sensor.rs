@@ -15,6 +15,8 @@
 //!      `c` in Ω·s: loading reads high, unloading low.
 //! 4. **Creep** (switchable): `c ← c + (φ·ΔR − c)·(1 − e^(−Δt/τ))` is added, so a held strain's
 //!    resistance change grows by `φ` with time constant `τ`.
+//! 4½. **Gain drift** (switchable): `ΔR` is scaled by `1 − fade·t` (fatigue: the sensitivity
+//!    fades over the run).
 //! 5. **Baseline drift** (switchable): `rate·t + settle·(1 − e^(−t/τ)) + W(t)` is added, `W` a
 //!    Gaussian random walk with
 //!    `W(t + Δt) = W(t) + σ·√Δt·N(0, 1)`.
@@ -34,6 +36,8 @@ pub struct Sensor {
     rate: Option<Rate>,
     creep: Option<Creep>,
     drift: Option<Drift>,
+    /// Sensitivity lost per sample (fraction), and the samples so far.
+    gain_fade: Option<(f64, u64)>,
 }
 
 #[derive(Debug, Clone)]
@@ -138,6 +142,10 @@ impl Sensor {
                 previous_strain: None,
                 smoothed_per_s: 0.0,
             }),
+            gain_fade: params
+                .gain_drift
+                .enabled
+                .then_some((params.gain_drift.fade_per_hour * dt_s / 3600.0, 0)),
             creep: params.creep.enabled.then(|| Creep {
                 fraction: params.creep.fraction,
                 alpha: alpha(params.creep.tau_s),
@@ -179,6 +187,10 @@ impl Sensor {
                     change += r.ohm_per_strain_per_s * r.smoothed_per_s;
                 }
             }
+        }
+        if let Some((per_sample, n)) = &mut self.gain_fade {
+            change *= (1.0 - *per_sample * *n as f64).max(0.0);
+            *n += 1;
         }
         let mut ohm = self.reference_ohm + change;
         if let Some(c) = &mut self.creep {

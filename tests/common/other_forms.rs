@@ -150,7 +150,18 @@ pub struct Forms {
     pub drift_sqrt: bool,
     /// The plant effects' size, times the constants above (1 when `None`).
     pub plant_scale: Option<f64>,
+    /// Out of the library: sensor 1's sensitivity fades as `1 − F·(1 − e^(−t/T))`
+    /// ([`GAIN_FADE`]), a fatigue of another form than the library's `gain_drift` (linear).
+    pub gain_fade: bool,
+    /// Out of the library: sensor 1 stiffens, its sensitivity rising with strain,
+    /// `f(ε) = ε·(1 + |ε|/ε_k)` ([`STIFFENING_STRAIN`]): no effect of the library draws it.
+    pub stiffening: bool,
 }
+
+/// Out-of-library gain fade: the fraction lost in the end `F` and its time constant `T` (s).
+pub const GAIN_FADE: (f64, f64) = (0.25, 150.0);
+/// Out-of-library stiffening: the strain at which the sensitivity has doubled.
+pub const STIFFENING_STRAIN: f64 = 0.02;
 
 /// What to generate.
 #[derive(Debug, Clone, Default)]
@@ -300,12 +311,19 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
                     }
                 };
             }
+            if bench.forms.stiffening && sensor == 1 {
+                x *= 1.0 + x.abs() / STIFFENING_STRAIN;
+            }
             if has(Effect::Hysteresis, sensor) {
                 let (beta, gamma, weight) = BOUC_WEN;
                 z += (1.0 - (beta + gamma * (de * z).signum()) * z.abs()) * de;
                 x += weight * z;
             }
-            let change = r0 * gf * x;
+            let mut change = r0 * gf * x;
+            if bench.forms.gain_fade && sensor == 1 {
+                let (fraction, tau) = GAIN_FADE;
+                change *= 1.0 - fraction * (1.0 - (-t / tau).exp());
+            }
             let mut ohm = r0 + change;
             if has(Effect::Rate, sensor) {
                 let (reference, tau, size) = RATE;
