@@ -264,6 +264,42 @@ fn every_pattern_holds_short_and_half() {
     }
 }
 
+/// At the paper's full durations (about 10 s in the dev profile), the patterns the simulated
+/// joints show hold: PI beats linear for Joints A and B and linear beats PI for C (Table IV),
+/// every relaxation τ comes back within 10 % (Fig. 6), and closed loop beats open loop on
+/// actual vs desired (Table VI; 4.22° → 8.72° before Joint D's desired pattern was kept inside
+/// the characterized range, `reproduce::CONTROL_RANGE_SHARE`). The patterns that do not hold
+/// yet are listed in `KNOWN_NOT_HELD`, and one that starts to hold fails this test too, so the
+/// list stays true.
+#[test]
+fn the_simulated_joints_show_the_papers_patterns_at_full_size() {
+    let j = reproduce_json("1");
+    let not = not_held(&j);
+    let names: Vec<&str> = not
+        .iter()
+        .map(|n| n.split(" (paper").next().unwrap().trim_matches('"'))
+        .collect();
+    assert_eq!(names, KNOWN_NOT_HELD, "{not:#?}");
+    let open = j["control_open_loop"]["actual_vs_desired_rmse_deg"]
+        .as_f64()
+        .unwrap();
+    let closed = j["control_closed_loop"]["actual_vs_desired_rmse_deg"]
+        .as_f64()
+        .unwrap();
+    // The paper: 8.14° → 2.92°. Closed loop at least halves open loop's error.
+    assert!(closed < 0.5 * open, "open {open}° → closed {closed}°");
+}
+
+/// Patterns of the paper that dlw's simulated joints do not show yet (issue 16): Table V's
+/// two-sensor gain, and Fig. 5's small rate correlation (relaxation and curvature correlate the
+/// per-cycle GF with the rise time in the simulated joints).
+const KNOWN_NOT_HELD: [&str; 4] = [
+    "both sensors beat each sensor alone (Joint C, Table V)",
+    "|corr(GF, rise time)| ≤ 0.1 without a rate effect (Joint A, Fig. 5)",
+    "|corr(GF, rise time)| ≤ 0.1 without a rate effect (Joint B, Fig. 5)",
+    "|corr(GF, rise time)| ≤ 0.1 without a rate effect (Joint C, Fig. 5)",
+];
+
 /// Every pattern at the paper's full durations (a few minutes):
 /// `cargo test --test reproduce_cli every_pattern_holds_full -- --ignored`.
 #[test]

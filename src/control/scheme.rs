@@ -105,13 +105,20 @@ impl Loop<'_> {
         };
         let (lo, hi) = (self.pid.output_min, self.pid.output_max);
         let mut sensed = estimator.last().angle_deg;
+        let mut out_of_range = false;
         for (i, &desired) in self.desired_deg.iter().enumerate() {
             let time_s = i as f64 / hz;
             let feed_forward = desired * inv_mt;
             let stroke = match scheme {
                 Scheme::OpenLoop => feed_forward,
                 Scheme::ClosedLoop => {
-                    let u = pid.step(desired, sensed);
+                    // At the end of its range the sensor cannot tell how far beyond the
+                    // joint is: the integral holds (`Pid::step_out_of_range`).
+                    let u = if out_of_range {
+                        pid.step_out_of_range(desired, sensed)
+                    } else {
+                        pid.step(desired, sensed)
+                    };
                     trace.saturated_samples += usize::from(u <= lo || u >= hi);
                     feed_forward + u
                 }
@@ -123,6 +130,9 @@ impl Loop<'_> {
                 estimator.step(reading.volts[0])
             };
             sensed = estimate.angle_deg;
+            out_of_range = estimate
+                .flags
+                .intersects(Flags::RESISTANCE_CLAMPED | Flags::ATANH_CLAMPED);
             trace.held_samples += usize::from(estimate.flags.contains(Flags::HELD));
             trace.actual_deg.push(reading.tracked_deg);
             trace.true_deg.push(reading.angle_rad.to_degrees());

@@ -24,7 +24,7 @@ mod report;
 
 use std::sync::Mutex;
 
-use dlw_estimator::FilterConfig;
+use dlw_estimator::{FilterConfig, ModelConfig};
 
 use crate::characterize::{
     estimate, loops, planes, rate, relaxation, CharacterizeError, EstimationResult, LoopsResult,
@@ -46,6 +46,14 @@ pub const SHORT_SCALE: f64 = 0.1;
 
 /// The paper's order of Joint D's PI model, "for the purpose of simplifying the control system".
 pub const CONTROL_ORDER: usize = 3;
+
+/// Joint D's desired angle peaks at this share of the strain range its characterization
+/// covered. The sensor reads nothing beyond that range (the PI inverse stops at its end), so a
+/// desired angle past it cannot be followed in closed loop: Joint D relaxes 15 %, its
+/// characterization reached 1.32 % of the 1.5 % it was driven to, and a desired pattern up to
+/// the nominal 1.5 % (50°) held the estimate at its 43.5° end while the loop drove the joint to
+/// 66-91° (Table VI's closed loop was 8.72° against 4.22° open loop).
+pub const CONTROL_RANGE_SHARE: f64 = 0.95;
 
 /// The fits keep at most about this many samples (`dlw fit`: `crate::fit::MAX_FIT_SAMPLES`,
 /// 8000). Joint C's PI fits take about 40 s each on 8000 samples; on 4000 they fit in the
@@ -225,6 +233,16 @@ fn options(scale: f64, order: usize, samples: usize) -> Options {
 /// Elsewhere it would move the resistance out of the characterized range: on Joint A, with the
 /// paper's 1.1 kΩ of drift in every run, the PI estimate of the random pattern had an RMSE of
 /// 25.8° against 2.95° for the linear model.
+/// The largest strain a fitted model's inverse reads (its characterized range's end).
+fn characterized_max_strain(model: &ModelConfig) -> Option<f64> {
+    match model {
+        ModelConfig::Pi(pi) => pi.max_strain,
+        ModelConfig::ContinuousPi(c) => Some(c.max_strain),
+        ModelConfig::Linear(_) => None,
+    }
+    .filter(|e| e.is_finite() && *e > 0.0)
+}
+
 fn without_drift(mut sc: crate::sim::Scenario, protocol: ProtocolKind) -> crate::sim::Scenario {
     if protocol != ProtocolKind::RateDependence {
         sc.sensor1.drift.enabled = false;
@@ -343,10 +361,14 @@ fn run_control(
     // The fit's config as it is: its input filter (the prefilter, a 100-sample moving average)
     // keeps the loop stable at the paper's gains; no output filter.
     config.output_filter = FilterConfig::None;
-    let sc = without_drift(
+    let mut sc = without_drift(
         scaled(&joint.scenario, ProtocolKind::Random, scale, 32),
         ProtocolKind::Random,
     );
+    if let Some(max_strain) = characterized_max_strain(&config.sensor.model) {
+        sc.protocols.peak_strain = sc.protocols.peak_strain.min(CONTROL_RANGE_SHARE * max_strain);
+        sc.protocols.amplitude_mm = None;
+    }
     let control = Control::new(
         &joint.design,
         sc,

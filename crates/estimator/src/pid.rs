@@ -201,6 +201,22 @@ impl Pid {
     /// One sample: the output for `setpoint` and `measurement`.
     #[inline]
     pub fn step(&mut self, setpoint: f64, measurement: f64) -> f64 {
+        self.step_with(setpoint, measurement, true)
+    }
+
+    /// One sample whose measurement sits at the end of the sensor's range (the estimator
+    /// flagged [`crate::Flags::RESISTANCE_CLAMPED`]): the proportional and derivative terms act
+    /// on it as on any measurement, but the integral is held. Beyond its range the sensor reads
+    /// its end whatever the joint does, so the error it gives is not the joint's: integrating it
+    /// winds the output up until the joint runs to its limit (Joint D's closed loop ran from a
+    /// 45° setpoint to 91° with the estimate stuck at the characterized range's 43.5°).
+    #[inline]
+    pub fn step_out_of_range(&mut self, setpoint: f64, measurement: f64) -> f64 {
+        self.step_with(setpoint, measurement, false)
+    }
+
+    #[inline]
+    fn step_with(&mut self, setpoint: f64, measurement: f64, integrate: bool) -> f64 {
         if !(setpoint.is_finite() && measurement.is_finite()) {
             return self.output;
         }
@@ -214,7 +230,11 @@ impl Pid {
         self.previous_measurement = Some(measurement);
         self.derivative =
             bounded(self.derivative + self.alpha * (raw_derivative - self.derivative));
-        let increment = bounded(self.ki_dt * error);
+        let increment = if integrate {
+            bounded(self.ki_dt * error)
+        } else {
+            0.0
+        };
         let candidate = bounded(self.integral + increment);
         self.integral = match c.anti_windup {
             AntiWindup::None => candidate,
@@ -495,5 +515,21 @@ mod tests {
                 prop_assert!(pid.integral().is_finite());
             }
         }
+    }
+
+    /// A measurement at the end of the sensor's range moves the output through P but never
+    /// the integral, whatever the error; back in range, integration resumes.
+    #[test]
+    fn out_of_range_measurements_hold_the_integral() {
+        let mut pid = Pid::new(&PidConfig::paper(0.002, 10.0)).unwrap();
+        pid.step(1.0, 0.0);
+        let before = pid.integral();
+        for _ in 0..10_000 {
+            let u = pid.step_out_of_range(45.0, 43.5);
+            assert_relative_eq!(u, 0.1 * 1.5 + before, epsilon = 1e-12);
+        }
+        assert_eq!(pid.integral(), before);
+        pid.step(45.0, 43.5);
+        assert!(pid.integral() > before);
     }
 }
