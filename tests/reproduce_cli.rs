@@ -288,6 +288,44 @@ fn the_simulated_joints_show_the_papers_patterns_at_full_size() {
         .unwrap();
     // The paper: 8.14° → 2.92°. Closed loop at least halves open loop's error.
     assert!(closed < 0.5 * open, "open {open}° → closed {closed}°");
+    insta::assert_snapshot!("headline_numbers_full_size", headline(&j));
+}
+
+/// The headline numbers of a reproduction, one per line, rounded to what a reader compares:
+/// every RMSE of Tables IV-V (per joint, model and sensors), the fitted GFs and R₀, Table VI's
+/// three RMSEs per scheme. A change that moves one shows up as a snapshot diff in review
+/// (`cargo insta review`, or `INSTA_UPDATE=always` to accept).
+fn headline(j: &serde_json::Value) -> String {
+    let mut out = String::new();
+    for joint in j["joints"].as_array().unwrap() {
+        let name = joint["joint"].as_str().unwrap();
+        out += &format!(
+            "Joint {name}: GF {:.3}, R0 {:.0} ohm\n",
+            joint["gauge_factor"].as_f64().unwrap(),
+            joint["r0_ohm"].as_f64().unwrap()
+        );
+        for e in joint["estimation"].as_array().unwrap() {
+            out += &format!(
+                "Joint {name} {} ({}): RMSE {:.2} deg\n",
+                e["config"].as_str().unwrap(),
+                e["sensors"].as_str().unwrap(),
+                e["rmse_deg"].as_f64().unwrap()
+            );
+        }
+    }
+    for (scheme, key) in [
+        ("open loop", "control_open_loop"),
+        ("closed loop", "control_closed_loop"),
+    ] {
+        let m = &j[key];
+        out += &format!(
+            "Joint D {scheme}: sensed vs actual {:.2}, actual vs desired {:.2}, sensed vs desired {:.2} deg\n",
+            m["sensed_vs_actual_rmse_deg"].as_f64().unwrap(),
+            m["actual_vs_desired_rmse_deg"].as_f64().unwrap(),
+            m["sensed_vs_desired_rmse_deg"].as_f64().unwrap()
+        );
+    }
+    out
 }
 
 /// Patterns of the paper that dlw's simulated joints do not show yet (issue 16): Table V's
