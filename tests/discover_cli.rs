@@ -218,3 +218,54 @@ fn bad_input_is_refused_and_nothing_is_written() {
         &["at rest", "4 s"],
     );
 }
+
+/// The README tour's discovery, as the tour runs it (Joint A, 300 s, realistic noise, the
+/// default seed, a hidden 0.05 mm backlash): what is named, the fitted width and each channel's
+/// held-out gap before and after, as an `insta` snapshot, so that a change that moves the
+/// README's "gap 0.81° → 0.21°" shows in review.
+#[test]
+fn the_tours_discovery_headline() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("hidden.toml"), BACKLASH).unwrap();
+    let rec = dir.path().join("hidden");
+    let design = shipped_design("joint-a.toml");
+    let o = common::dlw(&[
+        "simulate".as_ref(),
+        "--design".as_ref(),
+        design.as_ref(),
+        "--protocol".as_ref(),
+        "random".as_ref(),
+        "--duration-s".as_ref(),
+        "300".as_ref(),
+        "--noise".as_ref(),
+        "realistic".as_ref(),
+        "--scenario".as_ref(),
+        dir.path().join("hidden.toml").as_os_str(),
+        "-o".as_ref(),
+        rec.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = discover("joint-a.toml", &rec, &dir.path().join("discovered"), &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let mut out = String::new();
+    for d in j["discovered"].as_array().unwrap() {
+        out += &format!(
+            "named {} on {}, width {:.4} mm\n",
+            d["effect"].as_str().unwrap(),
+            d["channel"].as_str().unwrap(),
+            d["parameters"]["width_mm"].as_f64().unwrap_or(f64::NAN)
+        );
+    }
+    for g in j["gaps"].as_array().unwrap() {
+        out += &format!(
+            "gap {}: {:.2} -> {:.2} {}\n",
+            g["channel"].as_str().unwrap(),
+            g["before"].as_f64().unwrap(),
+            g["after"].as_f64().unwrap(),
+            g["unit"].as_str().unwrap()
+        );
+    }
+    out += &format!("unexplained: {}\n", j["unexplained"]);
+    insta::assert_snapshot!("tour_discovery", out);
+}
