@@ -20,6 +20,7 @@
 mod joints;
 pub mod paper;
 mod patterns;
+mod prose;
 mod report;
 
 use std::sync::Mutex;
@@ -366,7 +367,10 @@ fn run_control(
         ProtocolKind::Random,
     );
     if let Some(max_strain) = characterized_max_strain(&config.sensor.model) {
-        sc.protocols.peak_strain = sc.protocols.peak_strain.min(CONTROL_RANGE_SHARE * max_strain);
+        sc.protocols.peak_strain = sc
+            .protocols
+            .peak_strain
+            .min(CONTROL_RANGE_SHARE * max_strain);
         sc.protocols.amplitude_mm = None;
     }
     let control = Control::new(

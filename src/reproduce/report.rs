@@ -5,7 +5,8 @@ use super::paper::{
     R0_STD_OHM, RATE_CORRELATION, RELAXATION_CORRELATION, TABLE_III, TABLE_IV, TABLE_V,
     TWO_SENSOR_RMSE,
 };
-use super::{Reproduction, CONTROL_ORDER};
+use super::patterns::MAX_RATE_CORRELATION;
+use super::{prose, Reproduction, CONTROL_ORDER};
 use crate::characterize::{EstimationResult, LoopsSensor};
 use crate::control::{report as control_report, PAPER_TABLE_VI};
 use crate::report::{Block, Page, Table};
@@ -153,19 +154,30 @@ fn table_iii(page: &mut Page, r: &Reproduction) {
         t.row(row);
     }
     page.table(t);
-    page.text(
-        "Why they differ. The simulated sensors are PI models built from Table III's own points, \
-         so R_c, R_peak and ε_peak come back near the paper's; the peak strain is the simulator's \
-         protocol amplitude (1.5 % at the nominal gain, less the relaxation), not the paper's \
-         measured one. The linear GF and R₀ are the least-squares line through that PI curve, \
-         which is not the line through the paper's data. ε_c and m_c come from the steepest \
-         window of the first cycle's loading phase (dlw fit's procedure, skipping the rest the \
-         phase starts in); on a loop with hysteresis the steepest part is not the centre, so \
-         dlw's ε_c sits below the paper's. Joint C's R_peak: the \
-         paper prints 754 kΩ against R_c = 74.7 kΩ, R₀ = 74.0 kΩ and a linear model that \
-         changes by only 1.3 kΩ over the whole range, a misplaced decimal point for 75.4 kΩ; \
-         the simulator uses 75.4 kΩ and dlw's value agrees with that.",
-    );
+    let below: Vec<String> = r
+        .joints
+        .iter()
+        .enumerate()
+        .filter_map(|(i, j)| {
+            let c = tension(&j.loops.sensors).summary.characteristic.as_ref()?;
+            (c.center_strain < TABLE_III[i].center_strain).then(|| format!("Joint {}", j.letter))
+        })
+        .collect();
+    let centre = if below.is_empty() {
+        "dlw's ε_c is at or above the paper's on every joint".to_owned()
+    } else {
+        format!("dlw's ε_c sits below the paper's on {}", below.join(", "))
+    };
+    page.text(format!(
+        "Why they can differ. The simulated sensors are PI models built from Table III's own \
+         points; the peak strain is the simulator's protocol amplitude (1.5 % at the nominal \
+         gain, less the relaxation), not the paper's measured one. The linear GF and R₀ are the \
+         least-squares line through that PI curve, which is not the line through the paper's \
+         data. ε_c and m_c come from the steepest window of the first cycle's loading phase \
+         (dlw fit's procedure); on a loop with hysteresis the steepest part is not the centre: \
+         {centre}. Joint C's R_peak: the paper prints 754 kΩ against R_c = 74.7 kΩ, a misplaced \
+         decimal point for 75.4 kΩ, which the simulator uses (docs/experiments.md)."
+    ));
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
         page.heading(format!("Joint {}: loops and fits (Fig. 4)", j.letter));
@@ -196,20 +208,23 @@ fn rate(page: &mut Page, r: &Reproduction) {
         ]);
     }
     page.table(t);
+    let letters: Vec<char> = r.joints.iter().map(|j| j.letter).collect();
+    let correlations: Vec<f64> = r
+        .joints
+        .iter()
+        .map(|j| j.rate.sensors[0].gf_rise_correlation)
+        .collect();
+    page.text(prose::rate(&letters, &correlations, MAX_RATE_CORRELATION));
     page.text(
-        "Why they differ. The simulated sensors have no rate dependence of their own (the \
-         paper found none), yet GF changes by a few percent from the fastest cycle to the \
-         slowest. The joint relaxes (τ = 20 s) during the slower rises, so the slow cycles \
-         reach a lower peak strain, and the least-squares line through a curved sensor depends \
-         on the range it spans: on Joints A and B, whose PI curves saturate, the line over a \
-         shorter range is steeper (GF rises with the rise time); Joint C's curve bends upward \
-         below its centre at 0.80 % strain, so there the line is shallower (GF falls). The \
-         paper's sensors, fitted over a nearly constant range, showed no such trend. The \
+        "Why they can differ. The simulated sensors have no rate dependence of their own (the \
+         paper found none). But the simulated joints relax during the slower rises, so the slow \
+         cycles reach a lower peak strain, and the least-squares line through a curved sensor \
+         depends on the range it spans: on a curve that saturates, the line over a shorter range \
+         is steeper (GF rises with the rise time); on a curve that bends upward it is shallower. \
+         The paper's sensors, fitted over a nearly constant range, showed no such trend. The \
          correlation coefficient is scale-free: without a trend it is the correlation of noise \
-         with the rise time, anywhere in about ±0.4 for 25 cycles. The R₀ spread comes from the \
-         simulator's baseline drift, a random walk sized so that its spread over 3000 s is the \
-         paper's (20, 10.9 and 0.7 Ω/√s); one walk's spread over 25 cycles scatters around \
-         that size.",
+         with the rise time. The R₀ spread comes from the simulator's baseline drift, a random \
+         walk sized so that its spread over 3000 s is the paper's.",
     );
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
@@ -311,16 +326,26 @@ fn table_iv(page: &mut Page, r: &Reproduction) {
     page.text(
         "Each joint's linear and PI configs are dlw fit's, from its characterization run; the \
          estimates are the runtime estimator's over the random pattern, with the paper's \
-         processing (the PI model clamps to the characterized resistance and strain ranges, a 1000-sample \
-         moving average on the angle, whose 1 s delay the RMSE includes). Why they differ. The \
-         simulated sensor is exactly a PI model with white noise, so the PI fit recovers it and \
-         beats the linear model on Joints A and B; the paper's Joint C had a nearly linear sensor \
-         whose PI fit did worse (7.57° against 5.25°). dlw's PI fit of Joint C's nearly linear \
-         tension sensor also estimates worse than the linear one: its fitted tanh flattens \
-         near both ends of the characterized range, where a few ohms of model error become a \
-         large strain error (the inverse clamps the strain to the characterized range). \
-         Much of the remaining error on Joints A and B is the moving average's lag on \
-         the random pattern's ramps, not the sensor model.",
+         processing (the PI model clamps to the characterized resistance and strain ranges, a \
+         1000-sample moving average on the angle, whose 1 s delay the RMSE includes).",
+    );
+    let lines: Vec<String> = r
+        .joints
+        .iter()
+        .enumerate()
+        .filter_map(|(i, j)| {
+            let linear = rmse(&j.estimation, "linear", "one sensor")?;
+            let pi = rmse(&j.estimation, "PI", "one sensor")?;
+            Some(prose::table_iv(j.letter, linear, pi, TABLE_IV[i]))
+        })
+        .collect();
+    page.text(lines.join(" "));
+    page.text(
+        "Why they can differ. The simulated sensors are PI models with white noise, which a PI \
+         fit can recover; the paper's Joint C had a nearly linear sensor, for which a PI fit's \
+         tanh flattens near both ends of the characterized range, where a few ohms of model \
+         error become a large strain error. The moving average's lag on the random pattern's \
+         ramps is part of every RMSE here.",
     );
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
@@ -383,12 +408,21 @@ fn table_v(page: &mut Page, r: &Reproduction) {
     page.table(t);
     page.text(
         "Linear models of each sensor, fitted to the characterization run, estimate the angle \
-         alone and together (Eq. 7), with the paper's processing. Why they differ. The paper's \
-         r² of 0.89 reflects its sensors' hysteresis and drift; the simulated tension sensor is \
-         a narrow PI loop and the compression sensor is linear, so both lines fit better. The \
-         paper's two-sensor estimate beat either sensor alone; here too both together average \
-         two independent noises, but the moving average's lag, common to all three, dominates \
-         the error.",
+         alone and together (Eq. 7), with the paper's processing.",
+    );
+    if let (Some(tension), Some(compression), Some(both)) = (
+        rmse(&c.estimation, config, "tension"),
+        rmse(&c.estimation, config, "compression"),
+        rmse(&c.estimation, config, "both"),
+    ) {
+        page.text(prose::table_v(tension, compression, both, TWO_SENSOR_RMSE));
+    }
+    page.text(
+        "Why they can differ. The paper's r² of 0.89 reflects its sensors' hysteresis and \
+         drift; the simulated tension sensor is a narrow PI loop and the compression sensor is \
+         linear. Eq. 7 averages the two sensors' noises, but the moving average's lag is common \
+         to all three estimates, and an error in either sensor's linear model enters the \
+         two-sensor estimate.",
     );
     let l = c.letter.to_ascii_lowercase();
     runs(&c.estimation, true).add_to_page(
@@ -431,13 +465,13 @@ fn table_vi(page: &mut Page, r: &Reproduction) {
          100-sample moving average on the resistance (the fit's prefilter) and no filter on \
          the angle, instead of the paper's 1000-sample average, because the simulated actuator \
          has no dynamics and a longer delay makes the loop at the paper's gains \
-         (K_p = 0.1 mm/°, K_i = 0.1 mm/(°·s), K_d = 0) oscillate (docs/experiments.md). Why \
-         they differ. The simulated joint relaxes 15 % with τ = 20 s and has 0.1 mm of \
-         backlash, illustrative values that set open loop's drift (the paper measured 8.14°). \
-         The pattern is the paper's: closed loop cuts the actual-vs-desired error and brings \
-         the sensed angle to the desired one, while its sensed-vs-actual error grows, because \
-         the loop follows the sensor's errors."
+         (K_p = 0.1 mm/°, K_i = 0.1 mm/(°·s), K_d = 0) oscillate (docs/experiments.md). The \
+         desired angle peaks at {:.0} % of the strain range the characterization covered: the \
+         sensor reads nothing beyond it. The simulated joint's relaxation and backlash are \
+         illustrative values that set open loop's error.",
+        super::CONTROL_RANGE_SHARE * 100.0
     ));
+    page.text(prose::table_vi(mo, mc, po, pc));
     let control_page = control_report::page(&r.control.control, &r.control.run);
     let from = control_page
         .blocks
