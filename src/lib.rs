@@ -44,6 +44,8 @@ pub mod control;
 pub mod design;
 pub mod discover;
 pub mod drawing;
+pub mod finite;
+pub mod limits;
 pub mod fit;
 pub mod fixed;
 pub mod fluoro;

@@ -106,7 +106,7 @@ fn fluoro_refuses_bad_frame_folders_and_writes_nothing() {
         &["--crop", "10,10,60"],
         &["crop \"10,10,60\" is not x,y,w,h"],
     );
-    run(&good, &["--fps", "0"], &["--fps = 0 is out of range"]);
+    run(&good, &["--fps", "0"], &["--fps 0 is out of range"]);
     run(&good, &["--smooth", "0"], &["--smooth = 0 is out of range"]);
     run(
         &good,

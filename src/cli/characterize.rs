@@ -192,7 +192,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 /// `--json` for any result, without naming its type at the call.
 mod erased {
     use super::{Kind, Report};
-    use anyhow::Context;
     use std::path::{Path, PathBuf};
 
     pub trait Json {
@@ -209,7 +208,7 @@ mod erased {
             };
             println!(
                 "{}",
-                serde_json::to_string_pretty(&r).context("serializing the report")?
+                dlw::finite::to_json(&r)?
             );
             Ok(())
         }

@@ -206,7 +206,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         };
         println!(
             "{}",
-            serde_json::to_string_pretty(&r).context("serializing the report")?
+            dlw::finite::to_json(&r)?
         );
     } else {
         for w in control.warnings.iter().chain(&run.warnings) {

@@ -131,7 +131,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if args.json {
         println!(
             "{}",
-            serde_json::to_string_pretty(&json(&outcome, scenario_path, report_path))?
+            dlw::finite::to_json(&json(&outcome, scenario_path, report_path))?
         );
     } else {
         print_text(&outcome, &scenario_path, &report_path);

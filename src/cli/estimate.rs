@@ -66,7 +66,13 @@ pub(super) fn parse_filter(s: &str) -> Result<FilterConfig, String> {
             samples: n.parse().map_err(|_| bad())?,
         },
         Some(("lp", t)) => FilterConfig::LowPass {
-            time_constant_samples: t.parse().map_err(|_| bad())?,
+            time_constant_samples: dlw::limits::within(
+                "lp:T",
+                t.parse().map_err(|_| bad())?,
+                0.0,
+                dlw::limits::MAX_LOW_PASS_SAMPLES,
+                "samples",
+            )?,
         },
         _ => return Err(bad()),
     };
@@ -138,10 +144,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             estimates: output,
             warnings: result.warnings,
         };
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).context("serializing the report")?
-        );
+        println!("{}", dlw::finite::to_json(&report)?);
     } else {
         for w in &result.warnings {
             eprintln!("warning: {w}");
@@ -194,10 +197,7 @@ fn run_with_truth(
             estimates: output,
             warnings: result.warnings,
         };
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).context("serializing the report")?
-        );
+        println!("{}", dlw::finite::to_json(&report)?);
         return Ok(());
     }
     for w in &result.warnings {

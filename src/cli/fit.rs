@@ -131,7 +131,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let json = result.to_json().context("serializing the report")?;
         println!(
             "{}",
-            serde_json::to_string_pretty(&json).context("serializing the report")?
+            dlw::finite::to_json(&json)?
         );
     } else {
         print!("{}", result.summary());

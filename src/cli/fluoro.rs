@@ -130,9 +130,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         smooth: args.smooth,
         baseline,
     };
-    if !args.start_s.is_finite() {
-        anyhow::bail!("--start-s {} is not a finite time", args.start_s);
-    }
+    dlw::limits::within(
+        "--fps",
+        args.fps,
+        dlw::limits::MIN_FPS,
+        dlw::limits::MAX_FPS,
+        "frames per second",
+    )
+    .map_err(anyhow::Error::msg)?;
+    dlw::limits::within(
+        "--start-s",
+        args.start_s,
+        -dlw::limits::MAX_ABS_START_S,
+        dlw::limits::MAX_ABS_START_S,
+        "s",
+    )
+    .map_err(anyhow::Error::msg)?;
     // The CSV is written last, after the overlay folder is in place: check its folder first so
     // that a typo there cannot leave overlays without angles.
     let csv_dir = match args.output.parent() {
@@ -197,10 +210,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         overlay: args.overlay.clone(),
     };
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&summary).context("serializing the summary")?
-        );
+        println!("{}", dlw::finite::to_json(&summary)?);
         return Ok(());
     }
     for s in &summary.skipped {

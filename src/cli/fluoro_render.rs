@@ -49,12 +49,14 @@ pub struct Args {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim(&args.output, [&args.recording], args.force)?;
-    if !(args.fps.is_finite() && args.fps > 0.0) {
-        anyhow::bail!(
-            "--fps {} is out of range (finite and greater than 0)",
-            args.fps
-        );
-    }
+    dlw::limits::within(
+        "--fps",
+        args.fps,
+        dlw::limits::MIN_FPS,
+        dlw::limits::MAX_FPS,
+        "frames per second",
+    )
+    .map_err(anyhow::Error::msg)?;
     if !(32..=8192).contains(&args.size) {
         anyhow::bail!("--size {} is out of range (32 to 8192 px)", args.size);
     }

@@ -2,7 +2,6 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
 use dlw::design::DesignFile;
 use dlw::rules;
 use serde::Serialize;
@@ -53,7 +52,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if args.json {
         println!(
             "{}",
-            serde_json::to_string_pretty(&report).context("serializing the report")?
+            dlw::finite::to_json(&report)?
         );
     } else {
         println!("{}", report.name);

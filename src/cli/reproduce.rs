@@ -115,7 +115,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         };
         println!(
             "{}",
-            serde_json::to_string_pretty(&out).context("serializing the numbers")?
+            dlw::finite::to_json(&out)?
         );
         return Ok(());
     }

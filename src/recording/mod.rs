@@ -122,6 +122,22 @@ pub enum RecordingError {
         /// The value.
         value: f64,
     },
+    /// A field beyond what a bench can record.
+    #[error("{path} line {line}: {column} = {value:e} is beyond the limit of ±{limit} {unit}")]
+    OutOfRange {
+        /// The data file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// Column name.
+        column: String,
+        /// The value.
+        value: f64,
+        /// The largest magnitude the column may hold.
+        limit: f64,
+        /// Its unit.
+        unit: &'static str,
+    },
     /// Time does not strictly increase.
     #[error(
         "{path} line {line}: time_s = {time_s} does not increase (previous row: {previous_s})"
@@ -620,6 +636,26 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
     Ok(samples)
 }
 
+/// The largest magnitude of a recording's time (s): 30 years of logging.
+pub const MAX_ABS_TIME_S: f64 = 1e9;
+/// The largest stroke magnitude (mm): a tendon pulled a metre.
+pub const MAX_ABS_STROKE_MM: f64 = 1e3;
+/// The largest angle magnitude (°): a joint bent a full turn.
+pub const MAX_ABS_ANGLE_DEG: f64 = 360.0;
+/// The largest voltage magnitude (V) before the supply check.
+pub const MAX_ABS_VOLTS: f64 = 1e3;
+
+/// The limit and unit of a column's magnitude: values past it are refused at the edge, since
+/// every analysis of them only produces overflows (an angle of 1e308° made an RMSE of inf°).
+fn column_limit(column: &str) -> (f64, &'static str) {
+    match column {
+        "time_s" => (MAX_ABS_TIME_S, "s"),
+        "stroke_mm" => (MAX_ABS_STROKE_MM, "mm"),
+        "angle_deg" => (MAX_ABS_ANGLE_DEG, "°"),
+        _ => (MAX_ABS_VOLTS, "V"),
+    }
+}
+
 #[inline]
 fn parse_field(field: &str, line: usize, column: &str, path: &Path) -> Result<f64, RecordingError> {
     let v: f64 = field.trim().parse().map_err(|_| RecordingError::Number {
@@ -634,6 +670,17 @@ fn parse_field(field: &str, line: usize, column: &str, path: &Path) -> Result<f6
             line,
             column: column.to_string(),
             value: v,
+        });
+    }
+    let (limit, unit) = column_limit(column);
+    if v.abs() > limit {
+        return Err(RecordingError::OutOfRange {
+            path: path.to_path_buf(),
+            line,
+            column: column.to_string(),
+            value: v,
+            limit,
+            unit,
         });
     }
     Ok(v)
