@@ -34,7 +34,7 @@ use unexplained::{Residuals, Unexplained};
 
 /// Evidence (nats of held-out whitened likelihood) a candidate needs to be named. Calibrated on
 /// clean recordings with correlated noise (`docs/discovery.md`).
-pub const THRESHOLD: f64 = 20.0;
+pub const THRESHOLD_NATS: f64 = 20.0;
 /// The winner must beat the runner-up on its channel by this factor, or it is `ambiguous`.
 pub const CLEAR_RATIO: f64 = 1.5;
 /// Lags over which the residual's leftover correlation is summed (s).
@@ -502,7 +502,7 @@ pub fn discover(
                 .skip(1)
                 .find(rival)
                 .map(|c| (c.effect, c.evidence));
-            if top.evidence < THRESHOLD {
+            if top.evidence < THRESHOLD_NATS {
                 continue;
             }
             // Clear: ahead of the runner-up by CLEAR_RATIO, or, against every contender
@@ -520,7 +520,7 @@ pub fn discover(
                     .all(|c| {
                         let top_after = gain(&m.with(c.term.clone()), &top.term);
                         let rival_after = gain(&m.with(top.term.clone()), &c.term);
-                        matches!((top_after, rival_after), (Some(t), Some(r)) if t >= THRESHOLD && r < THRESHOLD)
+                        matches!((top_after, rival_after), (Some(t), Some(r)) if t >= THRESHOLD_NATS && r < THRESHOLD_NATS)
                     });
             if clear {
                 best.push((top.clone(), runner));
@@ -663,10 +663,10 @@ pub fn discover(
 
 /// Hysteresis (the generalized PI: a tanh curve centred anywhere, plays, a direction switch)
 /// can bend like saturation. It stays in the round only when it shows memory: its plays buy
-/// [`THRESHOLD`] over a memoryless curve of any shape ([`Term::static_knots`]). A curve that
+/// [`THRESHOLD_NATS`] over a memoryless curve of any shape ([`Term::static_knots`]). A curve that
 /// bends without a loop is saturation's to name, whatever its shape.
 fn prefer_simpler(scored: &mut Vec<Candidate>) {
-    scored.retain(|c| c.effect != Effect::Hysteresis || c.memory.unwrap_or(0.0) >= THRESHOLD);
+    scored.retain(|c| c.effect != Effect::Hysteresis || c.memory.unwrap_or(0.0) >= THRESHOLD_NATS);
 }
 
 /// A PI sensor model's loading curve is a tanh (Eqs. 8-11): a loop that also bends is one

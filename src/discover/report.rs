@@ -5,7 +5,7 @@
 use crate::report::{Chart, Page, Series, Table, PALETTE};
 
 use super::model::Channel;
-use super::{Outcome, CLEAR_RATIO, THRESHOLD};
+use super::{Outcome, CLEAR_RATIO, THRESHOLD_NATS};
 
 /// The report page of `outcome` for the recording called `name`.
 pub fn page(name: &str, outcome: &Outcome) -> Page {
@@ -15,9 +15,9 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
          (tracker angle → resistance). The base model is calibrated on the training blocks, the \
          noise model is an autoregressive process frozen from the rest at the start, and every \
          candidate effect is scored by its held-out gain in whitened log-likelihood (nats). An \
-         effect is named when its evidence exceeds {THRESHOLD} and {CLEAR_RATIO} times the \
+         effect is named when its evidence exceeds {THRESHOLD_NATS} and {CLEAR_RATIO} times the \
          runner-up's on its channel, or, where a rival comes closer, when it still clears \
-         {THRESHOLD} added after the rival and the rival no longer does added after it; its \
+         {THRESHOLD_NATS} added after the rival and the rival no longer does added after it; its \
          shape is then refined and the search repeats on what remains. {} samples at \
          {:.0} Hz after block averaging.",
         outcome.samples,

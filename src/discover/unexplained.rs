@@ -20,8 +20,8 @@ use super::noise::ArNoise;
 use super::terms::{hats, low_pass, play, Term};
 
 /// Evidence (nats) the generic regressors need before a channel is flagged: the same bar as
-/// naming an effect ([`super::THRESHOLD`]).
-pub const UNEXPLAINED_NATS: f64 = super::THRESHOLD;
+/// naming an effect ([`super::THRESHOLD_NATS`]).
+pub const UNEXPLAINED_NATS: f64 = super::THRESHOLD_NATS;
 /// Time constants of the history regressors (s): a lag of the input, fast and slow.
 pub const HISTORY_TAUS_S: [f64; 2] = [3.0, 30.0];
 /// Radii of the memory regressors, as fractions of the input's span.
