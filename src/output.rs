@@ -548,6 +548,35 @@ fn persist(shown: &Path, target: &Path, tmp: tempfile::NamedTempFile) -> Result<
     })
 }
 
+/// Reads a text input of at most `limit` bytes: a file past it (or a device that never ends,
+/// such as a link to `/dev/zero`) is refused with the limit named, after reading `limit + 1`
+/// bytes, instead of filling memory.
+///
+/// # Errors
+/// The file cannot be read, is past the limit, or is not UTF-8.
+pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<String> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(limit + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "{} is larger than the {limit}-byte limit for this input",
+                path.display()
+            ),
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("{} is not UTF-8 text ({e})", path.display()),
+        )
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -63,7 +63,10 @@ fn expect(pairs: &[(&str, &str)]) -> BTreeSet<(String, String)> {
 /// Runs every case; prints all before asserting. A name outside a case's expected set is a
 /// wrong name and fails at once; a case whose set comes back incomplete is a miss, and at most
 /// `max_misses` are allowed (each test states which case misses and why).
-fn run(cases: Vec<(String, Bench, BTreeSet<(String, String)>)>, max_misses: usize) {
+/// A case: its name, the bench, the names expected.
+type Case = (String, Bench, BTreeSet<(String, String)>);
+
+fn run(cases: Vec<Case>, max_misses: usize) {
     let dir = tempfile::tempdir().unwrap();
     let (mut wrong, mut missed) = (Vec::new(), Vec::new());
     for (name, bench, want) in cases {

@@ -67,7 +67,13 @@ struct Report<'a, T: Serialize> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.design, &args.recording].into_iter().chain(&args.config), args.force)?;
+    dlw::output::claim(
+        &args.output,
+        [&args.design, &args.recording]
+            .into_iter()
+            .chain(&args.config),
+        args.force,
+    )?;
     if !(2..=MAX_PLAYS).contains(&args.order) {
         anyhow::bail!(
             "--order {} must lie between 2 and {MAX_PLAYS} play operators",
@@ -206,10 +212,7 @@ mod erased {
                 report,
                 result: self,
             };
-            println!(
-                "{}",
-                dlw::finite::to_json(&r)?
-            );
+            println!("{}", dlw::finite::to_json(&r)?);
             Ok(())
         }
     }

@@ -125,7 +125,14 @@ impl From<(f64, f64, f64)> for PaperRow {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.design, &args.config].into_iter().chain(&args.scenario).chain(&args.profile), args.force)?;
+    dlw::output::claim(
+        &args.output,
+        [&args.design, &args.config]
+            .into_iter()
+            .chain(&args.scenario)
+            .chain(&args.profile),
+        args.force,
+    )?;
     let occupied = match std::fs::read_dir(&args.output) {
         Ok(mut entries) => entries.next().is_some(),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
@@ -204,10 +211,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .cloned()
                 .collect(),
         };
-        println!(
-            "{}",
-            dlw::finite::to_json(&r)?
-        );
+        println!("{}", dlw::finite::to_json(&r)?);
     } else {
         for w in control.warnings.iter().chain(&run.warnings) {
             eprintln!("warning: {w}");

@@ -77,8 +77,17 @@ impl From<SensorArg> for Sensors {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output).chain(&args.report).map(|p| p.as_path()).collect();
-    dlw::output::claim_all(&outputs, [&args.design, &args.recording].into_iter().chain(&args.validate), args.force)?;
+    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
+        .chain(&args.report)
+        .map(|p| p.as_path())
+        .collect();
+    dlw::output::claim_all(
+        &outputs,
+        [&args.design, &args.recording]
+            .into_iter()
+            .chain(&args.validate),
+        args.force,
+    )?;
     let start = Instant::now();
     let format = ConfigFormat::of(&args.output)?;
     if !(MIN_ORDER..=MAX_ORDER).contains(&args.order) {
@@ -129,10 +138,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     result.timings_s.total = start.elapsed().as_secs_f64();
     if args.json {
         let json = result.to_json().context("serializing the report")?;
-        println!(
-            "{}",
-            dlw::finite::to_json(&json)?
-        );
+        println!("{}", dlw::finite::to_json(&json)?);
     } else {
         print!("{}", result.summary());
     }

@@ -50,10 +50,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         warnings: checked.warnings.iter().map(ToString::to_string).collect(),
     };
     if args.json {
-        println!(
-            "{}",
-            dlw::finite::to_json(&report)?
-        );
+        println!("{}", dlw::finite::to_json(&report)?);
     } else {
         println!("{}", report.name);
         println!("  style               {:?}", report.style);

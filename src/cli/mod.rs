@@ -14,6 +14,7 @@ mod fit;
 mod fluoro;
 mod fluoro_render;
 mod import_dxf;
+mod import_recording;
 mod inspect;
 mod program;
 mod reproduce;
@@ -54,6 +55,8 @@ enum Command {
     Fluoro(fluoro::Args),
     /// Render synthetic fluoroscopy frames of a recording's angle, to try `dlw fluoro`.
     FluoroRender(fluoro_render::Args),
+    /// Import a bench's DAQ export and EM-tracker log as one recording, clocks aligned.
+    ImportRecording(import_recording::Args),
     /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI).
     Control(control::Args),
     /// Run one of the paper's characterization analyses on a recording (Section IV-A, IV-B).
@@ -77,6 +80,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Discover(args) => discover::run(args),
         Command::Fluoro(args) => fluoro::run(args),
         Command::FluoroRender(args) => fluoro_render::run(args),
+        Command::ImportRecording(args) => import_recording::run(args),
         Command::Control(args) => control::run(args),
         Command::Characterize(args) => characterize::run(args),
         Command::Reproduce(args) => reproduce::run(args),

@@ -113,10 +113,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             control_closed_loop: r.control.run.metrics[1],
             report,
         };
-        println!(
-            "{}",
-            dlw::finite::to_json(&out)?
-        );
+        println!("{}", dlw::finite::to_json(&out)?);
         return Ok(());
     }
     for j in &r.joints {

@@ -330,6 +330,25 @@ pub fn rate(x: &[f64], dt_s: f64) -> Vec<f64> {
         .collect()
 }
 
+/// The piecewise-linear basis over `knots` (equally spaced): at each knot a hat that is 1 there
+/// and falls to 0 at its neighbours.
+pub fn hats(x: &[f64], knots: &[f64]) -> Vec<Vec<f64>> {
+    let Some(h) = knots.windows(2).map(|w| w[1] - w[0]).reduce(f64::min) else {
+        return Vec::new();
+    };
+    if h.is_nan() || h <= 0.0 {
+        return Vec::new();
+    }
+    knots
+        .iter()
+        .map(|k| {
+            x.iter()
+                .map(|v| (1.0 - (v - k).abs() / h).max(0.0))
+                .collect()
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -369,23 +388,4 @@ mod tests {
         assert_eq!(moved, Term::Backlash { half_mm: 0.2 });
         assert_eq!(moved.scale(), Some(0.2));
     }
-}
-
-/// The piecewise-linear basis over `knots` (equally spaced): at each knot a hat that is 1 there
-/// and falls to 0 at its neighbours.
-pub fn hats(x: &[f64], knots: &[f64]) -> Vec<Vec<f64>> {
-    let Some(h) = knots.windows(2).map(|w| w[1] - w[0]).reduce(f64::min) else {
-        return Vec::new();
-    };
-    if h.is_nan() || h <= 0.0 {
-        return Vec::new();
-    }
-    knots
-        .iter()
-        .map(|k| {
-            x.iter()
-                .map(|v| (1.0 - (v - k).abs() / h).max(0.0))
-                .collect()
-        })
-        .collect()
 }

@@ -1,6 +1,325 @@
-//! Importing real bench files (issue 18): the NDI tracker log so far; the DAQ readers, the
-//! bending angle, the clock alignment and `dlw import-recording` are still to come.
+//! Importing real bench files (issue 18): a DAQ's CSV export ([`daq_csv`]) and an NDI Aurora
+//! tracker log ([`ndi`]) become one recording on the DAQ's clock: the bending angle from the
+//! tip tool's orientation ([`angle`]), the clocks aligned ([`align`]), the angle resampled onto
+//! the DAQ's samples (never across a gap of more than [`MAX_GAP_FRAMES`] missing frames: such
+//! rows are written with `tracker_valid = 0`), and an `[import]` table saying where it all came
+//! from (`docs/import.md`).
 
+pub mod align;
+pub mod angle;
+pub mod daq_csv;
 pub mod ndi;
 
 pub use ndi::{NdiError, ToolFrame, TrackerLog};
+
+use sha2::{Digest, Sha256};
+
+use crate::recording::{ImportInfo, ImportSource, Recording, Rig, Samples};
+use align::{AlignError, Alignment};
+use angle::{AngleError, BendingAngles};
+use daq_csv::{DaqCsvError, DaqTable};
+
+/// The most missing tracker frames interpolated across.
+pub const MAX_GAP_FRAMES: usize = 3;
+/// The out-of-plane share of the in-plane range above which a warning is given.
+pub const OUT_OF_PLANE_WARNING: f64 = 0.05;
+
+/// Why an import failed.
+#[derive(Debug, thiserror::Error)]
+pub enum ImportError {
+    /// The DAQ file.
+    #[error("{path}: {source}")]
+    Daq {
+        /// The file.
+        path: String,
+        /// Why.
+        source: DaqCsvError,
+    },
+    /// The tracker log.
+    #[error("{path}: {source}")]
+    Tracker {
+        /// The file.
+        path: String,
+        /// Why.
+        source: NdiError,
+    },
+    /// The bending angle.
+    #[error("{0}")]
+    Angle(#[from] AngleError),
+    /// The clocks.
+    #[error("{0}")]
+    Align(#[from] AlignError),
+    /// Bad options.
+    #[error("{0}")]
+    Options(String),
+}
+
+/// What to import.
+#[derive(Debug, Clone)]
+pub struct ImportRequest<'a> {
+    /// The DAQ file's path (for messages and provenance) and text.
+    pub daq: (&'a str, &'a str),
+    /// The voltage channels, sensor 1 first.
+    pub voltage_channels: Vec<String>,
+    /// The divider resistors, one per voltage channel (Ω).
+    pub divider_ohm: Vec<f64>,
+    /// The divider supply (V).
+    pub supply_v: f64,
+    /// The stroke channel and its scale (mm per V).
+    pub stroke: (String, f64),
+    /// The DAQ's time column, if not found by name.
+    pub time_column: Option<String>,
+    /// The DAQ's rate when it has no time column (Hz).
+    pub daq_rate_hz: Option<f64>,
+    /// The tracker log's path and text.
+    pub tracker: (&'a str, &'a str),
+    /// The tip tool (1-based, in the log's order).
+    pub tool: usize,
+    /// A reference tool on the base.
+    pub reference_tool: Option<usize>,
+    /// The tracker's frame rate (Hz).
+    pub tracker_hz: f64,
+    /// The still start the rest axis is averaged over (s of tracker time).
+    pub rest_s: f64,
+}
+
+/// What an import found, as `dlw import-recording --json` prints it.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ImportSummary {
+    /// Rows written.
+    pub samples: usize,
+    /// Length (s).
+    pub duration_s: f64,
+    /// The clocks.
+    pub alignment: AlignmentJson,
+    /// The tracker.
+    pub tracker: TrackerJson,
+    /// Rows whose angle is not a tracker measurement (`tracker_valid = 0`).
+    pub invalid_rows: usize,
+    /// Warnings.
+    pub warnings: Vec<String>,
+}
+
+/// `alignment` in the JSON.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct AlignmentJson {
+    /// `t_daq = offset_s + τ·(1 + drift_ppm·10⁻⁶)`.
+    pub offset_s: f64,
+    /// Drift (ppm).
+    pub drift_ppm: f64,
+    /// Standard error (s).
+    pub offset_uncertainty_s: f64,
+    /// Standard error (ppm).
+    pub drift_uncertainty_ppm: f64,
+    /// `auto`.
+    pub method: &'static str,
+    /// The whole-recording correlation.
+    pub correlation: f64,
+}
+
+/// `tracker` in the JSON.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct TrackerJson {
+    /// Frames logged.
+    pub frames: usize,
+    /// Frames with the tool (or the reference) missing.
+    pub missing_frames: usize,
+    /// Out-of-plane RMS (°).
+    pub out_of_plane_rms_deg: f64,
+    /// Out-of-plane maximum (°).
+    pub out_of_plane_max_deg: f64,
+}
+
+fn sha256(text: &str) -> String {
+    Sha256::digest(text.as_bytes())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// Runs an import: the recording (not yet written) and its summary.
+///
+/// # Errors
+/// [`ImportError`].
+pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), ImportError> {
+    if req.voltage_channels.is_empty() || req.voltage_channels.len() > 2 {
+        return Err(ImportError::Options(format!(
+            "--voltage names {} channels; a joint has 1 or 2 sensors",
+            req.voltage_channels.len()
+        )));
+    }
+    if req.divider_ohm.len() != req.voltage_channels.len() {
+        return Err(ImportError::Options(format!(
+            "--divider-ohm gives {} resistors for {} voltage channels",
+            req.divider_ohm.len(),
+            req.voltage_channels.len()
+        )));
+    }
+    if !(req.supply_v.is_finite() && req.supply_v > 0.0) {
+        return Err(ImportError::Options(format!(
+            "--supply-v {} is not a supply voltage (finite and above 0)",
+            req.supply_v
+        )));
+    }
+    if !(req.stroke.1.is_finite() && req.stroke.1 != 0.0) {
+        return Err(ImportError::Options(format!(
+            "--stroke-mm-per-v {} is not a scale (finite and not 0)",
+            req.stroke.1
+        )));
+    }
+    let mut names: Vec<&str> = req.voltage_channels.iter().map(String::as_str).collect();
+    names.push(&req.stroke.0);
+    let daq = DaqTable::parse(
+        req.daq.1,
+        &names,
+        req.time_column.as_deref(),
+        req.daq_rate_hz,
+    )
+    .map_err(|source| ImportError::Daq {
+        path: req.daq.0.to_owned(),
+        source,
+    })?;
+    let mut tools = vec![req.tool];
+    tools.extend(req.reference_tool);
+    let log = TrackerLog::parse(req.tracker.1, &tools, req.tracker_hz).map_err(|source| {
+        ImportError::Tracker {
+            path: req.tracker.0.to_owned(),
+            source,
+        }
+    })?;
+    let rest_frames = (req.rest_s * req.tracker_hz).round().max(1.0) as usize;
+    let angles: BendingAngles = angle::bending_angles(
+        &log.tools[0],
+        log.tools.get(1).map(Vec::as_slice),
+        rest_frames,
+    )?;
+    let rate_hz = daq.rate_hz();
+    let dt_s = 1.0 / rate_hz;
+    let alignment: Alignment = align::auto(&log.tau_s, &angles.angle_deg, &daq.channels[0], dt_s)?;
+
+    // The angle on the DAQ's samples; rows beyond the log or across a gap are invalid.
+    let n = daq.time_s.len();
+    let frames = log.tau_s.len();
+    let mut angle_deg = Vec::with_capacity(n);
+    let mut valid = Vec::with_capacity(n);
+    let scale = 1.0 + alignment.drift_ppm * 1e-6;
+    for &t in &daq.time_s {
+        let tau = (t - alignment.offset_s) / scale;
+        let k = log.tau_s.partition_point(|&x| x <= tau);
+        let value = if k == 0 || k >= frames {
+            None
+        } else {
+            let prev = (0..k).rev().find(|&i| angles.angle_deg[i].is_some());
+            let next = (k..frames).find(|&i| angles.angle_deg[i].is_some());
+            match (prev, next) {
+                (Some(p), Some(q)) if q - p - 1 <= MAX_GAP_FRAMES => {
+                    let (a, b) = (
+                        angles.angle_deg[p].unwrap_or(0.0),
+                        angles.angle_deg[q].unwrap_or(0.0),
+                    );
+                    let f = (tau - log.tau_s[p]) / (log.tau_s[q] - log.tau_s[p]);
+                    Some(a + (b - a) * f.clamp(0.0, 1.0))
+                }
+                _ => None,
+            }
+        };
+        angle_deg.push(value.unwrap_or(0.0));
+        valid.push(value.is_some());
+    }
+    let stroke_mm: Vec<f64> = daq.channels[names.len() - 1]
+        .iter()
+        .map(|v| v * req.stroke.1)
+        .collect();
+    // Pulling the tendon bends positive.
+    let pulls_positive = {
+        let rows: Vec<usize> = (0..n).filter(|&i| valid[i]).collect();
+        let m = |x: &dyn Fn(usize) -> f64| {
+            rows.iter().map(|&i| x(i)).sum::<f64>() / rows.len().max(1) as f64
+        };
+        let (ma, ms) = (m(&|i| angle_deg[i]), m(&|i| stroke_mm[i]));
+        rows.iter()
+            .map(|&i| (angle_deg[i] - ma) * (stroke_mm[i] - ms))
+            .sum::<f64>()
+            >= 0.0
+    };
+    if !pulls_positive {
+        angle_deg.iter_mut().for_each(|a| *a = -*a);
+    }
+    let missing = (0..frames)
+        .filter(|&i| angles.angle_deg[i].is_none())
+        .count();
+    let invalid_rows = valid.iter().filter(|v| !**v).count();
+    let mut warnings = Vec::new();
+    if angles.out_of_plane_rms_deg > OUT_OF_PLANE_WARNING * angles.in_plane_range_deg {
+        warnings.push(format!(
+            "the tip moves out of its bending plane by {:.2}° RMS ({:.2}° at most), more than {:.0} % of the in-plane range of {:.1}°: is the joint twisting, or the tool loose?",
+            angles.out_of_plane_rms_deg,
+            angles.out_of_plane_max_deg,
+            OUT_OF_PLANE_WARNING * 100.0,
+            angles.in_plane_range_deg
+        ));
+    }
+    let samples = Samples {
+        time_s: daq.time_s.clone(),
+        stroke_mm,
+        angle_deg,
+        volts: daq.channels[..names.len() - 1].to_vec(),
+        tracker_valid: if invalid_rows > 0 { valid } else { Vec::new() },
+    };
+    let info = ImportInfo {
+        dlw_version: env!("CARGO_PKG_VERSION").to_owned(),
+        sources: vec![
+            ImportSource {
+                role: "daq".into(),
+                path: req.daq.0.to_owned(),
+                sha256: sha256(req.daq.1),
+            },
+            ImportSource {
+                role: "tracker".into(),
+                path: req.tracker.0.to_owned(),
+                sha256: sha256(req.tracker.1),
+            },
+        ],
+        tool: req.tool as u32,
+        reference_tool: req.reference_tool.map(|t| t as u32),
+        alignment_method: "auto".into(),
+        offset_s: alignment.offset_s,
+        drift_ppm: alignment.drift_ppm,
+        offset_uncertainty_s: alignment.offset_uncertainty_s,
+        drift_uncertainty_ppm: alignment.drift_uncertainty_ppm,
+        tracker_frames: frames as u64,
+        missing_frames: missing as u64,
+    };
+    let rig = Rig {
+        sample_hz: rate_hz,
+        supply_v: req.supply_v,
+        divider_ohm: req.divider_ohm.clone(),
+        notes: None,
+        protocol: None,
+        simulation: None,
+        design: None,
+        scenario: None,
+        import: Some(info),
+    };
+    let summary = ImportSummary {
+        samples: n,
+        duration_s: daq.time_s[n - 1],
+        alignment: AlignmentJson {
+            offset_s: alignment.offset_s,
+            drift_ppm: alignment.drift_ppm,
+            offset_uncertainty_s: alignment.offset_uncertainty_s,
+            drift_uncertainty_ppm: alignment.drift_uncertainty_ppm,
+            method: "auto",
+            correlation: alignment.correlation,
+        },
+        tracker: TrackerJson {
+            frames,
+            missing_frames: missing,
+            out_of_plane_rms_deg: angles.out_of_plane_rms_deg,
+            out_of_plane_max_deg: angles.out_of_plane_max_deg,
+        },
+        invalid_rows,
+        warnings,
+    };
+    Ok((Recording { rig, samples }, summary))
+}

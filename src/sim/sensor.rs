@@ -15,9 +15,9 @@
 //!      `c` in Ω·s: loading reads high, unloading low.
 //! 4. **Creep** (switchable): `c ← c + (φ·ΔR − c)·(1 − e^(−Δt/τ))` is added, so a held strain's
 //!    resistance change grows by `φ` with time constant `τ`.
-//! 4½. **Gain drift** (switchable): `ΔR` is scaled by `1 − fade·t` (fatigue: the sensitivity
-//!    fades over the run).
-//! 5. **Baseline drift** (switchable): `rate·t + settle·(1 − e^(−t/τ)) + W(t)` is added, `W` a
+//! 5. **Gain drift** (switchable): `ΔR` is scaled by `1 − fade·t` (fatigue: the sensitivity
+//!    fades over the run), after the rate and before the creep.
+//! 6. **Baseline drift** (switchable): `rate·t + settle·(1 − e^(−t/τ)) + W(t)` is added, `W` a
 //!    Gaussian random walk with
 //!    `W(t + Δt) = W(t) + σ·√Δt·N(0, 1)`.
 

@@ -1,0 +1,141 @@
+//! `dlw import-recording --daq FILE --voltage CH[,CH2] --divider-ohm R[,R2] --supply-v V
+//! --stroke CH --stroke-mm-per-v K --tracker FILE [--tool N] [--reference-tool M]
+//! [--tracker-hz 40] -o REC [--force] [--json]`: a DAQ's CSV export and an NDI Aurora log
+//! become one recording folder (`docs/import.md`).
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use dlw::import::{import, ImportRequest};
+
+/// Arguments of `dlw import-recording`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The DAQ file: a CSV export with a header row.
+    #[arg(long)]
+    daq: PathBuf,
+    /// The DAQ file's format: csv (TDMS and LVM are not read yet).
+    #[arg(long, default_value = "csv")]
+    daq_format: String,
+    /// The sensor voltage channel(s) by header name, sensor 1 first.
+    #[arg(long, value_delimiter = ',', required = true)]
+    voltage: Vec<String>,
+    /// The divider's fixed resistor per sensor (Ω).
+    #[arg(long, value_delimiter = ',', required = true)]
+    divider_ohm: Vec<f64>,
+    /// The divider supply (V).
+    #[arg(long)]
+    supply_v: f64,
+    /// The stroke channel (V) by header name.
+    #[arg(long)]
+    stroke: String,
+    /// The stroke sensor's scale (mm per V).
+    #[arg(long, allow_hyphen_values = true)]
+    stroke_mm_per_v: f64,
+    /// The DAQ's time column, when it is not named time_s, time, Time or t.
+    #[arg(long)]
+    time_column: Option<String>,
+    /// The DAQ's sample rate, when the file has no time column (Hz).
+    #[arg(long)]
+    daq_rate_hz: Option<f64>,
+    /// The NDI tracker log (CSV, as NDI Track or the Combined API sample writes it).
+    #[arg(long)]
+    tracker: PathBuf,
+    /// The tip tool: the n-th tool block of the log (1-based).
+    #[arg(long, default_value_t = 1)]
+    tool: usize,
+    /// A reference tool on the base: the angle is taken relative to it.
+    #[arg(long)]
+    reference_tool: Option<usize>,
+    /// The tracker's frame rate (Hz).
+    #[arg(long, default_value_t = 40.0)]
+    tracker_hz: f64,
+    /// The still start the rest axis is averaged over (s).
+    #[arg(long, default_value_t = 2.0)]
+    rest_s: f64,
+    /// How the clocks are aligned: auto (a sync channel is not supported yet).
+    #[arg(long, default_value = "auto")]
+    sync: String,
+    /// Output recording folder (must not exist or be empty, unless --force).
+    #[arg(short = 'o', long = "output")]
+    output: PathBuf,
+    /// Replace an existing output; an input is refused even with it (docs/outputs.md).
+    #[arg(long)]
+    force: bool,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(&args.output, [&args.daq, &args.tracker], args.force)?;
+    if args.daq_format != "csv" {
+        anyhow::bail!(
+            "--daq-format {:?} is not read yet: export the DAQ data as CSV (a header row of channel names, a time column or --daq-rate-hz); TDMS and LVM readers are issue 18's next step",
+            args.daq_format
+        );
+    }
+    if args.sync != "auto" {
+        anyhow::bail!(
+            "--sync {:?}: only --sync auto (cross-correlation of the angle with the sensor) is supported yet",
+            args.sync
+        );
+    }
+    let read = |p: &PathBuf| {
+        dlw::output::read_limited(p, MAX_INPUT_BYTES)
+            .with_context(|| format!("reading {}", p.display()))
+    };
+    let (daq_text, tracker_text) = (read(&args.daq)?, read(&args.tracker)?);
+    let (daq_path, tracker_path) = (
+        args.daq.display().to_string(),
+        args.tracker.display().to_string(),
+    );
+    let request = ImportRequest {
+        daq: (&daq_path, &daq_text),
+        voltage_channels: args.voltage.clone(),
+        divider_ohm: args.divider_ohm.clone(),
+        supply_v: args.supply_v,
+        stroke: (args.stroke.clone(), args.stroke_mm_per_v),
+        time_column: args.time_column.clone(),
+        daq_rate_hz: args.daq_rate_hz,
+        tracker: (&tracker_path, &tracker_text),
+        tool: args.tool,
+        reference_tool: args.reference_tool,
+        tracker_hz: args.tracker_hz,
+        rest_s: args.rest_s,
+    };
+    let (recording, summary) = import(&request)?;
+    dlw::finite::check(&summary)?;
+    recording
+        .write(&args.output, args.force)
+        .with_context(|| format!("writing recording {}", args.output.display()))?;
+    for w in &summary.warnings {
+        eprintln!("warning: {w}");
+    }
+    if args.json {
+        let mut json = serde_json::to_value(&summary)?;
+        json["recording"] = serde_json::Value::String(args.output.display().to_string());
+        println!("{}", dlw::finite::to_json(&json)?);
+    } else {
+        let a = &summary.alignment;
+        println!(
+            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm (r = {:.3}); tracker: {} frames, {} missing, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)",
+            args.output.display(),
+            summary.samples,
+            summary.duration_s,
+            a.offset_s,
+            a.offset_uncertainty_s,
+            a.drift_ppm,
+            a.drift_uncertainty_ppm,
+            a.correlation,
+            summary.tracker.frames,
+            summary.tracker.missing_frames,
+            summary.tracker.out_of_plane_rms_deg,
+            summary.invalid_rows
+        );
+    }
+    Ok(())
+}
+
+/// The largest DAQ or tracker file read (bytes): hours of a bench's logging stay far below.
+const MAX_INPUT_BYTES: u64 = 4 << 30;

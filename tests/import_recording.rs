@@ -1,0 +1,288 @@
+//! `dlw import-recording` on files written the way a bench writes them: a DAQ's CSV export
+//! (time, two voltages, a stroke voltage) and an NDI Aurora log (CSV, NDI Track's columns with
+//! `ToolInfo`, `Port:1` handles and `Missing` frames), built by this test from a known truth
+//! with its own generator: a stroke pattern, an angle that follows it with a 30 ms lag, a
+//! linear sensor, a tracker at 40 Hz whose clock is 0.437 s late and runs 250 ppm fast, 1.5 %
+//! of its frames missing in bursts, a tracker frame turned against the joint's, and a reference
+//! tool on the base that moves.
+
+mod common;
+use common::{arg, dlw, shipped_design};
+
+use std::f64::consts::PI;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use dlw::design::Design;
+use dlw_geometry::Divider;
+
+const DAQ_HZ: f64 = 500.0;
+const TRACKER_HZ: f64 = 40.0;
+const OFFSET_S: f64 = 0.437;
+const DRIFT_PPM: f64 = 250.0;
+const DURATION_S: f64 = 240.0;
+const REST_S: f64 = 5.0;
+const GF: f64 = 15.3;
+const R0: f64 = 215e3;
+const DIVIDER: f64 = 99.6e3;
+const SUPPLY_V: f64 = 5.0;
+const MM_PER_V: f64 = 0.5;
+const GAIN_DEG_PER_MM: f64 = 33.0;
+const LAG_S: f64 = 0.03;
+
+/// A small deterministic generator (xorshift), independent of the simulator's.
+struct Rng(u64);
+impl Rng {
+    fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn normal(&mut self) -> f64 {
+        let (u, v) = (self.uniform().max(1e-12), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (2.0 * PI * v).cos()
+    }
+}
+
+/// The true angle (°) at DAQ time `t`: rest, then smooth ramps between random levels.
+struct Truth {
+    knots: Vec<(f64, f64)>,
+}
+impl Truth {
+    fn new(rng: &mut Rng) -> Self {
+        let mut knots = vec![(0.0, 0.0), (REST_S, 0.0)];
+        let mut t = REST_S;
+        while t < DURATION_S + 10.0 {
+            t += 1.5 + 4.0 * rng.uniform();
+            knots.push((
+                t,
+                1.2 * (1.0 - 0.0) * 30.0 * rng.uniform() / GAIN_DEG_PER_MM,
+            ));
+            t += 2.0 * rng.uniform();
+            let level = knots.last().unwrap().1;
+            knots.push((t, level));
+        }
+        Truth { knots }
+    }
+    /// Stroke (mm) at `t`, cosine-eased between knots.
+    fn stroke(&self, t: f64) -> f64 {
+        let i = self
+            .knots
+            .partition_point(|k| k.0 <= t)
+            .clamp(1, self.knots.len() - 1);
+        let ((t0, a), (t1, b)) = (self.knots[i - 1], self.knots[i]);
+        let f = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
+        a + (b - a) * (1.0 - (PI * f).cos()) / 2.0
+    }
+    /// The joint's angle: the stroke's, `LAG_S` later.
+    fn angle_deg(&self, t: f64) -> f64 {
+        GAIN_DEG_PER_MM * self.stroke(t - LAG_S)
+    }
+}
+
+/// Unit quaternion of a rotation by `angle` about unit `axis`.
+fn quat(axis: [f64; 3], angle: f64) -> [f64; 4] {
+    let (s, c) = (angle / 2.0).sin_cos();
+    [c, axis[0] * s, axis[1] * s, axis[2] * s]
+}
+
+fn mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    [
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
+    ]
+}
+
+/// Writes `daq.csv` and `aurora.csv` into `dir`; returns the truth.
+fn write_bench(dir: &Path, reference_moves: bool) -> Truth {
+    let mut rng = Rng(0x5eed_1234_abcd_0001);
+    let truth = Truth::new(&mut rng);
+    let joint = Design::load(Path::new(&shipped_design("joint-a.toml")))
+        .unwrap()
+        .joint;
+    let divider = Divider {
+        fixed_ohm: DIVIDER,
+        supply_v: SUPPLY_V,
+    };
+    let mut daq = String::from("Time,AI0,AI1,AI2\n");
+    let n = (DURATION_S * DAQ_HZ) as usize;
+    for i in 0..n {
+        let t = i as f64 / DAQ_HZ;
+        let strain = joint.strain(truth.angle_deg(t).to_radians());
+        let v1 = divider.voltage(R0 * (1.0 + GF * strain)) + 0.0005 * rng.normal();
+        let v_stroke = truth.stroke(t) / MM_PER_V + 0.0005 * rng.normal();
+        // A channel the import does not use, between the two it does.
+        writeln!(
+            daq,
+            "{t:.4},{v1:.6},{:.4},{v_stroke:.6}",
+            0.1 * rng.normal()
+        )
+        .unwrap();
+    }
+    // The tracker: its own clock; the joint bends about a tilted axis in a frame turned against
+    // the tracker's; a reference tool on the base that, when asked, sways by up to 3°.
+    let mount = quat([0.6, 0.0, 0.8], 0.7);
+    let bend_axis = [0.0, 1.0, 0.0];
+    let mut ndi = String::from(
+        "#Tools,ToolInfo,Frame#,PortHandle,Face#,TransformStatus,Q0,Qx,Qy,Qz,Tx,Ty,Tz,Error,\
+         #Markers,PortHandle,Face#,TransformStatus,Q0,Qx,Qy,Qz,Tx,Ty,Tz,Error\n",
+    );
+    let frames = ((DURATION_S - OFFSET_S - 1.0) * TRACKER_HZ) as usize;
+    let mut missing_left = 0usize;
+    for k in 0..frames {
+        let tau = k as f64 / TRACKER_HZ;
+        let t = OFFSET_S + tau * (1.0 + DRIFT_PPM * 1e-6);
+        if missing_left == 0 && k > 300 && rng.uniform() < 0.005 {
+            missing_left = 1 + (rng.uniform() * 5.0) as usize;
+        }
+        let sway = if reference_moves {
+            3f64.to_radians() * (2.0 * PI * t / 37.0).sin()
+        } else {
+            0.0
+        };
+        let base = mul(quat([1.0, 0.0, 0.0], sway), mount);
+        let angle = (truth.angle_deg(t) + 0.05 * rng.normal()).to_radians();
+        let tip = mul(base, quat(bend_axis, angle));
+        let block = |q: [f64; 4], port: u32, missing: bool| {
+            if missing {
+                format!("Port:{port},0,Missing,,,,,,,,")
+            } else {
+                format!(
+                    "Port:{port},0,OK,{:.7},{:.7},{:.7},{:.7},10.0,20.0,30.0,0.12",
+                    q[0], q[1], q[2], q[3]
+                )
+            }
+        };
+        let gone = missing_left > 0;
+        missing_left = missing_left.saturating_sub(1);
+        writeln!(
+            ndi,
+            "2,Aurora,{},{},3,{}",
+            1000 + k,
+            block(tip, 1, gone),
+            block(base, 2, false)
+        )
+        .unwrap();
+    }
+    std::fs::write(dir.join("daq.csv"), daq).unwrap();
+    std::fs::write(dir.join("aurora.csv"), ndi).unwrap();
+    truth
+}
+
+fn import(dir: &Path, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "import-recording".to_owned(),
+        "--daq".into(),
+        arg(&dir.join("daq.csv")),
+        "--divider-ohm".into(),
+        DIVIDER.to_string(),
+        "--supply-v".into(),
+        SUPPLY_V.to_string(),
+        "--stroke".into(),
+        "AI2".into(),
+        "--stroke-mm-per-v".into(),
+        MM_PER_V.to_string(),
+        "--tracker".into(),
+        arg(&dir.join("aurora.csv")),
+        "-o".into(),
+        arg(&dir.join("rec")),
+        "--json".into(),
+    ];
+    if !extra.contains(&"--voltage") {
+        args.extend(["--voltage".to_owned(), "AI0".to_owned()]);
+    }
+    args.extend(extra.iter().map(|s| s.to_string()));
+    dlw(&args)
+}
+
+/// The imported angle matches the truth to 0.3° RMSE, the offset is found within 2 ms and the
+/// drift within 30 ppm, and `dlw fit` recovers the gauge factor within 1 %.
+#[test]
+fn a_bench_import_recovers_the_angle_the_clocks_and_the_gauge_factor() {
+    let dir = tempfile::tempdir().unwrap();
+    let truth = write_bench(dir.path(), false);
+    let o = import(dir.path(), &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let a = &j["alignment"];
+    let offset = a["offset_s"].as_f64().unwrap();
+    let drift = a["drift_ppm"].as_f64().unwrap();
+    eprintln!("{j}");
+    assert!((offset - OFFSET_S).abs() < 0.002, "offset {offset} s");
+    assert!((drift - DRIFT_PPM).abs() < 30.0, "drift {drift} ppm");
+    assert!(j["tracker"]["missing_frames"].as_u64().unwrap() > 0, "{j}");
+
+    let rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();
+    let s = &rec.samples;
+    let (mut ss, mut n) = (0.0, 0);
+    for i in s.valid_angle_rows() {
+        let e = s.angle_deg[i] - truth.angle_deg(s.time_s[i]);
+        ss += e * e;
+        n += 1;
+    }
+    let rmse = (ss / n as f64).sqrt();
+    assert!(rmse < 0.3, "angle RMSE {rmse}° over {n} rows");
+    assert!(
+        s.invalid_angle_rows() > 0,
+        "the gaps and the ends are marked"
+    );
+    assert!(rec.rig.import.is_some());
+
+    let cfg = dir.path().join("fit.toml");
+    let o = dlw(&[
+        "fit",
+        "--design",
+        &shipped_design("joint-a.toml"),
+        &arg(&dir.path().join("rec")),
+        "--model",
+        "linear",
+        "-o",
+        &arg(&cfg),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&cfg).unwrap();
+    let gf: f64 = text
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("gauge_factor = "))
+        .and_then(|v| v.parse().ok())
+        .expect("a gauge_factor line");
+    assert!((gf - GF).abs() < 0.01 * GF, "GF {gf} against {GF}");
+}
+
+/// With a reference tool on a base that sways by 3°, the angle relative to it still matches.
+#[test]
+fn a_reference_tool_cancels_the_base_motion() {
+    let dir = tempfile::tempdir().unwrap();
+    let truth = write_bench(dir.path(), true);
+    let o = import(dir.path(), &["--reference-tool", "2"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();
+    let s = &rec.samples;
+    let rows = s.valid_angle_rows();
+    let rmse = (rows
+        .iter()
+        .map(|&i| (s.angle_deg[i] - truth.angle_deg(s.time_s[i])).powi(2))
+        .sum::<f64>()
+        / rows.len() as f64)
+        .sqrt();
+    assert!(rmse < 0.3, "angle RMSE {rmse}°");
+}
+
+/// Bad input: a missing channel, a still recording, an output that exists; nothing written.
+#[test]
+fn bad_input_is_refused_with_nothing_written() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench(dir.path(), false);
+    let o = import(dir.path(), &["--voltage", "AI9"]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("AI9") && err.contains("Time,AI0"), "{err}");
+    assert!(!dir.path().join("rec").exists());
+    let o = import(dir.path(), &["--daq-format", "tdms"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not read yet"));
+    assert!(!dir.path().join("rec").exists());
+}
