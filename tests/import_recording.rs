@@ -251,6 +251,18 @@ fn a_bench_import_recovers_the_angle_the_clocks_and_the_gauge_factor() {
         .and_then(|v| v.parse().ok())
         .expect("a gauge_factor line");
     assert!((gf - GF).abs() < 0.01 * GF, "GF {gf} against {GF}");
+
+    // Discovery reads an imported recording (no simulated scenario in it).
+    let o = dlw(&[
+        "discover",
+        "--design",
+        &shipped_design("joint-a.toml"),
+        &arg(&dir.path().join("rec")),
+        "-o",
+        &arg(&dir.path().join("discovered")),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// With a reference tool on a base that sways by 3°, the angle relative to it still matches.
