@@ -40,7 +40,8 @@ fn fixture() -> Fixture {
     let design = root.path().join("joint-c.toml");
     std::fs::copy(shipped_design("joint-c.toml"), &design).unwrap();
     let recording = root.path().join("rec");
-    let o = dlw(&simulate_args(&design, &recording, "2"));
+    // Long enough for `fit` to see the resistance rise with strain (the first cycle).
+    let o = dlw(&simulate_args(&design, &recording, "60"));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let config = root.path().join("c.toml");
     let mut a = vec![
@@ -127,6 +128,78 @@ fn commands() -> Vec<Row> {
             kind: Kind::Folder,
             args: |f, out| strings(&["build", &arg(&f.design), "-o", out]),
             input: |f| f.design.clone(),
+        },
+        Row {
+            name: "fluoro-render",
+            kind: Kind::Folder,
+            args: |f, out| {
+                strings(&[
+                    "fluoro-render",
+                    "--recording",
+                    &arg(&f.recording),
+                    "--fps",
+                    "2",
+                    "--size",
+                    "64",
+                    "-o",
+                    out,
+                ])
+            },
+            input: |f| f.recording.clone(),
+        },
+        Row {
+            name: "fit",
+            kind: Kind::File,
+            args: |f, out| {
+                strings(&[
+                    "fit",
+                    "--design",
+                    &arg(&f.design),
+                    &arg(&f.recording),
+                    "--model",
+                    "linear",
+                    "-o",
+                    out,
+                ])
+            },
+            input: |f| f.recording.join("data.csv"),
+        },
+        Row {
+            name: "characterize",
+            kind: Kind::Folder,
+            args: |f, out| {
+                strings(&[
+                    "characterize",
+                    "--design",
+                    &arg(&f.design),
+                    &arg(&f.recording),
+                    "--kind",
+                    "loops",
+                    "-o",
+                    out,
+                ])
+            },
+            input: |f| f.recording.clone(),
+        },
+        Row {
+            name: "control",
+            kind: Kind::Folder,
+            args: |f, out| {
+                strings(&[
+                    "control",
+                    "--design",
+                    &arg(&f.design),
+                    "--config",
+                    &arg(&f.config),
+                    "--protocol",
+                    "random",
+                    "--duration-s",
+                    "5",
+                    "-o",
+                    out,
+                ])
+            },
+            input: |f| f.config.clone(),
         },
         Row {
             name: "draw",
