@@ -44,10 +44,7 @@ fn fixture() -> Fixture {
     let o = dlw(&simulate_args(&design, &recording, "60"));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let config = root.path().join("c.toml");
-    let mut a = vec![
-        "estimator-config".to_string(),
-        arg(&design),
-    ];
+    let mut a = vec!["estimator-config".to_string(), arg(&design)];
     a.extend(common::JOINT_C_TABLE_V.iter().map(|s| s.to_string()));
     a.extend(["-o".into(), arg(&config)]);
     let o = dlw(&a);

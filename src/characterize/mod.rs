@@ -78,11 +78,11 @@ impl Kind {
         let stated = recording.rig.protocol();
         let protocol = match stated {
             Some(name) => Some(
-                toml::Value::String(name.to_string()).try_into::<ProtocolKind>().map_err(
-                    |_| CharacterizeError::NoKind {
+                toml::Value::String(name.to_string())
+                    .try_into::<ProtocolKind>()
+                    .map_err(|_| CharacterizeError::NoKind {
                         protocol: name.to_string(),
-                    },
-                )?,
+                    })?,
             ),
             None => None,
         };

@@ -268,7 +268,12 @@ impl Replay {
     /// is the recorded angle, `error_deg = estimate_deg − angle_deg` and `flags` the estimator's
     /// flag names joined by `|` (`none` when clean).
     pub fn csv_bytes(&self, recording: &Recording) -> Vec<u8> {
-        estimates_csv(&self.estimate_deg, &self.flags, recording, ESTIMATE_DECIMALS)
+        estimates_csv(
+            &self.estimate_deg,
+            &self.flags,
+            recording,
+            ESTIMATE_DECIMALS,
+        )
     }
 
     /// [`Replay::csv_bytes`] with `estimate_deg` and `error_deg` to `decimals` places (e.g. 12,

@@ -55,6 +55,11 @@ use std::path::PathBuf;
 
 use crate::design::Design;
 
+/// Recording folders: reading, checking and writing.
+/// Moved to [`crate::recording`]; these re-exports keep old paths compiling this round.
+pub use crate::recording::{
+    header, Recording, RecordingError, Rig, Samples, SimulationInfo, DATA_FILE, RIG_FILE,
+};
 /// The bench stepped one sample at a time (shared by `Plan::run` and closed-loop control).
 pub use bench::{Bench, Reading};
 /// Correlated (first-order autoregressive) measurement noise.
@@ -70,11 +75,6 @@ pub use protocol::{
     parse_series, Characterization, CustomProtocol, Knot, ProtocolError, ProtocolKind,
     ProtocolParams, RandomProtocol, RateDependenceProtocol, RelaxationProtocol, Sampler,
     StrokeProfile, DEFAULT_REST_START_S,
-};
-/// Recording folders: reading, checking and writing.
-/// Moved to [`crate::recording`]; these re-exports keep old paths compiling this round.
-pub use crate::recording::{
-    header, Recording, RecordingError, Rig, Samples, SimulationInfo, DATA_FILE, RIG_FILE,
 };
 /// Seeded random streams.
 pub use rng::{streams, Stream};
@@ -288,7 +288,10 @@ impl Plan {
 pub fn scenario_of(rig: &Rig) -> Result<Option<Scenario>, String> {
     rig.scenario
         .clone()
-        .map(|t| t.try_into::<Scenario>().map_err(|e| format!("rig.toml [scenario]: {e}")))
+        .map(|t| {
+            t.try_into::<Scenario>()
+                .map_err(|e| format!("rig.toml [scenario]: {e}"))
+        })
         .transpose()
 }
 
@@ -401,8 +404,7 @@ mod tests {
         let plan = plan(&design, scenario(ProtocolKind::Relaxation, 10.0), None).unwrap();
         let rig = plan.rig();
         assert_eq!(rig.divider_ohm, vec![99.6e3, 102.5e3]);
-        let file: crate::design::DesignFile =
-            rig.design.clone().unwrap().try_into().unwrap();
+        let file: crate::design::DesignFile = rig.design.clone().unwrap().try_into().unwrap();
         assert_eq!(file, design.file);
         let sc = scenario_of(&rig).unwrap().unwrap();
         assert_eq!(sc.duration_s, Some(10.0));
