@@ -149,3 +149,41 @@ fn inputs_that_only_overflow_are_refused_at_the_edge() {
         &out,
     );
 }
+
+/// A DXF vertex at 1e308 made "notch area NaN mm²" in `import-dxf` and a 309-digit rule
+/// message in `program --from-dxf`; it is refused when read, naming the entity and the limit.
+#[test]
+fn a_drawing_vertex_past_the_limit_is_refused_when_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let dxf = dir.path().join("a.dxf");
+    dlw_ok(&["draw", &shipped_design("joint-a.toml"), "--dxf", &arg(&dxf)]);
+    let text = std::fs::read_to_string(&dxf).unwrap();
+    let i = text.find("LWPOLYLINE").unwrap();
+    let j = text[i..].find("\n 10\n").unwrap() + i + 5;
+    let k = text[j..].find('\n').unwrap() + j;
+    let big = dir.path().join("big.dxf");
+    std::fs::write(&big, format!("{}1e308{}", &text[..j], &text[k..])).unwrap();
+    let o = dlw(&["import-dxf", &arg(&big)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success(),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    assert!(err.contains("1e308") && err.contains("±1000 mm"), "{err}");
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("NaN"));
+    let out = dir.path().join("big.ngc");
+    refused(
+        &[
+            "program",
+            "--from-dxf",
+            &arg(&big),
+            "--design",
+            &shipped_design("joint-a.toml"),
+            "-o",
+            &arg(&out),
+        ],
+        &["1e308", "±1000 mm"],
+        &out,
+    );
+}

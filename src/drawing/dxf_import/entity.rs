@@ -37,6 +37,9 @@ pub(super) struct Reader {
     pub tol: f64,
 }
 
+/// The largest coordinate magnitude a joint's drawing may hold (mm): a metre.
+pub const MAX_ABS_COORD_MM: f64 = 1e3;
+
 impl Reader {
     fn at(&self, x: f64, y: f64) -> Coord {
         Coord {
@@ -62,6 +65,22 @@ impl Reader {
                 entity,
                 layer,
                 format!("a vertex at ({}, {}) is not a finite number", p.x, p.y),
+            ));
+        }
+        // A drawing of a joint spans millimetres; a vertex kilometres away only overflows the
+        // areas and lengths computed from it (a vertex at 1e308 gave "notch area NaN mm²").
+        if let Some(p) = points
+            .iter()
+            .find(|p| p.x.abs() > MAX_ABS_COORD_MM || p.y.abs() > MAX_ABS_COORD_MM)
+        {
+            return Err(bad(
+                entity,
+                layer,
+                format!(
+                    "a vertex at ({}, {}) mm lies beyond ±{MAX_ABS_COORD_MM} mm, the limit of a drawing of a joint",
+                    crate::limits::short(p.x),
+                    crate::limits::short(p.y)
+                ),
             ));
         }
         Ok((points, closed))
