@@ -158,11 +158,24 @@ fn a_drawing_vertex_past_the_limit_is_refused_when_read() {
     let dxf = dir.path().join("a.dxf");
     dlw_ok(&["draw", &shipped_design("joint-a.toml"), "--dxf", &arg(&dxf)]);
     let text = std::fs::read_to_string(&dxf).unwrap();
-    let i = text.find("LWPOLYLINE").unwrap();
-    let j = text[i..].find("\n 10\n").unwrap() + i + 5;
-    let k = text[j..].find('\n').unwrap() + j;
+    // The first LWPOLYLINE's first x (group code 10), whatever the line endings.
+    let mut lines: Vec<&str> = text.split('\n').collect();
+    let entity = lines.iter().position(|l| l.trim() == "LWPOLYLINE").unwrap();
+    let code = (entity..lines.len())
+        .find(|&n| lines[n].trim() == "10")
+        .unwrap();
+    let big_text = {
+        let ending = if lines[code + 1].ends_with('\r') {
+            "\r"
+        } else {
+            ""
+        };
+        let replaced = format!("1e308{ending}");
+        lines[code + 1] = &replaced;
+        lines.join("\n")
+    };
     let big = dir.path().join("big.dxf");
-    std::fs::write(&big, format!("{}1e308{}", &text[..j], &text[k..])).unwrap();
+    std::fs::write(&big, big_text).unwrap();
     let o = dlw(&["import-dxf", &arg(&big)]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
