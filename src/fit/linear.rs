@@ -46,6 +46,12 @@ pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
         sxy,
         ..
     } = moments(strain, ohm);
+    // Variance below rounding of the mean: the strain is constant.
+    let rounding = 1e-12 * mx.abs().max(1e-12);
+    if sxx.is_nan() || sxx / n as f64 <= rounding * rounding {
+        // 0/0 would be the slope and r² (the error printed "r² = NaN").
+        return Err(FitError::FlatStrain { samples: n });
+    }
     let nf = n as f64;
     let slope = sxy / sxx;
     let r2 = if syy > 0.0 {
@@ -87,6 +93,14 @@ pub(crate) use crate::stats::{moments, Moments};
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+
+    #[test]
+    fn a_joint_that_never_moves_is_named_not_nan() {
+        let err = fit_linear(&[0.001; 50], &(0..50).map(f64::from).collect::<Vec<_>>())
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("never moves") && !err.contains("NaN"), "{err}");
+    }
 
     #[test]
     fn recovers_gf_and_r0_exactly_from_a_line() {

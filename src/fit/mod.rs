@@ -110,6 +110,12 @@ pub enum FitError {
         /// The least accepted.
         min: usize,
     },
+    /// The strain never varies over the samples fitted.
+    #[error("the strain does not vary over the {samples} samples fitted (the joint never moves there): there is no slope to fit; record motion")]
+    FlatStrain {
+        /// Samples looked at.
+        samples: usize,
+    },
     /// The resistance does not rise with strain.
     #[error("the resistance does not increase with strain: slope {slope_ohm_per_strain:.4e} Ω per unit strain, r² = {r2:.3} (needs a positive slope and r² ≥ {min_r2})")]
     NotIncreasing {
