@@ -121,6 +121,68 @@ pub fn rate(letters: &[char], correlations: &[f64], threshold: f64) -> String {
     }
 }
 
+/// Fig. 5's artefact in numbers: per joint, how the cycles' peak strain follows their rise
+/// time (`amplitude_rise`, the relaxation of a slow rise) and how the GF follows the peak strain
+/// (`gf_amplitude`, the curvature of the sensor). Where both are strong, the GF's trend with
+/// the rise time comes through the amplitude, not from a rate effect.
+pub fn rate_cause(
+    letters: &[char],
+    amplitude_rise: &[Option<f64>],
+    gf_amplitude: &[Option<f64>],
+) -> String {
+    let parts: Vec<String> = letters
+        .iter()
+        .zip(amplitude_rise.iter().zip(gf_amplitude))
+        .map(|(l, (a, g))| {
+            let f = |x: &Option<f64>| x.map_or("–".to_owned(), |v| format!("{v:.2}"));
+            format!(
+                "Joint {l}: corr(peak strain, rise time) {}, corr(GF, peak strain) {}",
+                f(a),
+                f(g)
+            )
+        })
+        .collect();
+    let strong = |x: &Option<f64>| x.is_some_and(|v| v.abs() >= STRONG_CORRELATION);
+    let (through, not): (Vec<char>, Vec<char>) = letters
+        .iter()
+        .zip(amplitude_rise.iter().zip(gf_amplitude))
+        .map(|(l, (a, g))| (*l, strong(a) && strong(g)))
+        .fold((Vec::new(), Vec::new()), |(mut t, mut n), (l, both)| {
+            if both {
+                t.push(l)
+            } else {
+                n.push(l)
+            }
+            (t, n)
+        });
+    let list = |v: &[char]| {
+        v.iter()
+            .map(|l| format!("Joint {l}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut text = format!("The numbers behind it: {}.", parts.join("; "));
+    if !through.is_empty() {
+        text += &format!(
+            " On {} both are strong (|r| ≥ {STRONG_CORRELATION}): a slow rise relaxes and peaks \
+             lower, and the line through the curved sensor changes slope with the range, so the \
+             GF's trend with the rise time comes through the amplitude.",
+            list(&through)
+        );
+    }
+    if !not.is_empty() {
+        text += &format!(
+            " On {} they are not both strong: this run does not show where the GF's trend with \
+             the rise time comes from.",
+            list(&not)
+        );
+    }
+    text
+}
+
+/// A correlation this strong (in magnitude) counts as a relation in [`rate_cause`].
+pub const STRONG_CORRELATION: f64 = 0.5;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -153,6 +215,17 @@ mod tests {
             flipped.starts_with(FLAG) && flipped.contains("linear estimates better"),
             "{flipped}"
         );
+    }
+
+    #[test]
+    fn rate_cause_claims_the_amplitude_only_where_both_correlations_are_strong() {
+        let t = rate_cause(
+            &['A', 'B'],
+            &[Some(-0.66), Some(-0.75)],
+            &[Some(-0.02), Some(-0.61)],
+        );
+        assert!(t.contains("On Joint B both are strong"), "{t}");
+        assert!(t.contains("On Joint A they are not both strong"), "{t}");
     }
 
     #[test]

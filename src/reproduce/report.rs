@@ -215,6 +215,22 @@ fn rate(page: &mut Page, r: &Reproduction) {
         .map(|j| j.rate.sensors[0].gf_rise_correlation)
         .collect();
     page.text(prose::rate(&letters, &correlations, MAX_RATE_CORRELATION));
+    let per_cycle =
+        |f: &dyn Fn(&crate::characterize::RateCycle) -> (f64, f64)| -> Vec<Option<f64>> {
+            r.joints
+                .iter()
+                .map(|j| {
+                    let (x, y): (Vec<f64>, Vec<f64>) =
+                        j.rate.sensors[0].cycles.iter().map(f).unzip();
+                    crate::characterize::pearson(&x, &y)
+                })
+                .collect()
+        };
+    page.text(prose::rate_cause(
+        &letters,
+        &per_cycle(&|c| (c.amplitude_strain, c.rise_s)),
+        &per_cycle(&|c| (c.gauge_factor, c.amplitude_strain)),
+    ));
     page.text(
         "Why they can differ. The simulated sensors have no rate dependence of their own (the \
          paper found none). But the simulated joints relax during the slower rises, so the slow \
