@@ -24,6 +24,7 @@ mod characteristic;
 mod cycles;
 mod data;
 mod linear;
+mod nnls;
 mod pi;
 mod plays;
 mod report;
@@ -49,10 +50,17 @@ pub use data::{
 pub(crate) use linear::moments;
 /// The linear model by least squares.
 pub use linear::{fit_linear, slope, LinearFit, MIN_R2};
-/// PI fits by Levenberg-Marquardt.
-pub use pi::{fit_plays, PlayFit, Problem, FTOL, GTOL, SLOPE_RESTARTS, XTOL};
+/// Non-negative least squares on the normal equations.
+pub use nnls::nnls;
+/// PI fits by variable projection.
+pub use pi::{
+    fit_plays, fit_plays_on, PlayFit, Shape, Start, COARSE_SAMPLES, GRID_STARTS,
+    LINEAR_START_REACH, RADIUS_SHARES, REFINEMENTS, SLOPE_RESTARTS,
+};
 /// The play models with their Jacobian.
-pub use plays::{PlayKind, PlayModel, Unpacked, BRANCH_PARAMS, PARTIAL_SUM_MARGIN};
+pub use plays::{
+    PlayKind, PlayModel, Unpacked, BRANCH_PARAMS, CONTINUOUS_WEIGHT_FLOOR, PARTIAL_SUM_MARGIN,
+};
 /// The fit report page.
 pub use report::{report_page, Validation};
 /// `dlw fit` as a library call.

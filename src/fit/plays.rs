@@ -33,6 +33,10 @@ use dlw_estimator::MAX_PLAYS;
 /// `1/Sᵢ` stay under 20 times its initial one.
 pub const PARTIAL_SUM_MARGIN: f64 = 0.05;
 
+/// The smallest continuous-PI weight, relative to `P₁ = 1`: every play keeps a share of the
+/// loop, as the continuous model's numerical inverse requires `Pᵢ > 0`.
+pub const CONTINUOUS_WEIGHT_FLOOR: f64 = 1e-4;
+
 /// Parameters of the two tanh curves in `θ`.
 pub const BRANCH_PARAMS: usize = 8;
 
@@ -138,7 +142,7 @@ impl PlayModel {
                     partial = PARTIAL_SUM_MARGIN + above;
                     theta.push(above.ln());
                 }
-                PlayKind::Continuous => theta.push(w.max(1e-4).ln()),
+                PlayKind::Continuous => theta.push(w.max(CONTINUOUS_WEIGHT_FLOOR).ln()),
             }
         }
         theta
