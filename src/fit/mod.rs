@@ -226,6 +226,9 @@ pub struct ModelSummary {
     /// Why the model was not fitted, when it was not.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub skipped: Option<String>,
+    /// What the fit found worth saying: a PI model that is the line it contains.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 /// One sensor's fits.
@@ -373,8 +376,20 @@ pub fn fit_sensor_models(
         });
         match built {
             Ok((fit, model_config)) => {
-                let k = fit.theta.len();
-                summaries.push(summary(model, fit.rmse_ohm, k, n, None));
+                let mut s = match fit.set_aside_rmse_ohm {
+                    // The line inside the PI model: two free constants, slope and offset.
+                    Some(_) => summary(model, fit.rmse_ohm, 2, n, None),
+                    None => summary(model, fit.rmse_ohm, fit.theta.len(), n, None),
+                };
+                s.note = fit.set_aside_rmse_ohm.map(|hysteretic| {
+                    format!(
+                        "equivalent to the linear model: the best hysteretic fit ({hysteretic:.1} Ω) \
+                         lowered the RMSE too little to pay for its {} extra parameters (BIC), so \
+                         the line it contains was kept",
+                        fit.theta.len() - 2
+                    )
+                });
+                summaries.push(s);
                 configs.push((
                     model,
                     SensorConfig::new(divider, model_config).on_plane(plane),
@@ -508,6 +523,7 @@ fn summary(
         parameters: k,
         bic,
         skipped,
+        note: None,
     }
 }
 

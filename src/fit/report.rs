@@ -46,6 +46,7 @@ pub fn add_sections(
         "parameters",
         "BIC",
         "validation RMSE (°)",
+        "note",
     ]);
     for fit in fits {
         for s in &fit.summaries {
@@ -71,6 +72,7 @@ pub fn add_sections(
                     "–".into()
                 },
                 v,
+                s.note.clone().unwrap_or_default(),
             ]);
         }
     }

@@ -181,8 +181,11 @@ pub struct PlayReport {
     pub rmse_ohm: f64,
     /// Each start of the optimizer.
     pub restarts: Vec<Restart>,
-    /// Model evaluations spent.
+    /// Weight solves spent (variable projection).
     pub evaluations: usize,
+    /// When the model is the line it contains: the best hysteretic fit's RMSE, set aside (Ω).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub set_aside_rmse_ohm: Option<f64>,
 }
 
 /// One start of a play fit.
@@ -364,11 +367,14 @@ impl Analysis for FitResult {
                 line(match &m.skipped {
                     Some(why) => format!("  {:<14} not fitted: {why}", model_name(m.model)),
                     None => format!(
-                        "  {:<14} RMSE {:>9.1} Ω   BIC {:>12.1}   ({} parameters)",
+                        "  {:<14} RMSE {:>9.1} Ω   BIC {:>12.1}   ({} parameters){}",
                         model_name(m.model),
                         m.rmse_ohm,
                         m.bic,
-                        m.parameters
+                        m.parameters,
+                        m.note
+                            .as_ref()
+                            .map_or(String::new(), |note| format!("\n    {note}"))
                     ),
                 });
             }
@@ -431,6 +437,7 @@ fn sensor_report(fit: &SensorFit) -> SensorReport {
                     })
                     .collect(),
                 evaluations: p.evaluations,
+                set_aside_rmse_ohm: p.set_aside_rmse_ohm,
             }
         })
     };
