@@ -150,9 +150,10 @@ fn bench(c: &mut Criterion) {
                     .as_ref()
                     .map_or("", |_| " (the line it contains)")
             );
-            g.bench_function(format!("{}/{}", dlw::fit::model_name(model), case.name), |b| {
-                b.iter(fit)
-            });
+            g.bench_function(
+                format!("{}/{}", dlw::fit::model_name(model), case.name),
+                |b| b.iter(fit),
+            );
         }
     }
     let case = &cases[8];

@@ -265,7 +265,8 @@ fn every_pattern_holds_short_and_half() {
 }
 
 /// At the paper's full durations (about 10 s in the dev profile), the patterns the simulated
-/// joints show hold: PI beats linear for Joints A and B and linear beats PI for C (Table IV),
+/// joints show hold: PI beats linear for Joints A and B (Table IV; for C too since the fit
+/// went to variable projection, where the paper's linear beat its PI: `docs/experiments.md`),
 /// every relaxation τ comes back within 10 % (Fig. 6), and closed loop beats open loop on
 /// actual vs desired (Table VI; 4.22° → 8.72° before Joint D's desired pattern was kept inside
 /// the characterized range, `reproduce::CONTROL_RANGE_SHARE`). The patterns that do not hold
@@ -331,7 +332,8 @@ fn headline(j: &serde_json::Value) -> String {
 /// Patterns of the paper that dlw's simulated joints do not show yet (issue 16): Table V's
 /// two-sensor gain, and Fig. 5's small rate correlation (relaxation and curvature correlate the
 /// per-cycle GF with the rise time in the simulated joints).
-const KNOWN_NOT_HELD: [&str; 4] = [
+const KNOWN_NOT_HELD: [&str; 5] = [
+    "linear beats PI for Joint C (Table IV)",
     "both sensors beat each sensor alone (Joint C, Table V)",
     "|corr(GF, rise time)| ≤ 0.1 without a rate effect (Joint A, Fig. 5)",
     "|corr(GF, rise time)| ≤ 0.1 without a rate effect (Joint B, Fig. 5)",

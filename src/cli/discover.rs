@@ -1,9 +1,8 @@
 //! `dlw discover --design D REC [--scenario S] [--holdout REC2] -o DIR [--json]`.
 
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use anyhow::{bail, Context};
+use anyhow::Context;
 use dlw::design::Design;
 use dlw::discover::{self, scenario, Outcome};
 use dlw::output::write_folder_atomic;
@@ -41,32 +40,10 @@ pub struct Args {
 /// `--json`. The keys are part of the interface (issue 9).
 #[derive(Debug, Serialize)]
 struct Json {
-    discovered: Vec<Named>,
-    candidates: Vec<Scored>,
-    ambiguous: Vec<discover::Ambiguity>,
-    unexplained: Vec<discover::unexplained::Unexplained>,
-    gaps: Vec<discover::Gap>,
+    #[serde(flatten)]
+    summary: discover::Summary,
     scenario: PathBuf,
     report: PathBuf,
-}
-
-#[derive(Debug, Serialize)]
-struct Named {
-    effect: &'static str,
-    channel: String,
-    evidence: f64,
-    parameters: BTreeMap<String, f64>,
-}
-
-#[derive(Debug, Serialize)]
-struct Scored {
-    effect: &'static str,
-    channel: String,
-    evidence: f64,
-    round: usize,
-    shape: String,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    memory: Option<f64>,
 }
 
 /// Runs `dlw discover`.
@@ -105,84 +82,31 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     )
     .with_context(|| format!("discovering on {}", args.recording.display()))?;
     bar.finish_and_clear();
-    let written = scenario::scenario(&base, &recording, &design.joint, &outcome)
-        .map_err(|e| anyhow::anyhow!("writing the scenario: {e}"))?;
-    let text = toml::to_string(&written).context("serializing the scenario")?;
-    // The written scenario must be one `dlw simulate` accepts.
-    if let Err(e) = toml::from_str::<Scenario>(&text)
-        .map_err(|e| e.to_string())
-        .and_then(|s| s.resolve(&design).map_err(|e| e.to_string()))
-    {
-        bail!("the discovered scenario does not validate: {e}");
-    }
+    let text = discover::scenario_text(&base, &recording, &design, &outcome)
+        .map_err(anyhow::Error::msg)?;
     let name = args.recording.file_name().map_or_else(
         || args.recording.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
     let page = discover::report::page(&name, &outcome);
     let mut files = page.files()?;
-    files.push((
-        "scenario.toml".to_owned(),
-        header(&outcome, &text).into_bytes(),
-    ));
+    files.push(("scenario.toml".to_owned(), text.into_bytes()));
     write_folder_atomic(&args.output, &files)?;
     let scenario_path = args.output.join("scenario.toml");
     let report_path = args.output.join("report.html");
     if args.json {
         println!(
             "{}",
-            dlw::finite::to_json(&json(&outcome, scenario_path, report_path))?
+            dlw::finite::to_json(&Json {
+                summary: discover::Summary::of(&outcome),
+                scenario: scenario_path,
+                report: report_path,
+            })?
         );
     } else {
         print_text(&outcome, &scenario_path, &report_path);
     }
     Ok(())
-}
-
-fn header(outcome: &Outcome, text: &str) -> String {
-    let named = if outcome.discovered.is_empty() {
-        "none".to_owned()
-    } else {
-        outcome
-            .discovered
-            .iter()
-            .map(|d| format!("{} on {}", d.effect.name(), d.channel.name()))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    format!("# Written by dlw discover: the base scenario calibrated to the recording, with the named effects: {named}.\n{text}")
-}
-
-fn json(outcome: &Outcome, scenario: PathBuf, report: PathBuf) -> Json {
-    Json {
-        discovered: outcome
-            .discovered
-            .iter()
-            .map(|d| Named {
-                effect: d.effect.name(),
-                channel: d.channel.name(),
-                evidence: d.evidence,
-                parameters: d.parameters.clone(),
-            })
-            .collect(),
-        candidates: outcome
-            .candidates
-            .iter()
-            .map(|c| Scored {
-                effect: c.effect.name(),
-                channel: c.channel.name(),
-                evidence: c.evidence,
-                round: c.round,
-                shape: c.shape.clone(),
-                memory: c.memory,
-            })
-            .collect(),
-        ambiguous: outcome.ambiguous.clone(),
-        unexplained: outcome.unexplained.clone(),
-        gaps: outcome.gaps.clone(),
-        scenario,
-        report,
-    }
 }
 
 fn print_text(outcome: &Outcome, scenario: &std::path::Path, report: &std::path::Path) {

@@ -14,8 +14,12 @@ pub mod model;
 pub mod noise;
 pub mod report;
 pub mod scenario;
+mod summary;
 pub mod terms;
 pub mod unexplained;
+
+/// `dlw discover --json`'s summary and the scenario file's text.
+pub use summary::{scenario_text, Named, Scored, Summary};
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;

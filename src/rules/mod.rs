@@ -28,6 +28,7 @@
 mod clearance;
 mod dimensions;
 mod drawing;
+mod inspection;
 mod length;
 mod notch_layout;
 mod pads;
@@ -90,6 +91,9 @@ impl Report {
         }
     }
 }
+
+/// A checked design's derived numbers, as `dlw inspect` reports them.
+pub use inspection::Inspection;
 
 /// A design that passed every rule, with its layout and warnings.
 #[derive(Debug, Clone)]

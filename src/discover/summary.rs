@@ -1,0 +1,123 @@
+//! What `dlw discover --json` prints, and the scenario file it writes, as a library: the command
+//! and the Python binding (`dlw.discover`) both build them here.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use super::{scenario, Ambiguity, Gap, Outcome};
+use crate::design::Design;
+use crate::recording::Recording;
+use crate::sim::Scenario;
+
+/// A named effect. The keys are part of the interface (issue 9).
+#[derive(Debug, Clone, Serialize)]
+pub struct Named {
+    /// The effect's name.
+    pub effect: &'static str,
+    /// The channel it acts on.
+    pub channel: String,
+    /// Its evidence (the information criterion's gain).
+    pub evidence: f64,
+    /// Its fitted parameters.
+    pub parameters: BTreeMap<String, f64>,
+}
+
+/// A candidate with its score.
+#[derive(Debug, Clone, Serialize)]
+pub struct Scored {
+    /// The effect's name.
+    pub effect: &'static str,
+    /// The channel.
+    pub channel: String,
+    /// Its evidence.
+    pub evidence: f64,
+    /// The round it was scored in.
+    pub round: usize,
+    /// The shape of its term.
+    pub shape: String,
+    /// Its memory (s), where it has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub memory: Option<f64>,
+}
+
+/// The discovery's result in `--json`'s form, without the paths of the files written.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Effects named.
+    pub discovered: Vec<Named>,
+    /// Every candidate scored.
+    pub candidates: Vec<Scored>,
+    /// Channels where two effects explain the data alike.
+    pub ambiguous: Vec<Ambiguity>,
+    /// Structure no candidate explains.
+    pub unexplained: Vec<super::unexplained::Unexplained>,
+    /// The gaps before and after.
+    pub gaps: Vec<Gap>,
+}
+
+impl Summary {
+    /// The summary of `outcome`.
+    pub fn of(outcome: &Outcome) -> Self {
+        Self {
+            discovered: outcome
+                .discovered
+                .iter()
+                .map(|d| Named {
+                    effect: d.effect.name(),
+                    channel: d.channel.name(),
+                    evidence: d.evidence,
+                    parameters: d.parameters.clone(),
+                })
+                .collect(),
+            candidates: outcome
+                .candidates
+                .iter()
+                .map(|c| Scored {
+                    effect: c.effect.name(),
+                    channel: c.channel.name(),
+                    evidence: c.evidence,
+                    round: c.round,
+                    shape: c.shape.clone(),
+                    memory: c.memory,
+                })
+                .collect(),
+            ambiguous: outcome.ambiguous.clone(),
+            unexplained: outcome.unexplained.clone(),
+            gaps: outcome.gaps.clone(),
+        }
+    }
+}
+
+/// The text of `scenario.toml`: `base` calibrated to `recording` with the named effects, under a
+/// header naming them, checked to be a scenario `dlw simulate` accepts for `design`.
+///
+/// # Errors
+/// A message naming what failed: building the scenario, serializing it, or its validation.
+pub fn scenario_text(
+    base: &Scenario,
+    recording: &Recording,
+    design: &Design,
+    outcome: &Outcome,
+) -> Result<String, String> {
+    let written = scenario::scenario(base, recording, &design.joint, outcome)
+        .map_err(|e| format!("writing the scenario: {e}"))?;
+    let text = toml::to_string(&written).map_err(|e| format!("serializing the scenario: {e}"))?;
+    toml::from_str::<Scenario>(&text)
+        .map_err(|e| e.to_string())
+        .and_then(|s| s.resolve(design).map_err(|e| e.to_string()))
+        .map_err(|e| format!("the discovered scenario does not validate: {e}"))?;
+    let named = if outcome.discovered.is_empty() {
+        "none".to_owned()
+    } else {
+        outcome
+            .discovered
+            .iter()
+            .map(|d| format!("{} on {}", d.effect.name(), d.channel.name()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    Ok(format!(
+        "# Written by dlw discover: the base scenario calibrated to the recording, with the named effects: {named}.\n{text}"
+    ))
+}
