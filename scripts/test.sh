@@ -9,6 +9,14 @@ if ! python3 -c "import ezdxf" 2>/dev/null; then
   echo "installing ezdxf (pip)"
   python3 -m pip install --quiet --disable-pip-version-check ezdxf
 fi
+# pytest and numpy for the Python package's tests, then the package itself, built from this
+# checkout by maturin (PEP 517; an abi3 wheel, docs/python.md). Rebuilt every run, so the tests
+# see the current source.
+python3 -m pip install --quiet --disable-pip-version-check pytest numpy
+echo "building and installing the dlw Python package (pip install ./crates/python)"
+python3 -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps ./crates/python
+python3 -c "import dlw; print('import dlw:', dlw.__version__)"
+
 if ! command -v rs274 >/dev/null 2>&1; then
   echo "installing linuxcnc-uspace (apt) for rs274"
   sudo_cmd=""
@@ -21,6 +29,10 @@ fi
 cargo build --quiet -p dlw-geometry -p dlw-estimator --no-default-features
 cargo test --workspace --all-targets "$@"
 cargo test --workspace --doc
+
+# The Python package against the command line it mirrors.
+cargo build --quiet --bin dlw
+DLW_BIN="$PWD/target/debug/dlw" python3 -m pytest -q crates/python/tests
 
 # Opt-in: a short libFuzzer run of each cargo-fuzz target (docs/fuzzing.md). Needs a nightly
 # toolchain and cargo-fuzz, which this script does not install (rustup downloads them from
