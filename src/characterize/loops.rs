@@ -328,7 +328,7 @@ fn loop_chart(s: &LoopsSensor, label: &str) -> Chart {
     if let Ok(pi) = &fit.pi {
         // The model runs over the whole recording (its plays remember the history) and is
         // drawn over the last cycle, so that it shows the loop without hiding the data.
-        let model = pi.predict(&obs.strain);
+        let model = pi.predict_observed(obs);
         let shown = fit
             .cycles
             .last()

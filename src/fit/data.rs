@@ -86,6 +86,10 @@ pub struct Observations {
     pub ohm_range: (f64, f64),
     /// Samples between kept samples (1 = every sample).
     pub decimation: usize,
+    /// Whether the prefiltered strain fell at each kept sample, judged against the sample just
+    /// before it at the full rate (not the previous kept one): the direction the generalized PI
+    /// model sees when the runtime steps through every sample.
+    pub falling: Vec<bool>,
 }
 
 impl Observations {
@@ -172,7 +176,9 @@ pub fn observe(
         ohm: Vec::with_capacity(n / step + 1),
         ohm_range: (f64::INFINITY, f64::NEG_INFINITY),
         decimation: step,
+        falling: Vec::with_capacity(n / step + 1),
     };
+    let mut previous = f64::NEG_INFINITY;
     let sign = plane.sign();
     #[allow(clippy::needless_range_loop)] // four columns walk together by index
     for i in 0..n {
@@ -184,7 +190,9 @@ pub fn observe(
             out.time_s.push(s.time_s[i]);
             out.strain.push(strain);
             out.ohm.push(ohm);
+            out.falling.push(strain < previous);
         }
+        previous = strain;
     }
     Ok(out)
 }

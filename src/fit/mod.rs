@@ -54,8 +54,8 @@ pub use linear::{fit_linear, slope, LinearFit, MIN_R2};
 pub use nnls::nnls;
 /// PI fits by variable projection.
 pub use pi::{
-    fit_plays, fit_plays_on, PlayFit, Shape, Start, COARSE_SAMPLES, GRID_STARTS,
-    LINEAR_START_REACH, RADIUS_SHARES, REFINEMENTS, SLOPE_RESTARTS,
+    fit_plays, fit_plays_directed, fit_plays_on, PlayFit, Shape, Start, COARSE_SAMPLES,
+    GRID_STARTS, LINEAR_START_REACH, RADIUS_SHARES, REFINEMENTS, SLOPE_RESTARTS,
 };
 /// The play models with their Jacobian.
 pub use plays::{
@@ -337,7 +337,15 @@ pub fn fit_sensor_models(
                     kind_name(kind),
                     options.order
                 ));
-                fit_plays(kind, options.order, &obs.strain, &obs.ohm, points)
+                fit_plays_directed(
+                    kind,
+                    options.order,
+                    &obs.strain,
+                    Some(&obs.falling),
+                    &obs.ohm,
+                    points,
+                    2,
+                )
             }
         };
         (Some(result), clock.elapsed().as_secs_f64())

@@ -49,6 +49,9 @@ pub const RADIUS_SHARES: [f64; 5] = [0.1, 0.2, 0.35, 0.6, 1.0];
 /// Grid shapes that start a search, besides the linear start.
 pub const GRID_STARTS: usize = 2;
 
+/// Rounds of scan and search of the best shape on every sample, at most.
+pub const FULL_REFINEMENTS: usize = 1;
+
 /// Changes of the shift `(a₈ − a₄)/a₁` from the best start's shape, each searched again.
 pub const SHIFT_HOPS: [f64; 2] = [-0.04, 0.04];
 
@@ -199,10 +202,21 @@ pub struct PlayFit {
 }
 
 impl PlayFit {
-    /// The fitted model's resistance over `strain` (Ω), from relaxed plays.
+    /// The fitted model's resistance over `strain` (Ω), from relaxed plays, the generalized
+    /// model's direction taken from consecutive samples.
     pub fn predict(&self, strain: &[f64]) -> Vec<f64> {
         let mut ohm = vec![0.0; strain.len()];
         self.model.evaluate(&self.theta, strain, &mut ohm, None);
+        ohm
+    }
+
+    /// The fitted model's resistance over decimated observations, with the direction the
+    /// full-rate signal had at each ([`super::Observations::falling`]): the samples its RMSE
+    /// is computed on.
+    pub fn predict_observed(&self, obs: &super::Observations) -> Vec<f64> {
+        let mut ohm = vec![0.0; obs.strain.len()];
+        self.model
+            .evaluate_directed(&self.theta, &obs.strain, Some(&obs.falling), &mut ohm, None);
         ohm
     }
 }
@@ -238,6 +252,28 @@ pub fn fit_plays_on(
     points: &Characteristic,
     threads: usize,
 ) -> Result<PlayFit, FitError> {
+    fit_plays_directed(kind, order, strain, None, ohm, points, threads)
+}
+
+/// [`fit_plays_on`] with the generalized model's direction at each sample given (`falling`,
+/// [`super::Observations::falling`]): decimated samples of a signal the runtime steps through at
+/// the full rate, where a reversal between two kept samples is not a reversal the runtime sees,
+/// and noise the prefilter leaves flips the direction the runtime does see. Judged from the kept
+/// samples alone, a fit can put the branches far apart at no cost on the samples it fits and
+/// then jump between them on every such flip at the full rate.
+///
+/// # Errors
+/// As [`fit_plays`].
+#[allow(clippy::too_many_arguments)]
+pub fn fit_plays_directed(
+    kind: PlayKind,
+    order: usize,
+    strain: &[f64],
+    falling: Option<&[bool]>,
+    ohm: &[f64],
+    points: &Characteristic,
+    threads: usize,
+) -> Result<PlayFit, FitError> {
     let name = match kind {
         PlayKind::Generalized => "pi",
         PlayKind::Continuous => "continuous-pi",
@@ -254,7 +290,7 @@ pub fn fit_plays_on(
             min_r2: 0.0,
         });
     }
-    let full = Projection::new(kind, order, strain, ohm, points, 1);
+    let full = Projection::new(kind, order, strain, falling, ohm, points, 1);
     if !(full.reach > 0.0) {
         return Err(FitError::FlatStrain {
             samples: strain.len(),
@@ -264,6 +300,7 @@ pub fn fit_plays_on(
         kind,
         order,
         strain,
+        falling,
         ohm,
         points,
         strain.len().div_ceil(COARSE_SAMPLES).max(1),
@@ -307,7 +344,7 @@ pub fn fit_plays_on(
         }
     }
     let (shape, _) = best.expect("the linear start is always searched");
-    let (shape, cost, _) = refine(&full, shape, 1);
+    let (shape, cost, _) = refine(&full, shape, FULL_REFINEMENTS);
     // The hysteretic model against the line it contains: kept only where its lower residual
     // pays for its extra parameters by the Bayesian information criterion. Otherwise the
     // extra constants fit noise, and an inverse through noise-fitted partial sums amplifies it
@@ -487,6 +524,8 @@ struct Projection {
     kind: PlayKind,
     order: usize,
     strain: Vec<f64>,
+    /// The generalized model's direction per sample, where it is given.
+    falling: Option<Vec<bool>>,
     /// `R − R_c` (Ω).
     target: DVector<f64>,
     center_strain: f64,
@@ -513,11 +552,13 @@ impl Projection {
         kind: PlayKind,
         order: usize,
         strain: &[f64],
+        falling: Option<&[bool]>,
         ohm: &[f64],
         points: &Characteristic,
         step: usize,
     ) -> Self {
         let strain: Vec<f64> = strain.iter().step_by(step).copied().collect();
+        let falling = falling.map(|f| f.iter().step_by(step).copied().collect());
         let target = DVector::from_iterator(
             strain.len(),
             ohm.iter().step_by(step).map(|r| r - points.center_ohm),
@@ -532,6 +573,7 @@ impl Projection {
             reach: x_range.0.abs().max(x_range.1.abs()),
             x_range,
             strain,
+            falling,
             target,
             center_strain: points.center_strain,
             center_ohm: points.center_ohm,
@@ -575,11 +617,8 @@ impl Projection {
             let x = e - self.center_strain;
             let (lower_in, upper_in) = match self.kind {
                 PlayKind::Generalized => {
-                    let v = if e >= previous {
-                        tanh(&l, x)
-                    } else {
-                        tanh(&u, x)
-                    };
+                    let loading = self.falling.as_ref().map_or(e >= previous, |f| !f[t]);
+                    let v = if loading { tanh(&l, x) } else { tanh(&u, x) };
                     (v, v)
                 }
                 PlayKind::Continuous => (tanh(&l, x), tanh(&u, x)),
@@ -738,7 +777,13 @@ impl Projection {
         }
         let values = model.unpack(&theta);
         let mut ohm = vec![0.0; self.strain.len()];
-        model.evaluate(&theta, &self.strain, &mut ohm, None);
+        model.evaluate_directed(
+            &theta,
+            &self.strain,
+            self.falling.as_deref(),
+            &mut ohm,
+            None,
+        );
         let rss: f64 = ohm
             .iter()
             .zip(self.target.iter())
@@ -994,7 +1039,7 @@ mod tests {
             .collect();
         let p = points(&e, &ohm, 3e6);
         for kind in [PlayKind::Generalized, PlayKind::Continuous] {
-            let projection = Projection::new(kind, 8, &e, &ohm, &p, 1);
+            let projection = Projection::new(kind, 8, &e, None, &ohm, &p, 1);
             let linear = projection.linear_shape().0;
             for shape in [
                 Shape(linear),

@@ -155,6 +155,20 @@ impl PlayModel {
         theta: &[f64],
         strain: &[f64],
         ohm: &mut [f64],
+        jacobian: Option<&mut DMatrix<f64>>,
+    ) {
+        self.evaluate_directed(theta, strain, None, ohm, jacobian);
+    }
+
+    /// [`PlayModel::evaluate`] with the generalized model's direction given per sample
+    /// (`falling[t]`: the unloading branch) instead of taken from consecutive samples of
+    /// `strain`: for decimated samples of a signal whose direction is known at the full rate.
+    pub fn evaluate_directed(
+        &self,
+        theta: &[f64],
+        strain: &[f64],
+        falling: Option<&[bool]>,
+        ohm: &mut [f64],
         mut jacobian: Option<&mut DMatrix<f64>>,
     ) {
         let u = self.unpack(theta);
@@ -166,7 +180,7 @@ impl PlayModel {
             let x = e - self.center_strain;
             let (l, dl, up, du) = match self.kind {
                 PlayKind::Generalized => {
-                    let loading = e >= previous;
+                    let loading = falling.map_or(e >= previous, |f| !f[t]);
                     let (v, d) = if loading {
                         branch(&u.loading, x, 0)
                     } else {

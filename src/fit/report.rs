@@ -186,7 +186,7 @@ fn sensor_section(page: &mut Page, fit: &SensorFit, at: Placement<'_>) {
         ("continuous PI", &fit.continuous_pi, (0, 95, 95)),
     ] {
         let Ok(pi) = result else { continue };
-        let model = pi.predict(&obs.strain);
+        let model = pi.predict_observed(obs);
         loops.push(Series::reference(
             format!("{label} fit"),
             model
