@@ -21,7 +21,7 @@ mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dlw::design::Design;
-use dlw::fit::{fit_sensor_models, FitOptions, ModelKind, Prefilter};
+use dlw::fit::{fit_sensor_models, observe, FitOptions, ModelKind, Prefilter};
 use dlw::recording::Recording;
 use dlw::sim::{plan, ProtocolKind, Scenario, SensorModelKind};
 use dlw_estimator::SensorPlane;
@@ -140,6 +140,36 @@ fn bench(c: &mut Criterion) {
             };
             let once = fit();
             let summary = once.summaries.iter().find(|s| s.model == model).unwrap();
+            // The fitted model on every prefiltered sample, as the runtime steps through them.
+            let all = observe(
+                &case.recording,
+                &case.design.joint,
+                case.plane,
+                options.prefilter,
+                Some(1),
+            )
+            .expect("observes");
+            let predicted: Vec<f64> = match (&once.pi, model) {
+                (Ok(pi), ModelKind::Pi) => pi.predict(&all.strain),
+                _ => all
+                    .strain
+                    .iter()
+                    .map(|e| once.linear.r0_ohm * (1.0 + once.linear.gauge_factor * e))
+                    .collect(),
+            };
+            let on_all = (predicted
+                .iter()
+                .zip(&all.ohm)
+                .map(|(m, r)| (m - r).powi(2))
+                .sum::<f64>()
+                / all.ohm.len() as f64)
+                .sqrt();
+            eprintln!(
+                "{} {}: RMSE on all {} prefiltered samples {on_all:.2} Ω",
+                case.name,
+                dlw::fit::model_name(model),
+                all.ohm.len()
+            );
             eprintln!(
                 "{} {}: RMSE {:.2} Ω{}",
                 case.name,

@@ -387,14 +387,14 @@ pub fn fit_sensor_models(
                 let mut s = match fit.set_aside_rmse_ohm {
                     // The line inside the PI model: two free constants, slope and offset.
                     Some(_) => summary(model, fit.rmse_ohm, 2, n, None),
-                    None => summary(model, fit.rmse_ohm, fit.theta.len(), n, None),
+                    None => summary(model, fit.rmse_ohm, fit.parameters(), n, None),
                 };
                 s.note = fit.set_aside_rmse_ohm.map(|hysteretic| {
                     format!(
                         "equivalent to the linear model: the best hysteretic fit ({hysteretic:.1} Ω) \
                          lowered the RMSE too little to pay for its {} extra parameters (BIC), so \
                          the line it contains was kept",
-                        fit.theta.len() - 2
+                        fit.parameters() - 2
                     )
                 });
                 summaries.push(s);

@@ -210,6 +210,12 @@ impl PlayFit {
         ohm
     }
 
+    /// Constants the fit chose: `θ` (the branches and the weights after `P₁ = 1`) and `ρ_max`,
+    /// which the projection searches too.
+    pub fn parameters(&self) -> usize {
+        self.theta.len() + 1
+    }
+
     /// The fitted model's resistance over decimated observations, with the direction the
     /// full-rate signal had at each ([`super::Observations::falling`]): the samples its RMSE
     /// is computed on.
@@ -350,7 +356,8 @@ pub fn fit_plays_directed(
     // extra constants fit noise, and an inverse through noise-fitted partial sums amplifies it
     // (Joint C's nearly linear sensor: 0.4 % lower RMSE, 4.0° against the line's 0.81°).
     let samples = full.strain.len() as f64;
-    let extra = (SHAPE + order - 1) as f64;
+    // The model's constants are the shape, the N weights and the constant; the line's two.
+    let extra = (SHAPE + order + 1 - 2) as f64;
     let line_shape = full.linear_shape_at(LOG_RADIUS.0);
     let chosen = match full.line(&line_shape) {
         Some(line) => {
