@@ -49,6 +49,38 @@ fn rmse(r: &Reproduction, letter: char, config: &str, sensors: &str) -> Option<f
         .map(|x| x.metrics.rmse_deg)
 }
 
+/// The resistance RMSE of the PI and linear fits to joint `letter`'s characterization, the
+/// evidence behind which model estimates better: `; characterization fit: PI … Ω, linear … Ω`
+/// (empty when a fit is missing). The simulated sensors are PI models (Table III's points), so
+/// a PI fit that finds its optimum follows them more closely than the line.
+fn fit_residuals(r: &Reproduction, letter: char) -> String {
+    let Some(sensor) = r
+        .joints
+        .iter()
+        .find(|j| j.letter == letter)
+        .and_then(|j| j.loops.sensors.first())
+    else {
+        return String::new();
+    };
+    let rmse = |model| {
+        sensor
+            .fit
+            .summaries
+            .iter()
+            .find(|s| s.model == model && s.skipped.is_none())
+            .map(|s| s.rmse_ohm)
+    };
+    match (
+        rmse(crate::fit::ModelKind::Pi),
+        rmse(crate::fit::ModelKind::Linear),
+    ) {
+        (Some(pi), Some(lin)) if pi.is_finite() && lin.is_finite() => format!(
+            "; characterization fit: PI {pi:.1} Ω, linear {lin:.1} Ω (the simulated sensor is a PI model)"
+        ),
+        _ => String::new(),
+    }
+}
+
 fn missing(what: &str) -> String {
     format!("{what} did not run")
 }
@@ -78,7 +110,10 @@ pub fn patterns(r: &Reproduction) -> Vec<Pattern> {
                 name,
                 if pi_wins { pi < lin } else { lin < pi },
                 paper,
-                format!("Joint {letter}: PI {pi:.2}°, linear {lin:.2}°"),
+                format!(
+                    "Joint {letter}: PI {pi:.2}°, linear {lin:.2}°{}",
+                    fit_residuals(r, letter)
+                ),
             ),
             _ => pattern(name, false, paper, missing("an estimation")),
         });
