@@ -49,6 +49,12 @@ pub const RADIUS_SHARES: [f64; 5] = [0.1, 0.2, 0.35, 0.6, 1.0];
 /// Grid shapes that start a search, besides the linear start.
 pub const GRID_STARTS: usize = 2;
 
+/// Rounds of hops at most: another round runs only from a hop that lowered the mean square
+/// residual by at least [`HOP_IMPROVEMENT`] of itself.
+pub const HOP_ROUNDS: usize = 4;
+/// See [`HOP_ROUNDS`].
+pub const HOP_IMPROVEMENT: f64 = 0.01;
+
 /// Rounds of scan and search of the best shape on every sample, at most.
 pub const FULL_REFINEMENTS: usize = 1;
 
@@ -327,26 +333,32 @@ pub fn fit_plays_directed(
             best = Some((shape, cost));
         }
     }
-    let (shape, _) = best.expect("the linear start is always searched");
-    // Hops: the best shape with the unloading tanh shifted either way, searched again. The
-    // shift and the radii trade off, and a search can settle on the wrong side of that valley.
-    let hops: Vec<(Start, Shape)> = SHIFT_HOPS
-        .iter()
-        .map(|&hop| {
-            let mut moved = shape;
-            moved.0[SHIFT] += hop;
-            (Start::Hop(hop), moved.clamp())
-        })
-        .collect();
-    for (start, shape, converged) in search_all(&coarse, &hops, threads) {
-        let cost = full.cost(&shape);
-        restarts.push(Restart {
-            start,
-            rmse_ohm: cost.sqrt(),
-            converged,
-        });
-        if best.is_none_or(|(_, c)| cost < c) {
-            best = Some((shape, cost));
+    // Hops: the best shape with the unloading tanh shifted either way, searched again, and again
+    // from a hop that improved (up to `HOP_ROUNDS`). The shift and the radii trade off, and a
+    // search can settle on the wrong side of that valley, or part of the way along it.
+    for _ in 0..HOP_ROUNDS {
+        let (from, before) = best.expect("the linear start is always searched");
+        let hops: Vec<(Start, Shape)> = SHIFT_HOPS
+            .iter()
+            .map(|&hop| {
+                let mut moved = from;
+                moved.0[SHIFT] += hop;
+                (Start::Hop(hop), moved.clamp())
+            })
+            .collect();
+        for (start, shape, converged) in search_all(&coarse, &hops, threads) {
+            let cost = full.cost(&shape);
+            restarts.push(Restart {
+                start,
+                rmse_ohm: cost.sqrt(),
+                converged,
+            });
+            if best.is_none_or(|(_, c)| cost < c) {
+                best = Some((shape, cost));
+            }
+        }
+        if !best.is_some_and(|(_, c)| c < before * (1.0 - HOP_IMPROVEMENT)) {
+            break;
         }
     }
     let (shape, _) = best.expect("the linear start is always searched");
