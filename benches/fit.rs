@@ -16,7 +16,6 @@
 //! observation, the linear fit and, for PI, the PI fit. Results in `docs/performance.md`.
 
 #[path = "../tests/common/mod.rs"]
-#[allow(dead_code)]
 mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};

@@ -611,14 +611,14 @@ mod tests {
             (&data, "is part of the"),
             (&root.path().to_path_buf(), "holds the"),
         ] {
-            let err = claim(out, &[&rec], true).unwrap_err();
+            let err = claim(out, [&rec], true).unwrap_err();
             let text = err.to_string();
             assert!(
                 text.contains(relation) && text.contains(&rec.display().to_string()),
                 "{text}"
             );
         }
-        let err = claim(&data, &[&data], true).unwrap_err().to_string();
+        let err = claim(&data, [&data], true).unwrap_err().to_string();
         assert!(err.contains("refused even with --force"), "{err}");
         // An existing file is kept without a claim, replaced with one.
         let other = root.path().join("other.csv");
@@ -628,7 +628,7 @@ mod tests {
             Err(OutputError::Exists { .. })
         ));
         assert_eq!(std::fs::read(&other).unwrap(), b"old");
-        claim(&other, &[&rec], true).unwrap();
+        claim(&other, [&rec], true).unwrap();
         write_atomic(&other, b"new").unwrap();
         assert_eq!(std::fs::read(&other).unwrap(), b"new");
         // Two outputs that are the same file.

@@ -242,12 +242,12 @@ pub fn relaxation(
         let de: Vec<f64> = out.iter().map(|h| h.delta_strain).collect();
         let dr: Vec<f64> = out.iter().map(|h| h.delta_ohm).collect();
         let sensitivity = linear.r0_ohm * linear.gauge_factor;
-        let mut shares: Vec<f64> = out
+        let shares: Vec<f64> = out
             .iter()
             .filter(|h| h.delta_strain.abs() > 0.0)
             .map(|h| h.delta_ohm / (sensitivity * h.delta_strain))
             .collect();
-        let mut taus: Vec<f64> = out
+        let taus: Vec<f64> = out
             .iter()
             .filter(|h| !h.tau_unresolved)
             .map(|h| h.tau_s)
@@ -255,8 +255,8 @@ pub fn relaxation(
         sensors.push(RelaxationSensor {
             sensor: sensor_label(plane, two),
             correlation: pearson(&de, &dr).unwrap_or(0.0),
-            followed_share: median(&mut shares).unwrap_or(f64::NAN),
-            median_tau_s: median(&mut taus),
+            followed_share: median(&shares).unwrap_or(f64::NAN),
+            median_tau_s: median(&taus),
             gauge_factor: linear.gauge_factor,
             r0_ohm: linear.r0_ohm,
             holds: out,
@@ -409,8 +409,8 @@ mod tests {
 
     #[test]
     fn medians() {
-        assert_eq!(median(&mut []), None);
-        assert_eq!(median(&mut [3.0, 1.0, 2.0]), Some(2.0));
-        assert_eq!(median(&mut [4.0, 1.0, 2.0, 3.0]), Some(2.5));
+        assert_eq!(median(&[]), None);
+        assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median(&[4.0, 1.0, 2.0, 3.0]), Some(2.5));
     }
 }

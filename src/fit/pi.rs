@@ -329,7 +329,7 @@ pub fn fit_plays_directed(
             rmse_ohm: cost.sqrt(),
             converged,
         });
-        if best.is_none_or(|(_, c)| cost < c) {
+        if best.map_or(true, |(_, c)| cost < c) {
             best = Some((shape, cost));
         }
     }
@@ -353,7 +353,7 @@ pub fn fit_plays_directed(
                 rmse_ohm: cost.sqrt(),
                 converged,
             });
-            if best.is_none_or(|(_, c)| cost < c) {
+            if best.map_or(true, |(_, c)| cost < c) {
                 best = Some((shape, cost));
             }
         }
@@ -428,7 +428,7 @@ fn search_all(
             handles
                 .into_iter()
                 .zip(starts)
-                .map(|(h, s)| h.join().unwrap_or_else(|_| (s.0, s.1, false)))
+                .map(|(h, s)| h.join().unwrap_or((s.0, s.1, false)))
                 .collect()
         })
     } else {
