@@ -84,7 +84,7 @@ proptest! {
             &w,
         );
         let mut clean = vec![0.0; e.len()];
-        model.evaluate(&theta, &e, &mut clean, None);
+        model.evaluate(&theta, &e, &mut clean);
         let mut s = seed;
         let ohm: Vec<f64> = clean.iter().map(|r| r + noise(&mut s, SIGMA)).collect();
         let fitted = fit(PlayKind::Generalized, &e, &ohm, 2).expect("a valid recording fits");
@@ -145,7 +145,7 @@ fn one_or_two_threads_give_the_same_fit() {
         &[1.0, 0.2, 0.1, 0.3, 0.0, 0.1, 0.2, 0.0, 0.1, 0.05],
     );
     let mut ohm = vec![0.0; e.len()];
-    model.evaluate(&theta, &e, &mut ohm, None);
+    model.evaluate(&theta, &e, &mut ohm);
     let mut s = 5u64;
     for r in &mut ohm {
         *r += noise(&mut s, SIGMA);

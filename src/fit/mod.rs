@@ -57,7 +57,7 @@ pub use pi::{
     fit_plays, fit_plays_directed, fit_plays_on, PlayFit, Shape, Start, COARSE_SAMPLES,
     GRID_STARTS, LINEAR_START_REACH, RADIUS_SHARES, REFINEMENTS, SLOPE_RESTARTS,
 };
-/// The play models with their Jacobian.
+/// The play models in the runtime crate's form.
 pub use plays::{
     PlayKind, PlayModel, Unpacked, BRANCH_PARAMS, CONTINUOUS_WEIGHT_FLOOR, PARTIAL_SUM_MARGIN,
 };

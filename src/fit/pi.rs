@@ -212,7 +212,7 @@ impl PlayFit {
     /// model's direction taken from consecutive samples.
     pub fn predict(&self, strain: &[f64]) -> Vec<f64> {
         let mut ohm = vec![0.0; strain.len()];
-        self.model.evaluate(&self.theta, strain, &mut ohm, None);
+        self.model.evaluate(&self.theta, strain, &mut ohm);
         ohm
     }
 
@@ -228,7 +228,7 @@ impl PlayFit {
     pub fn predict_observed(&self, obs: &super::Observations) -> Vec<f64> {
         let mut ohm = vec![0.0; obs.strain.len()];
         self.model
-            .evaluate_directed(&self.theta, &obs.strain, Some(&obs.falling), &mut ohm, None);
+            .evaluate_directed(&self.theta, &obs.strain, Some(&obs.falling), &mut ohm);
         ohm
     }
 }
@@ -319,34 +319,10 @@ pub fn fit_plays_directed(
     );
     let mut starts = grid_starts(&coarse, points.center_slope_ohm / span);
     starts.push((Start::Linear, coarse.linear_shape()));
-    let searched = search_all(&coarse, &starts, threads);
     let mut restarts = Vec::new();
     let mut best: Option<(Shape, f64)> = None;
-    for (start, shape, converged) in searched {
-        let cost = full.cost(&shape);
-        restarts.push(Restart {
-            start,
-            rmse_ohm: cost.sqrt(),
-            converged,
-        });
-        if best.map_or(true, |(_, c)| cost < c) {
-            best = Some((shape, cost));
-        }
-    }
-    // Hops: the best shape with the unloading tanh shifted either way, searched again, and again
-    // from a hop that improved (up to `HOP_ROUNDS`). The shift and the radii trade off, and a
-    // search can settle on the wrong side of that valley, or part of the way along it.
-    for _ in 0..HOP_ROUNDS {
-        let (from, before) = best.expect("the linear start is always searched");
-        let hops: Vec<(Start, Shape)> = SHIFT_HOPS
-            .iter()
-            .map(|&hop| {
-                let mut moved = from;
-                moved.0[SHIFT] += hop;
-                (Start::Hop(hop), moved.clamp())
-            })
-            .collect();
-        for (start, shape, converged) in search_all(&coarse, &hops, threads) {
+    let mut score = |searched: Vec<(Start, Shape, bool)>| {
+        for (start, shape, converged) in searched {
             let cost = full.cost(&shape);
             restarts.push(Restart {
                 start,
@@ -357,11 +333,28 @@ pub fn fit_plays_directed(
                 best = Some((shape, cost));
             }
         }
-        if !best.is_some_and(|(_, c)| c < before * (1.0 - HOP_IMPROVEMENT)) {
+        best.expect("at least one start is searched")
+    };
+    let mut found = score(search_all(&coarse, &starts, threads));
+    // Hops: the best shape with the unloading tanh shifted either way, searched again, and again
+    // from a hop that improved (up to `HOP_ROUNDS`). The shift and the radii trade off, and a
+    // search can settle on the wrong side of that valley, or part of the way along it.
+    for _ in 0..HOP_ROUNDS {
+        let (from, before) = found;
+        let hops: Vec<(Start, Shape)> = SHIFT_HOPS
+            .iter()
+            .map(|&hop| {
+                let mut moved = from;
+                moved.0[SHIFT] += hop;
+                (Start::Hop(hop), moved.clamp())
+            })
+            .collect();
+        found = score(search_all(&coarse, &hops, threads));
+        if !(found.1 < before * (1.0 - HOP_IMPROVEMENT)) {
             break;
         }
     }
-    let (shape, _) = best.expect("the linear start is always searched");
+    let (shape, _) = found;
     let (shape, cost, _) = refine(&full, shape, FULL_REFINEMENTS);
     // The hysteretic model against the line it contains: kept only where its lower residual
     // pays for its extra parameters by the Bayesian information criterion. Otherwise the
@@ -796,13 +789,7 @@ impl Projection {
         }
         let values = model.unpack(&theta);
         let mut ohm = vec![0.0; self.strain.len()];
-        model.evaluate_directed(
-            &theta,
-            &self.strain,
-            self.falling.as_deref(),
-            &mut ohm,
-            None,
-        );
+        model.evaluate_directed(&theta, &self.strain, self.falling.as_deref(), &mut ohm);
         let rss: f64 = ohm
             .iter()
             .zip(self.target.iter())
@@ -1019,7 +1006,7 @@ mod tests {
                 &[1.0, 0.3, 0.2, 0.1, 0.15, 0.1],
             );
             let mut clean = vec![0.0; e.len()];
-            truth.evaluate(&theta, &e, &mut clean, None);
+            truth.evaluate(&theta, &e, &mut clean);
             let mut seed = 99u64;
             let sigma = 20.0;
             let ohm: Vec<f64> = clean

@@ -1,4 +1,4 @@
-//! The play-operator models `dlw` fits, evaluated with their Jacobian.
+//! The play-operator models `dlw` fits, in the runtime crate's form.
 //!
 //! Both of the runtime crate's PI models are a weighted sum of plays driven by saturating
 //! tanh curves of `x = ε − ε_c`:
@@ -23,8 +23,6 @@
 //! - continuous PI: `Pᵢ = e^{uᵢ} > 0`, as its numerical inverse requires.
 //!
 //! The radii are fixed while the optimizer runs.
-
-use nalgebra::DMatrix;
 
 use dlw_estimator::MAX_PLAYS;
 
@@ -148,16 +146,9 @@ impl PlayModel {
         theta
     }
 
-    /// Evaluates the model at `θ` over `strain`: writes `R(t)` into `ohm` and, when given, the
-    /// Jacobian `∂R(t)/∂θ` (rows: samples, columns: `θ`).
-    pub fn evaluate(
-        &self,
-        theta: &[f64],
-        strain: &[f64],
-        ohm: &mut [f64],
-        jacobian: Option<&mut DMatrix<f64>>,
-    ) {
-        self.evaluate_directed(theta, strain, None, ohm, jacobian);
+    /// Evaluates the model at `θ` over `strain`: writes `R(t)` into `ohm`.
+    pub fn evaluate(&self, theta: &[f64], strain: &[f64], ohm: &mut [f64]) {
+        self.evaluate_directed(theta, strain, None, ohm);
     }
 
     /// [`PlayModel::evaluate`] with the generalized model's direction given per sample
@@ -169,85 +160,50 @@ impl PlayModel {
         strain: &[f64],
         falling: Option<&[bool]>,
         ohm: &mut [f64],
-        mut jacobian: Option<&mut DMatrix<f64>>,
     ) {
         let u = self.unpack(theta);
         let n = self.order();
         let mut y = [0.0f64; MAX_PLAYS];
-        let mut dy = [[0.0f64; BRANCH_PARAMS]; MAX_PLAYS];
         let mut previous = f64::NEG_INFINITY;
         for (t, &e) in strain.iter().enumerate() {
             let x = e - self.center_strain;
-            let (l, dl, up, du) = match self.kind {
+            let (l, up) = match self.kind {
                 PlayKind::Generalized => {
                     let loading = falling.map_or(e >= previous, |f| !f[t]);
-                    let (v, d) = if loading {
-                        branch(&u.loading, x, 0)
+                    let v = if loading {
+                        branch(&u.loading, x)
                     } else {
-                        branch(&u.unloading, x, 4)
+                        branch(&u.unloading, x)
                     };
-                    (v, d, v, d)
+                    (v, v)
                 }
-                PlayKind::Continuous => {
-                    let (lv, ld) = branch(&u.loading, x, 0);
-                    let (uv, ud) = branch(&u.unloading, x, 4);
-                    (lv, ld, uv, ud)
-                }
+                PlayKind::Continuous => (branch(&u.loading, x), branch(&u.unloading, x)),
             };
             previous = e;
             if t == 0 {
                 y[..n].fill(l);
-                dy[..n].fill(dl);
             }
             let mut sum = 0.0;
-            let mut dsum = [0.0f64; BRANCH_PARAMS];
-            for i in 0..n {
-                let (lower, upper) = (l - self.radii[i], up + self.radii[i]);
-                let held = if y[i] < upper { y[i] } else { upper };
+            for ((yi, r), w) in y[..n].iter_mut().zip(&self.radii).zip(&u.weights) {
+                let (lower, upper) = (l - r, up + r);
+                let held = if *yi < upper { *yi } else { upper };
                 if lower > held {
-                    y[i] = lower;
-                    dy[i] = dl;
-                } else if upper < y[i] {
-                    y[i] = upper;
-                    dy[i] = du;
+                    *yi = lower;
+                } else if upper < *yi {
+                    *yi = upper;
                 }
-                sum += u.weights[i] * y[i];
-                for (k, d) in dsum.iter_mut().enumerate() {
-                    *d += u.weights[i] * dy[i][k];
-                }
+                sum += w * *yi;
             }
             ohm[t] = sum + self.center_ohm;
-            if let Some(j) = jacobian.as_deref_mut() {
-                for (k, d) in dsum.iter().enumerate() {
-                    j[(t, k)] = *d;
-                }
-                for i in 1..n {
-                    let e_u = theta[BRANCH_PARAMS + i - 1].exp();
-                    j[(t, BRANCH_PARAMS + i - 1)] = match self.kind {
-                        PlayKind::Generalized => {
-                            e_u * (y[i] - if i + 1 < n { y[i + 1] } else { 0.0 })
-                        }
-                        PlayKind::Continuous => e_u * y[i],
-                    };
-                }
-            }
         }
     }
 }
 
-/// `a·tanh(b·x + c) + d` and its derivatives by `[ln a, ln b, c, d]`, placed at `offset` of an
-/// 8-vector.
+/// `a·tanh(b·x + c) + d`.
 #[inline]
-fn branch(p: &[f64; 4], x: f64, offset: usize) -> (f64, [f64; BRANCH_PARAMS]) {
+fn branch(p: &[f64; 4], x: f64) -> f64 {
     let [a, b, c, d] = *p;
-    let t = (b * x + c).tanh();
-    let s = a * (1.0 - t * t);
-    let mut g = [0.0; BRANCH_PARAMS];
-    g[offset] = a * t;
-    g[offset + 1] = s * b * x;
-    g[offset + 2] = s;
-    g[offset + 3] = 1.0;
-    (a * t + d, g)
+    a * (b * x + c).tanh() + d
 }
 
 #[cfg(test)]
@@ -288,7 +244,7 @@ mod tests {
             let (m, theta) = model(kind);
             let u = m.unpack(&theta);
             let mut r = vec![0.0; e.len()];
-            m.evaluate(&theta, &e, &mut r, None);
+            m.evaluate(&theta, &e, &mut r);
             let x0 = e[0] - m.center_strain;
             let weights = Coeffs::from_slice("weights", &u.weights).unwrap();
             let radii = Coeffs::from_slice("radii", &m.radii).unwrap();

@@ -21,19 +21,25 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// A `ValueError` carrying `e`'s message and its causes, joined as the command line joins them.
-fn value_error(e: impl std::error::Error) -> PyErr {
-    let mut message = e.to_string();
+/// `e`'s message and its causes, joined as the command line joins them (a cause the message
+/// already quotes is not repeated).
+fn error_text(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
     let mut source = e.source();
     while let Some(s) = source {
-        let text = s.to_string();
-        if !message.contains(&text) {
-            message.push_str(": ");
-            message.push_str(&text);
+        let cause = s.to_string();
+        if !text.contains(&cause) {
+            text.push_str(": ");
+            text.push_str(&cause);
         }
         source = s.source();
     }
-    PyValueError::new_err(message)
+    text
+}
+
+/// A `ValueError` carrying [`error_text`].
+fn value_error(e: impl std::error::Error) -> PyErr {
+    PyValueError::new_err(error_text(&e))
 }
 
 fn message(text: impl Into<String>) -> PyErr {
@@ -455,17 +461,6 @@ fn simulate<'py>(
         })
         .map_err(message)?;
     recording_dict(py, &recording)
-}
-
-fn error_text(e: &dyn std::error::Error) -> String {
-    let mut text = e.to_string();
-    let mut source = e.source();
-    while let Some(s) = source {
-        text.push_str(": ");
-        text.push_str(&s.to_string());
-        source = s.source();
-    }
-    text
 }
 
 /// Finds where a recording departs from the base model, as `dlw discover --json`: the dict it
