@@ -11,6 +11,25 @@ pub const MAX_ABS_START_S: f64 = 1e9;
 /// The longest low-pass time constant (samples): 1e7 samples is 5.6 hours at 500 Hz.
 pub const MAX_LOW_PASS_SAMPLES: f64 = 1e7;
 
+/// The largest recording file (`data.csv`, a DAQ export, a tracker log) read, in bytes: 4 GiB.
+/// A 3000 s, two-sensor recording at 500 Hz is about 80 MB.
+pub const MAX_RECORDING_BYTES: u64 = 4 << 30;
+/// The largest small text input read (a design, an estimator config, a machine profile, a
+/// process set, a scenario, a protocol, a desired-angle or stroke profile, `rig.toml`), in
+/// bytes: 64 MiB. The shipped ones are a few kB.
+pub const MAX_TEXT_INPUT_BYTES: u64 = 64 << 20;
+/// The largest drawing read (`import-dxf`, `program --from-dxf`), in bytes: 512 MiB. The
+/// shipped joints' DXFs are under 1 MB.
+pub const MAX_DRAWING_BYTES: u64 = 512 << 20;
+/// The largest image frame read (`fluoro`), in bytes: 256 MiB (a 16-bit 8k × 8k frame is
+/// 128 MiB).
+pub const MAX_FRAME_BYTES: u64 = 256 << 20;
+/// The most characters of a user's input an error message quotes.
+pub const MAX_QUOTED_CHARS: usize = 200;
+/// The longest line of an error message `dlw` prints, in characters: a message longer than
+/// this is quoting more than it should, and is cut.
+pub const MAX_MESSAGE_LINE_CHARS: usize = 600;
+
 /// `value` if it lies in `[low, high]`, else a message that names the option, the value and
 /// the limits.
 ///
@@ -38,9 +57,65 @@ pub fn short(value: f64) -> String {
     }
 }
 
+/// `text` as an error message quotes it: at most [`MAX_QUOTED_CHARS`] characters, then how many
+/// were left out.
+pub fn quote(text: &str) -> String {
+    clip(text, MAX_QUOTED_CHARS)
+}
+
+/// A parser's message (TOML, JSON) as an error carries it: trimmed, each line cut to
+/// [`MAX_QUOTED_CHARS`], since the parser quotes the input line it failed on.
+pub fn parser_message(message: &impl std::fmt::Display) -> String {
+    message
+        .to_string()
+        .trim_end()
+        .split('\n')
+        .map(quote)
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Every line of `message` cut to [`MAX_MESSAGE_LINE_CHARS`] characters: the last guard before
+/// an error is printed, for messages of other libraries (a TOML parser quotes the whole line it
+/// failed on).
+pub fn clip_message(message: &str) -> String {
+    message
+        .split('\n')
+        .map(|line| clip(line, MAX_MESSAGE_LINE_CHARS))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn clip(text: &str, chars: usize) -> String {
+    match text.char_indices().nth(chars) {
+        None => text.to_string(),
+        Some((cut, _)) => {
+            let left_out = text[cut..].chars().count();
+            format!("{}… ({left_out} more characters)", &text[..cut])
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quotes_are_cut_at_the_limit_and_say_how_much_is_left_out() {
+        assert_eq!(quote("short"), "short");
+        let long = "é".repeat(MAX_QUOTED_CHARS + 5);
+        let q = quote(&long);
+        assert!(q.starts_with(&"é".repeat(MAX_QUOTED_CHARS)), "{q}");
+        assert!(q.ends_with("… (5 more characters)"), "{q}");
+        let message = format!("first\n{}", "x".repeat(10 * MAX_MESSAGE_LINE_CHARS));
+        let clipped = clip_message(&message);
+        assert!(clipped.starts_with("first\n"));
+        assert!(
+            clipped.len() < 2 * MAX_MESSAGE_LINE_CHARS,
+            "{}",
+            clipped.len()
+        );
+    }
 
     #[test]
     fn values_outside_are_named_with_the_limits() {

@@ -13,7 +13,9 @@ fn main() -> ExitCode {
     match cli::run(args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
-            eprintln!("dlw: error: {err:#}");
+            // A library's message may quote a whole input line (a TOML parser does): cut it.
+            let message = dlw::limits::clip_message(&format!("{err:#}"));
+            eprintln!("dlw: error: {message}");
             ExitCode::FAILURE
         }
     }

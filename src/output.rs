@@ -550,11 +550,25 @@ fn persist(shown: &Path, target: &Path, tmp: tempfile::NamedTempFile) -> Result<
 
 /// Reads a text input of at most `limit` bytes: a file past it (or a device that never ends,
 /// such as a link to `/dev/zero`) is refused with the limit named, after reading `limit + 1`
-/// bytes, instead of filling memory.
+/// bytes, instead of filling memory. The limits are in [`crate::limits`].
 ///
 /// # Errors
 /// The file cannot be read, is past the limit, or is not UTF-8.
 pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<String> {
+    let bytes = read_limited_bytes(path, limit)?;
+    String::from_utf8(bytes).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("{} is not UTF-8 text ({e})", path.display()),
+        )
+    })
+}
+
+/// [`read_limited`] for a binary input.
+///
+/// # Errors
+/// The file cannot be read or is past the limit.
+pub fn read_limited_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     use std::io::Read;
     let mut bytes = Vec::new();
     std::fs::File::open(path)?
@@ -564,17 +578,25 @@ pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<String> {
         return Err(std::io::Error::new(
             std::io::ErrorKind::InvalidData,
             format!(
-                "{} is larger than the {limit}-byte limit for this input",
-                path.display()
+                "{} is larger than the {} limit for this input",
+                path.display(),
+                byte_size(limit)
             ),
         ));
     }
-    String::from_utf8(bytes).map_err(|e| {
-        std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            format!("{} is not UTF-8 text ({e})", path.display()),
+    Ok(bytes)
+}
+
+/// A byte count as a person reads it: `64 MiB`, `4 GiB`, `1000 bytes`.
+fn byte_size(bytes: u64) -> String {
+    const UNITS: [(u64, &str); 3] = [(1 << 30, "GiB"), (1 << 20, "MiB"), (1 << 10, "KiB")];
+    UNITS
+        .iter()
+        .find(|(size, _)| bytes >= *size && bytes % size == 0)
+        .map_or_else(
+            || format!("{bytes}-byte"),
+            |(size, unit)| format!("{} {unit}", bytes / size),
         )
-    })
 }
 
 #[cfg(test)]

@@ -315,6 +315,7 @@ fn every_command_follows_the_output_policy() {
         if row.kind == Kind::File {
             file_cases(&row, &f, w);
         }
+        read_only_case(&row, &f, w);
 
         // No staging or temporary files are left anywhere in the folder.
         let leftovers: Vec<_> = snapshot(w)
@@ -323,6 +324,65 @@ fn every_command_follows_the_output_policy() {
             .collect();
         assert!(leftovers.is_empty(), "{}: {leftovers:?}", row.name);
     }
+}
+
+/// An output inside a folder that cannot be written: a clear error naming the output, no panic,
+/// and the folder unchanged. As root (CI), permissions do not stop a write, so the folder is
+/// also made immutable (`chattr +i`).
+fn read_only_case(row: &Row, f: &Fixture, w: &Path) {
+    use std::os::unix::fs::PermissionsExt;
+    let ro = w.join("read-only");
+    std::fs::create_dir(&ro).unwrap();
+    std::fs::write(ro.join("kept.txt"), b"keep me").unwrap();
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).unwrap();
+    let immutable = std::process::Command::new("chattr")
+        .arg("+i")
+        .arg(&ro)
+        .status()
+        .is_ok_and(|s| s.success());
+    let probe = std::fs::write(ro.join("probe"), b"");
+    if probe.is_ok() {
+        eprintln!(
+            "{}: cannot make a read-only folder here; case skipped",
+            row.name
+        );
+        std::fs::remove_file(ro.join("probe")).unwrap();
+    } else {
+        let before = snapshot(&ro);
+        let out = ro.join(if row.kind == Kind::Folder {
+            "out"
+        } else {
+            "out.toml"
+        });
+        let o = run(row, f, &arg(&out), false);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success(),
+            "{}: wrote into a read-only folder",
+            row.name
+        );
+        assert!(!err.contains("panicked"), "{}: {err}", row.name);
+        assert!(
+            err.contains("read-only"),
+            "{}: the error does not name the folder: {err}",
+            row.name
+        );
+        assert_eq!(
+            snapshot(&ro),
+            before,
+            "{}: the read-only folder changed",
+            row.name
+        );
+    }
+    if immutable {
+        std::process::Command::new("chattr")
+            .arg("-i")
+            .arg(&ro)
+            .status()
+            .unwrap();
+    }
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o755)).unwrap();
+    std::fs::remove_dir_all(&ro).unwrap();
 }
 
 /// `-o -`, a symlink and a FIFO, for commands that write one file.

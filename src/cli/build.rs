@@ -22,7 +22,8 @@ pub struct Args {
     /// Folder to write (must not exist or be empty, unless --force).
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
-    /// Replace an existing output folder and everything in it.
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
     #[arg(long)]
     force: bool,
     /// Machine profile: a name or a path (default: linuxcnc-reference).

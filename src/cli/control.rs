@@ -53,7 +53,8 @@ pub struct Args {
     /// Output folder: report.html, its SVG figures and control.csv.
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
-    /// Replace an existing, non-empty output folder.
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
     #[arg(long)]
     force: bool,
     /// Print every number as JSON.

@@ -56,7 +56,8 @@ pub struct Args {
     /// Write each frame with the fitted ellipse and axis drawn on it into this folder.
     #[arg(long)]
     overlay: Option<PathBuf>,
-    /// Replace an existing, non-empty overlay folder.
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
     #[arg(long)]
     force: bool,
     /// Print the summary as JSON.

@@ -51,8 +51,8 @@ fn read(
     if !(tol.is_finite() && tol > 0.0 && tol <= 0.1) {
         bail!("--join-tolerance {tol} mm must be greater than 0 and at most 0.1 mm");
     }
-    let bytes =
-        std::fs::read(path).with_context(|| format!("cannot read drawing {}", path.display()))?;
+    let bytes = dlw::output::read_limited_bytes(path, dlw::limits::MAX_DRAWING_BYTES)
+        .with_context(|| format!("cannot read drawing {}", path.display()))?;
     let imported = read_dxf(
         &bytes,
         &ImportOptions {

@@ -59,7 +59,8 @@ pub struct Args {
     /// Output recording folder (must not exist or be empty, unless --force).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
-    /// Replace an existing output; an input is refused even with it (docs/outputs.md).
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
     #[arg(long)]
     force: bool,
     /// Print the summary as JSON.

@@ -39,7 +39,8 @@ pub struct Args {
     /// Output recording folder (must not exist or be empty, unless --force).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
-    /// Replace an existing output folder.
+    /// Replace an existing output; an output that is or holds an input is refused even with
+    /// it (docs/outputs.md).
     #[arg(long)]
     force: bool,
 }

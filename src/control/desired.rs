@@ -104,10 +104,12 @@ impl Desired {
 
 /// Reads a desired-angle CSV with the simulator's time-series parser.
 fn read_profile(path: &Path) -> Result<Vec<(f64, f64)>, ControlError> {
-    let text = std::fs::read_to_string(path).map_err(|source| ControlError::ProfileRead {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::output::read_limited(path, crate::limits::MAX_RECORDING_BYTES).map_err(
+        |source| ControlError::ProfileRead {
+            path: path.to_path_buf(),
+            source,
+        },
+    )?;
     parse_series(&text, "angle_deg").map_err(|e| match e {
         ProtocolError::Line { line, reason, .. } => ControlError::Profile {
             path: path.to_path_buf(),

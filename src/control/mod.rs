@@ -255,12 +255,11 @@ impl Control {
                  paper's estimation procedure does) or lower K_p"
             ));
         }
-        if config.joint != dlw_estimator::JointConfig::from_joint(&design.joint) {
-            warnings.push(format!(
-                "the config's joint geometry differs from design {:?}: the estimator converts strain to angle with the config's",
-                design.file.name
-            ));
-        }
+        warnings.extend(crate::replay::geometry_warning(
+            &config,
+            design,
+            &format!("design {:?}", design.file.name),
+        ));
         Ok(Self {
             design: design.clone(),
             desired,

@@ -32,6 +32,9 @@ use serde::{Deserialize, Serialize};
 
 pub use fabrication::{Fabrication, Materials, ProcessChoice};
 
+/// The longest design name (characters): it titles drawings, sheets and program headers.
+pub const MAX_NAME_CHARS: usize = 200;
+
 /// A design file as written, before validation.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -76,10 +79,12 @@ impl DesignFile {
     /// # Errors
     /// [`DesignError::Read`] or [`DesignError::Parse`] naming the file.
     pub fn read(path: &Path) -> Result<Self, DesignError> {
-        let text = std::fs::read_to_string(path).map_err(|source| DesignError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
+            |source| DesignError::Read {
+                path: path.to_path_buf(),
+                source,
+            },
+        )?;
         Self::from_toml(&text).map_err(|e| match e {
             DesignError::Parse { message, .. } => DesignError::Parse {
                 path: path.to_path_buf(),
@@ -94,10 +99,37 @@ impl DesignFile {
     /// # Errors
     /// [`DesignError::Parse`] for malformed TOML or unknown keys.
     pub fn from_toml(text: &str) -> Result<Self, DesignError> {
-        toml::from_str(text).map_err(|e| DesignError::Parse {
+        let file: Self = toml::from_str(text).map_err(|e| DesignError::Parse {
             path: PathBuf::from("<text>"),
-            message: e.to_string().trim_end().to_string(),
-        })
+            message: crate::limits::parser_message(&e),
+        })?;
+        file.check_name().map_err(|reason| DesignError::Parse {
+            path: PathBuf::from("<text>"),
+            message: reason,
+        })?;
+        Ok(file)
+    }
+
+    /// The name must be printable text of at most [`MAX_NAME_CHARS`] characters: it is written
+    /// into SVG (XML, where a control character makes the file unreadable), DXF and G-code
+    /// comments.
+    fn check_name(&self) -> Result<(), String> {
+        let quoted = || format!("{:?}", crate::limits::quote(&self.name));
+        if let Some(c) = self.name.chars().find(|c| c.is_control()) {
+            return Err(format!(
+                "name {} has the control character U+{:04X}: a design's name must be printable text",
+                quoted(),
+                u32::from(c)
+            ));
+        }
+        let chars = self.name.chars().count();
+        if chars > MAX_NAME_CHARS {
+            return Err(format!(
+                "name {} has {chars} characters, more than the limit of {MAX_NAME_CHARS}",
+                quoted()
+            ));
+        }
+        Ok(())
     }
 }
 

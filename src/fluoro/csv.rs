@@ -69,10 +69,12 @@ pub struct TruthAngles {
 /// # Errors
 /// [`FluoroError::Read`], or see [`parse_angles`].
 pub fn read_angles(path: &Path) -> Result<TruthAngles, FluoroError> {
-    let text = std::fs::read_to_string(path).map_err(|source| FluoroError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::output::read_limited(path, crate::limits::MAX_RECORDING_BYTES).map_err(
+        |source| FluoroError::Read {
+            path: path.to_path_buf(),
+            source,
+        },
+    )?;
     parse_angles(&text, path)
 }
 
@@ -99,7 +101,10 @@ pub fn parse_angles(text: &str, path: &Path) -> Result<TruthAngles, FluoroError>
         header.iter().position(|h| *h == name).ok_or_else(|| {
             bad(
                 1,
-                format!("header {:?} has no {name} column", header.join(",")),
+                format!(
+                    "header {:?} has no {name} column",
+                    crate::limits::quote(&header.join(","))
+                ),
             )
         })
     };

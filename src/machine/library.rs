@@ -66,10 +66,12 @@ impl MachineLibrary {
 }
 
 fn load(path: &Path) -> Result<MachineProfile, MachineError> {
-    let text = std::fs::read_to_string(path).map_err(|source| MachineError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
+        |source| MachineError::Read {
+            path: path.to_path_buf(),
+            source,
+        },
+    )?;
     MachineProfile::from_toml(&path.display().to_string(), &text)
 }
 

@@ -4,6 +4,12 @@ use serde::{Deserialize, Serialize};
 
 use super::{MachineError, Settle, Template};
 
+/// The largest magnitude of a machine coordinate in a profile (mm): travel limits, the focus
+/// height and the collet's grip. A laser station's stages travel hundreds of millimetres; a
+/// value past this is a typo, and would be written into every move (`z_axis_mm = 1e308` wrote a
+/// 309-digit Z).
+pub const MAX_ABS_COORDINATE_MM: f64 = 10_000.0;
+
 /// Which post-processor writes the program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -189,7 +195,7 @@ impl MachineProfile {
     pub fn from_toml(source: &str, text: &str) -> Result<Self, MachineError> {
         let file: ProfileFile = toml::from_str(text).map_err(|e| MachineError::Parse {
             name: source.to_string(),
-            message: e.to_string().trim_end().to_string(),
+            message: crate::limits::parser_message(&e),
         })?;
         let bad = |key: &str, value: String, limit: String| MachineError::Value {
             name: source.to_string(),
@@ -205,6 +211,20 @@ impl MachineProfile {
         ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(bad(key, v.to_string(), "must be finite and > 0".into()));
+            }
+        }
+        for (key, v) in [
+            ("limits.x_min_mm", l.x_min_mm),
+            ("limits.x_max_mm", l.x_max_mm),
+            ("focus.z_axis_mm", file.focus.z_axis_mm),
+            ("fixture.collet_grip_mm", file.fixture.collet_grip_mm),
+        ] {
+            if !(v.is_finite() && v.abs() <= MAX_ABS_COORDINATE_MM) {
+                return Err(bad(
+                    key,
+                    crate::limits::short(v),
+                    format!("must be finite and within ±{MAX_ABS_COORDINATE_MM} mm (a machine's travel)"),
+                ));
             }
         }
         if !(l.x_min_mm.is_finite() && l.x_max_mm.is_finite() && l.x_min_mm < l.x_max_mm) {

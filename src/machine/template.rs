@@ -33,7 +33,7 @@ impl LaserValues {
     }
 }
 
-/// A checked command template: literal text with `{placeholder}` values, possibly several lines.
+/// A checked command template: literal text with `{placeholder}` values, on one line.
 ///
 /// An empty template means the program does not set that parameter; the header lists it for
 /// the operator to set by hand.
@@ -48,6 +48,13 @@ impl Template {
     /// # Errors
     /// A message naming the unknown placeholder or the unclosed brace, and the allowed names.
     pub fn parse(text: &str, allowed: &[&str]) -> Result<Self, String> {
+        if let Some((at, c)) = text.char_indices().find(|(_, c)| c.is_control()) {
+            return Err(format!(
+                "has the control character U+{:04X} at byte {at}: a template is one G-code line \
+                 of printable text (a newline would let it add moves the program never checks)",
+                u32::from(c)
+            ));
+        }
         let mut rest = text;
         while let Some(open) = rest.find('{') {
             let after = &rest[open + 1..];
@@ -130,12 +137,13 @@ mod tests {
     fn renders_placeholders_and_refuses_unknown_ones() {
         let t = Template::parse("S{power_mw}", &["power_mw", "power_w"]).unwrap();
         assert_eq!(t.render(&VALUES), vec!["S160"]);
-        let t = Template::parse(
-            "P={power_w}\nQ={power_percent}",
-            &["power_w", "power_percent"],
-        )
-        .unwrap();
-        assert_eq!(t.render(&VALUES), vec!["P=0.16", "Q=6.4"]);
+        let t = Template::parse("P={power_w} Q={power_percent}", &["power_w", "power_percent"])
+            .unwrap();
+        assert_eq!(t.render(&VALUES), vec!["P=0.16 Q=6.4"]);
+        // One G-code line: a newline (or any control character) could add an unchecked move.
+        let err = Template::parse("M3\nG0 X900", &[]).unwrap_err();
+        assert!(err.contains("U+000A") && err.contains("one G-code line"), "{err}");
+        assert!(Template::parse("M3\tS1", &[]).is_err());
         let err = Template::parse("S{power}", &["power_mw"]).unwrap_err();
         assert!(
             err.contains("{power}") && err.contains("{power_mw}"),

@@ -63,7 +63,7 @@ impl ProcessLibrary {
         for dir in &self.dirs {
             let path = dir.join(format!("{name}.toml"));
             if path.is_file() {
-                let text = std::fs::read_to_string(&path)
+                let text = crate::output::read_limited(&path, crate::limits::MAX_TEXT_INPUT_BYTES)
                     .map_err(|source| ProcessError::Read { path, source })?;
                 return ProcessSet::from_toml(name, &text);
             }

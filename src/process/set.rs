@@ -57,7 +57,7 @@ impl ProcessSet {
     pub fn from_toml(name: &str, text: &str) -> Result<Self, ProcessError> {
         let mut set: Self = toml::from_str(text).map_err(|e| ProcessError::Parse {
             name: name.to_string(),
-            message: e.to_string().trim_end().to_string(),
+            message: crate::limits::parser_message(&e),
         })?;
         set.name = name.to_string();
         set.validate()?;

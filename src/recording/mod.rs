@@ -186,6 +186,20 @@ pub enum RecordingError {
         /// The data file.
         path: PathBuf,
     },
+    /// `rig.toml`'s `sample_hz` is not the rate of the `time_s` column.
+    #[error("{rig}: sample_hz = {sample_hz} Hz, but {data}'s time_s column runs at {measured_hz:.6} Hz (median spacing); they must agree within {tolerance_percent} %")]
+    SampleRate {
+        /// The rig file.
+        rig: PathBuf,
+        /// The data file.
+        data: PathBuf,
+        /// `sample_hz` as stated.
+        sample_hz: f64,
+        /// The reciprocal of the median spacing of `time_s`.
+        measured_hz: f64,
+        /// The tolerance (%).
+        tolerance_percent: f64,
+    },
     /// The data file has a header but no rows.
     #[error("{path} has no data rows")]
     NoRows {
@@ -414,15 +428,24 @@ impl Recording {
     /// [`RecordingError::MixedAngle`] when the column is empty in some rows only.
     pub fn read_allowing_empty_angle(dir: &Path) -> Result<Self, RecordingError> {
         let rig_path = dir.join(RIG_FILE);
-        let rig_text = read_text(&rig_path)?;
+        let rig_text = read_text(&rig_path, crate::limits::MAX_TEXT_INPUT_BYTES)?;
         let rig: Rig = toml::from_str(&rig_text).map_err(|e| RecordingError::RigParse {
             path: rig_path.clone(),
-            message: e.to_string().trim_end().to_string(),
+            message: crate::limits::parser_message(&e),
         })?;
         rig.check(&rig_path)?;
         let data_path = dir.join(DATA_FILE);
-        let text = read_text(&data_path)?;
+        let text = read_text(&data_path, crate::limits::MAX_RECORDING_BYTES)?;
         let samples = parse_data(&text, &rig, &data_path)?;
+        check_sample_rate(&rig, &samples.time_s).map_err(|measured_hz| {
+            RecordingError::SampleRate {
+                rig: rig_path,
+                data: data_path,
+                sample_hz: rig.sample_hz,
+                measured_hz,
+                tolerance_percent: SAMPLE_RATE_TOLERANCE * 100.0,
+            }
+        })?;
         Ok(Self { rig, samples })
     }
 
@@ -492,8 +515,29 @@ impl Recording {
     }
 }
 
-fn read_text(path: &Path) -> Result<String, RecordingError> {
-    std::fs::read_to_string(path).map_err(|source| RecordingError::Read {
+/// How closely `sample_hz` must match the time column's rate (relative): 1 %.
+pub const SAMPLE_RATE_TOLERANCE: f64 = 0.01;
+
+/// `Ok` when `rig.sample_hz` is the rate of `time_s` (the reciprocal of its median spacing)
+/// within [`SAMPLE_RATE_TOLERANCE`], or when there are too few rows to tell; else the measured
+/// rate (Hz).
+fn check_sample_rate(rig: &Rig, time_s: &[f64]) -> Result<(), f64> {
+    if time_s.len() < 3 {
+        return Ok(());
+    }
+    let mut spacing: Vec<f64> = time_s.windows(2).map(|w| w[1] - w[0]).collect();
+    let middle = spacing.len() / 2;
+    let (_, median, _) = spacing.select_nth_unstable_by(middle, f64::total_cmp);
+    let measured_hz = 1.0 / *median;
+    if (measured_hz / rig.sample_hz - 1.0).abs() <= SAMPLE_RATE_TOLERANCE {
+        Ok(())
+    } else {
+        Err(measured_hz)
+    }
+}
+
+fn read_text(path: &Path, limit: u64) -> Result<String, RecordingError> {
+    crate::output::read_limited(path, limit).map_err(|source| RecordingError::Read {
         path: path.to_path_buf(),
         source,
     })
@@ -519,7 +563,7 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
     if first != expected {
         return Err(RecordingError::Header {
             path: path.to_path_buf(),
-            found: first.to_string(),
+            found: crate::limits::quote(first),
             expected,
             channels,
         });
@@ -560,7 +604,7 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
                             path: path.to_path_buf(),
                             line,
                             column: "tracker_valid (must be 0 or 1)".to_string(),
-                            text: field.to_string(),
+                            text: crate::limits::quote(field),
                         })
                     }
                 };
@@ -662,7 +706,7 @@ fn parse_field(field: &str, line: usize, column: &str, path: &Path) -> Result<f6
         path: path.to_path_buf(),
         line,
         column: column.to_string(),
-        text: field.to_string(),
+        text: crate::limits::quote(field),
     })?;
     if !v.is_finite() {
         return Err(RecordingError::NotFinite {

@@ -85,17 +85,23 @@ impl ConfigFormat {
 /// [`ConfigFileError`] naming the file and the key or value.
 pub fn load_config(path: &Path) -> Result<EstimatorConfig, ConfigFileError> {
     let format = ConfigFormat::of(path)?;
-    let text = std::fs::read_to_string(path).map_err(|source| ConfigFileError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
+        |source| ConfigFileError::Read {
+            path: path.to_path_buf(),
+            source,
+        },
+    )?;
     let parse = |message: String| ConfigFileError::Parse {
         path: path.to_path_buf(),
         message: message.trim_end().to_string(),
     };
     let config: EstimatorConfig = match format {
-        ConfigFormat::Toml => toml::from_str(&text).map_err(|e| parse(e.to_string()))?,
-        ConfigFormat::Json => serde_json::from_str(&text).map_err(|e| parse(e.to_string()))?,
+        ConfigFormat::Toml => {
+            toml::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))?
+        }
+        ConfigFormat::Json => {
+            serde_json::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))?
+        }
     };
     config
         .validate()

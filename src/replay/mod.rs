@@ -190,6 +190,7 @@ pub(crate) fn run_estimator(
         rig.supply_v,
         "rig.toml",
     ));
+    warnings.extend(recorded_design_warning(config, rig));
     // About 100 KiB of filter buffers: on the heap.
     let mut estimator = Box::new(Estimator::new(config)?);
     let n = samples.len();
@@ -257,6 +258,99 @@ pub fn divider_warnings(
         }
     }
     warnings
+}
+
+/// A warning when `config`'s joint is not the design a simulated recording states in its
+/// `[design]` table: the config would convert the recording's strain with another geometry.
+/// Nothing for a recording that states no design (imported, or written by hand).
+fn recorded_design_warning(
+    config: &EstimatorConfig,
+    rig: &crate::recording::Rig,
+) -> Option<String> {
+    let table = rig.design.clone()?;
+    let file: crate::design::DesignFile = table.try_into().ok()?;
+    let design = crate::design::Design::from_file(file).ok()?;
+    let checksum = rig.simulation.as_ref().map_or(String::new(), |s| {
+        format!(", checksum {}", s.design_checksum)
+    });
+    geometry_warning(
+        config,
+        &design,
+        &format!(
+            "the recording's design {:?} (rig.toml{checksum})",
+            design.file.name
+        ),
+    )
+}
+
+/// A warning naming every joint parameter where `config` differs from `design` (described as
+/// `source`), or nothing when they agree.
+pub fn geometry_warning(
+    config: &EstimatorConfig,
+    design: &crate::design::Design,
+    source: &str,
+) -> Option<String> {
+    let theirs = dlw_estimator::JointConfig::from_joint(&design.joint);
+    let ours = &config.joint;
+    let numbers = [
+        (
+            "outer_radius_mm",
+            ours.outer_radius_mm,
+            theirs.outer_radius_mm,
+        ),
+        (
+            "inner_radius_mm",
+            ours.inner_radius_mm,
+            theirs.inner_radius_mm,
+        ),
+        ("notch_arc_mm", ours.notch_arc_mm, theirs.notch_arc_mm),
+        ("notch_width_mm", ours.notch_width_mm, theirs.notch_width_mm),
+        (
+            "notch_spacing_mm",
+            ours.notch_spacing_mm,
+            theirs.notch_spacing_mm,
+        ),
+        (
+            "notch_count",
+            f64::from(ours.notch_count),
+            f64::from(theirs.notch_count),
+        ),
+        (
+            "joint_length_mm",
+            ours.joint_length_mm,
+            theirs.joint_length_mm,
+        ),
+        ("sensor_arc_mm", ours.sensor_arc_mm, theirs.sensor_arc_mm),
+    ];
+    let mut differences: Vec<String> = numbers
+        .iter()
+        .filter(|(_, a, b)| !close(*a, *b))
+        .map(|(key, a, b)| format!("{key} {a} vs {b}"))
+        .collect();
+    if ours.style != theirs.style {
+        differences.insert(
+            0,
+            format!(
+                "style {} vs {}",
+                style_name(ours.style),
+                style_name(theirs.style)
+            ),
+        );
+    }
+    (!differences.is_empty()).then(|| {
+        format!(
+            "the estimator config's joint is not {source}: {} (config vs design); the estimate \
+             converts strain to angle with the config's geometry",
+            differences.join(", ")
+        )
+    })
+}
+
+fn style_name(style: dlw_geometry::NotchStyle) -> &'static str {
+    match style {
+        dlw_geometry::NotchStyle::Uan => "uan",
+        dlw_geometry::NotchStyle::Bsn => "bsn",
+    }
 }
 
 fn close(a: f64, b: f64) -> bool {

@@ -152,6 +152,16 @@ impl Default for ProtocolParams {
 /// 200-600 s repetitions, and about what a person does between starting the logger and the motor.
 pub const DEFAULT_REST_START_S: f64 = 10.0;
 
+/// The most cycles (or levels) in one repetition of a protocol: the paper's protocols have 5,
+/// and each costs a few knots; 2e7 cycles took 1.9 GB for a 60 s run before this limit.
+pub const MAX_CYCLES: f64 = 1000.0;
+const MAX_CYCLES_WORDS: &str = "must be at most 1000 per repetition";
+/// The most repetitions of a protocol.
+pub const MAX_REPEATS: f64 = 10_000.0;
+const MAX_REPEATS_WORDS: &str = "must be at most 10000";
+/// The most ramps in one repetition of the random protocol.
+pub const MAX_RANDOM_RAMPS: f64 = 100_000.0;
+
 /// `[protocols.characterization]`: `cycles` triangle cycles of amplitude `A·k/cycles`,
 /// `k = 1..cycles`, all at the stroke speed that lifts the largest in `full_rise_s`, each
 /// followed by `rest_s` at zero stroke.
@@ -270,6 +280,64 @@ pub struct CustomProtocol {
 impl ProtocolParams {
     /// Reports every out-of-range value to `fail(key, value, limit)`.
     pub(crate) fn check(&self, fail: &mut dyn FnMut(String, f64, &'static str)) {
+        let c = &self.characterization;
+        let (r, l, m) = (&self.rate_dependence, &self.relaxation, &self.random);
+        let counts = [
+            (
+                "characterization.cycles",
+                f64::from(c.cycles),
+                MAX_CYCLES,
+                MAX_CYCLES_WORDS,
+            ),
+            (
+                "rate-dependence.rise_s (count)",
+                r.rise_s.len() as f64,
+                MAX_CYCLES,
+                MAX_CYCLES_WORDS,
+            ),
+            (
+                "relaxation.levels",
+                f64::from(l.levels),
+                MAX_CYCLES,
+                MAX_CYCLES_WORDS,
+            ),
+            (
+                "characterization.repeats",
+                f64::from(c.repeats),
+                MAX_REPEATS,
+                MAX_REPEATS_WORDS,
+            ),
+            (
+                "rate-dependence.repeats",
+                f64::from(r.repeats),
+                MAX_REPEATS,
+                MAX_REPEATS_WORDS,
+            ),
+            (
+                "relaxation.repeats",
+                f64::from(l.repeats),
+                MAX_REPEATS,
+                MAX_REPEATS_WORDS,
+            ),
+            (
+                "random.repeats",
+                f64::from(m.repeats),
+                MAX_REPEATS,
+                MAX_REPEATS_WORDS,
+            ),
+        ];
+        for (key, value, limit, words) in counts {
+            if value > limit {
+                fail(key.to_string(), value, words);
+            }
+        }
+        if m.min_ramp_s * MAX_RANDOM_RAMPS < m.repeat_s {
+            fail(
+                "random.min_ramp_s".into(),
+                m.min_ramp_s,
+                "must be at least random.repeat_s / 100000 (at most 100000 ramps per repetition)",
+            );
+        }
         let mut positive = |key: &str, v: f64| {
             if !(v.is_finite() && v > 0.0) {
                 fail(key.to_string(), v, "must be finite and greater than 0");
@@ -279,11 +347,9 @@ impl ProtocolParams {
         if let Some(a) = self.amplitude_mm {
             positive("amplitude_mm", a);
         }
-        let c = &self.characterization;
         positive("characterization.full_rise_s", c.full_rise_s);
         positive("characterization.cycles", f64::from(c.cycles));
         positive("characterization.repeats", f64::from(c.repeats));
-        let r = &self.rate_dependence;
         if r.rise_s.is_empty() {
             positive("rate-dependence.rise_s (count)", 0.0);
         }
@@ -292,12 +358,10 @@ impl ProtocolParams {
         }
         positive("rate-dependence.repeat_s", r.repeat_s);
         positive("rate-dependence.repeats", f64::from(r.repeats));
-        let l = &self.relaxation;
         positive("relaxation.levels", f64::from(l.levels));
         positive("relaxation.ramp_s", l.ramp_s);
         positive("relaxation.repeat_s", l.repeat_s);
         positive("relaxation.repeats", f64::from(l.repeats));
-        let m = &self.random;
         positive("random.min_ramp_s", m.min_ramp_s);
         positive("random.repeat_s", m.repeat_s);
         positive("random.repeats", f64::from(m.repeats));
@@ -434,10 +498,12 @@ impl StrokeProfile {
     /// # Errors
     /// [`ProtocolError`] naming the file, the line and the value.
     pub fn from_csv(path: &Path) -> Result<Self, ProtocolError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ProtocolError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::output::read_limited(path, crate::limits::MAX_RECORDING_BYTES).map_err(
+            |source| ProtocolError::Read {
+                path: path.to_path_buf(),
+                source,
+            },
+        )?;
         Self::parse_csv(&text).map_err(|e| match e {
             ProtocolError::Line { line, reason, .. } => ProtocolError::Line {
                 path: path.to_path_buf(),
@@ -506,7 +572,10 @@ pub fn parse_series(text: &str, value_column: &str) -> Result<Vec<(f64, f64)>, P
     let mut lines = text.lines().enumerate();
     match lines.next() {
         Some((_, h)) if h.trim_end_matches('\r') == header => {}
-        Some((_, h)) => return Err(bad(1, format!("header is {h:?}, expected {header:?}"))),
+        Some((_, h)) => {
+            let h = crate::limits::quote(h);
+            return Err(bad(1, format!("header is {h:?}, expected {header:?}")));
+        }
         None => {
             return Err(ProtocolError::Empty {
                 path: PathBuf::new(),
@@ -528,10 +597,12 @@ pub fn parse_series(text: &str, value_column: &str) -> Result<Vec<(f64, f64)>, P
             ));
         }
         let num = |name: &str, s: &str| -> Result<f64, ProtocolError> {
-            let v: f64 = s
-                .trim()
-                .parse()
-                .map_err(|_| bad(line, format!("{name} = {s:?} is not a number")))?;
+            let v: f64 = s.trim().parse().map_err(|_| {
+                bad(
+                    line,
+                    format!("{name} = {:?} is not a number", crate::limits::quote(s)),
+                )
+            })?;
             if !v.is_finite() {
                 return Err(bad(line, format!("{name} = {v} is not finite")));
             }

@@ -666,13 +666,15 @@ impl Scenario {
     /// # Errors
     /// [`ScenarioError::Read`] or [`ScenarioError::Parse`] naming the file and key.
     pub fn load(path: &std::path::Path) -> Result<Self, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
+            |source| ScenarioError::Read {
+                path: path.to_path_buf(),
+                source,
+            },
+        )?;
         toml::from_str(&text).map_err(|e| ScenarioError::Parse {
             path: path.to_path_buf(),
-            message: e.to_string().trim_end().to_string(),
+            message: crate::limits::parser_message(&e),
         })
     }
 
