@@ -6,9 +6,9 @@ use dlw_estimator::SensorPlane;
 use dlw_geometry::Joint;
 use serde::Serialize;
 
-use super::{figure_name, min_max, sensor_label, titled, CharacterizeError, Options};
+use super::{figure_name, sensor_label, titled, CharacterizeError, Options};
 use crate::fit::{fit_sensor, Characteristic, FitError, FitOptions, ModelKind, SensorFit};
-use crate::report::{Chart, Legend, Page, Series, Table, PALETTE};
+use crate::report::{Chart, Page, Series, Table, PALETTE};
 use crate::sim::Recording;
 
 /// One sensor's numbers (`--json`).
@@ -123,15 +123,10 @@ pub fn loops(
     Ok(LoopsResult { sensors })
 }
 
-/// Linear fit drawn in green and PI in purple, as in the paper's Fig. 4, darker than the
-/// cycles' palette so a fit is not mistaken for a cycle.
-const LINEAR: (u8, u8, u8) = (0, 110, 40);
-const PI: (u8, u8, u8) = (90, 0, 150);
-
 impl LoopsResult {
     /// Adds Table III's numbers and Fig. 4's plots for each sensor. `label` goes in front of
     /// headings and titles (e.g. `Joint A`), `prefix` in front of figure names.
-    pub fn add_to_page(&self, page: &mut Page, label: &str, prefix: &str) {
+    fn section(&self, page: &mut Page, label: &str, prefix: &str) {
         let mut t = Table::new([
             "sensor",
             "cycles",
@@ -280,64 +275,52 @@ fn time_series(page: &mut Page, s: &LoopsSensor, label: &str, prefix: &str) {
 }
 
 fn loop_chart(s: &LoopsSensor, label: &str) -> Chart {
-    let fit = &s.fit;
-    let obs = &fit.observations;
-    let strain_pct: Vec<f64> = obs.strain.iter().map(|e| e * 100.0).collect();
-    let kohm: Vec<f64> = obs.ohm.iter().map(|r| r / 1e3).collect();
-    let mut chart = Chart::new(
+    crate::fit::report::loop_chart(
+        &s.fit,
         titled(
             label,
             &format!("Resistance against strain, {}", s.summary.sensor),
         ),
-        "strain (%)",
-        "resistance (kΩ)",
-    );
-    chart.size = (900, 520);
-    chart.legend = Legend::LowerRight;
-    let count = fit.cycles.len();
-    for (i, c) in fit.cycles.iter().enumerate() {
-        let r = c.range();
-        // Past eight cycles the legend names only the first and the last.
-        let name = if count <= 8 || i == 0 || i + 1 == count {
-            format!("cycle {}", i + 1)
-        } else {
-            String::new()
-        };
-        chart.push(Series::line(
-            name,
-            Series::zip(&strain_pct[r.clone()], &kohm[r]),
-            PALETTE[i % PALETTE.len()],
-        ));
+    )
+}
+
+impl crate::analysis::Analysis for LoopsResult {
+    fn summary(&self) -> String {
+        use std::fmt::Write;
+        let r = self;
+        let mut out = String::new();
+        for s in &r.sensors {
+            let m = &s.summary;
+            let _ = writeln!(out, "sensor {}: {} cycles", m.sensor, m.cycles);
+            let _ = writeln!(
+                out,
+                "  linear  GF = {:.4}, R0 = {:.1} Ω, r² = {:.4}, RMSE {:.1} Ω",
+                m.gauge_factor, m.r0_ohm, m.r2, m.linear_rmse_ohm
+            );
+            if let Some(c) = &m.characteristic {
+                let _ = writeln!(out,
+                "  Table III  R_c = {:.2} kΩ, ε_c = {:.3} %, m_c = {:.0} kΩ, R_peak = {:.2} kΩ, ε_peak = {:.3} %",
+                c.center_ohm / 1e3,
+                c.center_strain * 100.0,
+                c.center_slope_ohm / 1e3,
+                c.peak_ohm / 1e3,
+                c.peak_strain * 100.0
+            );
+            }
+            match (&m.pi_rmse_ohm, &m.pi_error) {
+                (Some(x), _) => {
+                    let _ = writeln!(out, "  PI      RMSE {x:.1} Ω");
+                }
+                (None, Some(e)) => {
+                    let _ = writeln!(out, "  PI      not fitted: {e}");
+                }
+                _ => {}
+            }
+        }
+        out
     }
-    if fit.cycles.is_empty() {
-        chart.push(Series::dots(
-            "samples",
-            Series::zip(&strain_pct, &kohm),
-            PALETTE[7],
-        ));
+
+    fn add_to_page(&self, page: &mut Page, at: crate::analysis::Placement<'_>) {
+        self.section(page, at.label, at.figure_prefix);
     }
-    let (lo, hi) = min_max(&obs.strain);
-    chart.push(Series::reference(
-        "linear fit",
-        [lo, hi]
-            .iter()
-            .map(|&e| (e * 100.0, fit.linear.resistance(e) / 1e3))
-            .collect(),
-        LINEAR,
-    ));
-    if let Ok(pi) = &fit.pi {
-        // The model runs over the whole recording (its plays remember the history) and is
-        // drawn over the last cycle, so that it shows the loop without hiding the data.
-        let model = pi.predict_observed(obs);
-        let shown = fit
-            .cycles
-            .last()
-            .map_or(0..=obs.len().saturating_sub(1), |c| c.range());
-        chart.push(Series::reference(
-            "PI fit (last cycle)",
-            shown.map(|i| (strain_pct[i], model[i] / 1e3)).collect(),
-            PI,
-        ));
-    }
-    chart
 }

@@ -9,10 +9,16 @@
 //! - **Rise time** is the time from 10 % to 90 % of the cycle's rise, divided by 0.8: the
 //!   turning point at the start of a rise lies anywhere in the rest before it (the strain is
 //!   flat there), so the time between turning points would add the rest's noise.
-//! - **Per-cycle fit**: `R = R₀·GF·ε + R₀` by least squares on the cycle's moving samples
-//!   (Eqs. 5-6): from where the rise leaves the rest (by [`REST_BAND`] of the rise) to where the
-//!   fall comes back to it. The rests around a cycle take a larger share of a fast cycle, and on
-//!   a hysteretic sensor they would tilt the line differently for fast and slow cycles.
+//! - **Per-cycle fit**: `R = R₀·GF·ε + R₀` by least squares on the cycle's loading samples
+//!   (Eqs. 5-6) inside **one strain range shared by every cycle**: from the highest rest floor
+//!   (where a rise leaves its rest, by [`REST_BAND`] of the rise) to [`MATCHED_SHARE`] of the
+//!   way to the lowest peak. The rests around a cycle take a larger share of a fast cycle, and
+//!   on a hysteretic sensor they would tilt the line differently for fast and slow cycles; a
+//!   slow rise relaxes to a lower peak, so each cycle's own range would give a curved sensor's
+//!   secant a GF that follows the rise time with no rate effect; and a hysteretic sensor's
+//!   unloading branch depends on the peak it starts from, so only the loading branch, which
+//!   starts from the same rest every time, is fitted. (Fitted over each cycle's whole moving
+//!   part, the reproduction's joints showed corr 0.48, 0.91 and −0.22 with no rate effect.)
 //! - The **correlation coefficient** (Pearson's) of GF with rise time is scale-free: when GF
 //!   barely varies it is the correlation of noise and can take any value. The relative change
 //!   of GF over the range of rise times, from the least-squares slope, says how large the
@@ -32,6 +38,11 @@ use crate::sim::Recording;
 pub const EQUAL_AMPLITUDE: f64 = 0.75;
 /// Samples within this share of the rise from the cycle's start are rest, not fitted.
 pub const REST_BAND: f64 = 0.02;
+/// Each cycle is fitted from the common rest floor up to this share of the way to the lowest
+/// peak of all cycles: the top of the range is left out, where a cycle turns.
+pub const MATCHED_SHARE: f64 = 0.95;
+/// Fewest samples of a cycle inside the matched strain range for it to be fitted.
+pub const MIN_MATCHED_SAMPLES: usize = 10;
 /// Fewest equal-amplitude cycles the analysis needs.
 pub const MIN_CYCLES: usize = 3;
 /// The longest rise must be at least this many times the shortest.
@@ -48,11 +59,11 @@ pub struct RateCycle {
     pub rise_s: f64,
     /// Strain rise of the cycle (fraction).
     pub amplitude_strain: f64,
-    /// The cycle's gauge factor.
+    /// The cycle's gauge factor, over the matched strain range of its loading branch.
     pub gauge_factor: f64,
-    /// The cycle's `R₀` (Ω).
+    /// The cycle's `R₀` (Ω), from the line through its whole moving part.
     pub r0_ohm: f64,
-    /// r² of the cycle's fit.
+    /// r² of the cycle's GF fit.
     pub r2: f64,
 }
 
@@ -77,6 +88,56 @@ pub struct RateSensor {
     pub gf_mean: f64,
     /// Standard deviation of the cycles' `R₀` (Ω; the paper: 1.10, 0.596, 0.038 kΩ).
     pub r0_std_ohm: f64,
+    /// The strain range every cycle is fitted over (fraction, the sensor's own sign): from the
+    /// highest rest floor to [`MATCHED_SHARE`] of the way to the lowest peak.
+    pub matched_strain: [f64; 2],
+}
+
+/// One equal-amplitude cycle before its fit.
+struct Moving {
+    /// The loading rows, from where the rise leaves the rest to the peak.
+    rows: std::ops::RangeInclusive<usize>,
+    /// The moving rows, from where the rise leaves the rest to where the fall comes back to it.
+    whole: std::ops::RangeInclusive<usize>,
+    /// The rest floor: the strain where the rise leaves the rest.
+    floor: f64,
+    /// The cycle's peak strain.
+    peak: f64,
+    /// The strain rise.
+    amplitude: f64,
+    /// Time at 10 % of the rise (s).
+    t10: f64,
+    /// Rise time (s), from 10 % to 90 % of the rise over 0.8.
+    rise_s: f64,
+}
+
+/// The loading part of cycle `c` whose rise is `amp`: from where the rise leaves the rest to the
+/// peak. The rests vary in share with the speed, and on a hysteretic sensor they would pull the
+/// line differently; the unloading branch starts from the cycle's own peak, which a slow rise
+/// lowers by relaxing, and a hysteretic sensor's unloading branch depends on that peak.
+fn moving_part(c: &crate::fit::Cycle, strain: &[f64], time_s: &[f64], amp: f64) -> Option<Moving> {
+    let base = strain[c.loading.start];
+    let load = c.loading.start..=c.loading.end;
+    let cross = |share: f64| {
+        load.clone()
+            .find(|&i| strain[i] >= base + share * amp)
+            .map(|i| time_s[i])
+    };
+    let (t10, t90) = (cross(0.1)?, cross(0.9)?);
+    let floor = base + REST_BAND * amp;
+    let first = load.clone().find(|&i| strain[i] >= floor)?;
+    let last = (c.unloading.start..=c.unloading.end)
+        .rev()
+        .find(|&i| strain[i] >= floor)?;
+    Some(Moving {
+        rows: first..=c.loading.end,
+        whole: first..=last,
+        floor,
+        peak: strain[c.loading.end],
+        amplitude: amp,
+        t10,
+        rise_s: (t90 - t10) / 0.8,
+    })
 }
 
 /// The rate analysis of every sensor.
@@ -108,7 +169,8 @@ pub fn rate(
         let rise_of =
             |c: &crate::fit::Cycle| joint_strain[c.loading.end] - joint_strain[c.loading.start];
         let largest = all.iter().map(rise_of).fold(0.0, f64::max);
-        let mut out = Vec::new();
+        // The equal-amplitude cycles, with the samples where each moves.
+        let mut kept = Vec::new();
         let mut smaller = 0;
         for c in &all {
             let amp = rise_of(c);
@@ -116,36 +178,44 @@ pub fn rate(
                 smaller += 1;
                 continue;
             }
-            let base = joint_strain[c.loading.start];
-            let load = c.loading.start..=c.loading.end;
-            let cross = |share: f64| {
-                load.clone()
-                    .find(|&i| joint_strain[i] >= base + share * amp)
-                    .map(|i| obs.time_s[i])
-            };
-            let (Some(t10), Some(t90)) = (cross(0.1), cross(0.9)) else {
+            if let Some(k) = moving_part(c, &joint_strain, &obs.time_s, amp) {
+                kept.push(k);
+            }
+        }
+        // One strain range for every cycle: from the highest rest floor to the lowest peak.
+        // A curved sensor's secant slope depends on the range it spans, and a slow rise relaxes
+        // to a lower peak, so fitting each cycle over its own range correlates GF with the rise
+        // time with no rate effect at all.
+        let floor = kept
+            .iter()
+            .map(|k| k.floor)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let top = kept.iter().map(|k| k.peak).fold(f64::INFINITY, f64::min);
+        let matched = (floor, floor + MATCHED_SHARE * (top - floor));
+        let mut out = Vec::new();
+        for k in &kept {
+            let rows: Vec<usize> = k
+                .rows
+                .clone()
+                .filter(|&i| (matched.0..=matched.1).contains(&joint_strain[i]))
+                .collect();
+            if rows.len() < MIN_MATCHED_SAMPLES {
                 continue;
-            };
-            // The moving part of the cycle: from where the rise leaves the rest to where the
-            // fall reaches it again. The rests before and after vary in share with the
-            // speed, and on a hysteretic sensor they would pull the line differently.
-            let floor = base + REST_BAND * amp;
-            let first = load.clone().find(|&i| joint_strain[i] >= floor);
-            let last = (c.unloading.start..=c.unloading.end)
-                .rev()
-                .find(|&i| joint_strain[i] >= floor);
-            let (Some(first), Some(last)) = (first, last) else {
-                continue;
-            };
-            let r = first..=last;
-            let fit = fit_linear(&obs.strain[r.clone()], &obs.ohm[r])?;
+            }
+            let strain: Vec<f64> = rows.iter().map(|&i| obs.strain[i]).collect();
+            let ohm: Vec<f64> = rows.iter().map(|&i| obs.ohm[i]).collect();
+            let fit = fit_linear(&strain, &ohm)?;
+            // R₀ from the whole moving cycle, loading and unloading: the intercept of the
+            // matched loading range alone is an extrapolation, noisier than the drift it is
+            // there to show.
+            let whole = fit_linear(&obs.strain[k.whole.clone()], &obs.ohm[k.whole.clone()])?;
             out.push(RateCycle {
                 number: out.len() + 1,
-                start_s: t10,
-                rise_s: (t90 - t10) / 0.8,
-                amplitude_strain: amp,
+                start_s: k.t10,
+                rise_s: k.rise_s,
+                amplitude_strain: k.amplitude,
                 gauge_factor: fit.gauge_factor,
-                r0_ohm: fit.r0_ohm,
+                r0_ohm: whole.r0_ohm,
                 r2: fit.r2,
             });
         }
@@ -172,6 +242,7 @@ pub fn rate(
         let gf_slope = slope(&rise, &gf).unwrap_or(0.0);
         sensors.push(RateSensor {
             sensor: sensor_label(plane, two),
+            matched_strain: [plane.sign() * matched.0, plane.sign() * matched.1],
             smaller_cycles: smaller,
             gf_rise_correlation: pearson(&rise, &gf).unwrap_or(0.0),
             gf_slope_per_s: gf_slope,
@@ -186,7 +257,7 @@ pub fn rate(
 
 impl RateResult {
     /// Adds the summary table and Fig. 5(d), (e) for each sensor.
-    pub fn add_to_page(&self, page: &mut Page, label: &str, prefix: &str) {
+    fn section(&self, page: &mut Page, label: &str, prefix: &str) {
         let mut t = Table::new([
             "sensor",
             "cycles",
@@ -265,5 +336,40 @@ impl RateResult {
                 ),
             );
         }
+    }
+}
+
+impl crate::analysis::Analysis for RateResult {
+    fn summary(&self) -> String {
+        use std::fmt::Write;
+        let r = self;
+        let mut out = String::new();
+        for s in &r.sensors {
+            let _ = writeln!(
+                out,
+                "sensor {}: {} equal-amplitude cycles ({} smaller left out)",
+                s.sensor,
+                s.cycles.len(),
+                s.smaller_cycles
+            );
+            for c in &s.cycles {
+                let _ = writeln!(
+                    out,
+                    "  cycle {:>2}  rise {:>6.2} s  GF {:.4}  R0 {:.1} Ω",
+                    c.number, c.rise_s, c.gauge_factor, c.r0_ohm
+                );
+            }
+            let _ = writeln!(out,
+            "  correlation of GF with rise time {:.4}; GF changes {:+.2} % from the fastest to the slowest",
+            s.gf_rise_correlation,
+            s.gf_relative_change * 100.0
+        );
+            let _ = writeln!(out, "  std dev of R0 {:.3} kΩ", s.r0_std_ohm / 1e3);
+        }
+        out
+    }
+
+    fn add_to_page(&self, page: &mut Page, at: crate::analysis::Placement<'_>) {
+        self.section(page, at.label, at.figure_prefix);
     }
 }

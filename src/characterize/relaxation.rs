@@ -273,7 +273,7 @@ use crate::stats::median;
 
 impl RelaxationResult {
     /// Adds the holds' table and Fig. 6(b), (c) for each sensor.
-    pub fn add_to_page(&self, page: &mut Page, label: &str, prefix: &str) {
+    fn section(&self, page: &mut Page, label: &str, prefix: &str) {
         let mut t = Table::new([
             "sensor",
             "holds",
@@ -382,6 +382,47 @@ impl RelaxationResult {
                 ),
             );
         }
+    }
+}
+
+impl crate::analysis::Analysis for RelaxationResult {
+    fn summary(&self) -> String {
+        use std::fmt::Write;
+        let r = self;
+        let mut out = String::new();
+        for s in &r.sensors {
+            let _ = writeln!(
+                out,
+                "sensor {}: {} holds of at least {} s",
+                s.sensor,
+                s.holds.len(),
+                r.min_hold_s
+            );
+            for h in &s.holds {
+                let _ = writeln!(out,
+                "  hold {:>2} at {:>7.1} s  stroke {:.3} mm  strain decay {:+.4} %  tau {}  ΔR {:+.1} Ω",
+                h.number,
+                h.start_s,
+                h.stroke_mm,
+                h.strain_decay * 100.0,
+                if h.tau_unresolved {
+                    "not resolved".to_owned()
+                } else {
+                    format!("{:.2} s", h.tau_s)
+                },
+                h.delta_ohm
+            );
+            }
+            let _ = writeln!(out,
+            "  correlation of ΔR with Δε over the holds {:.3}; share of Δε the resistance followed {:.2}",
+            s.correlation, s.followed_share
+        );
+        }
+        out
+    }
+
+    fn add_to_page(&self, page: &mut Page, at: crate::analysis::Placement<'_>) {
+        self.section(page, at.label, at.figure_prefix);
     }
 }
 

@@ -1,12 +1,12 @@
 //! `dlw characterize --design D REC [--kind loops|rate|relaxation|estimation] [--config C]...
 //! [--prefilter none|ma:N] [--paper-processing] [--min-hold-s T] -o DIR [--json]`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
+use dlw::analysis::{Analysis, Placement};
 use dlw::characterize::{
-    estimate, loops, planes, rate, relaxation, EstimationResult, Kind, LoopsResult, NamedConfig,
-    Options, RateResult, RelaxationResult, DEFAULT_MIN_HOLD_S,
+    estimate, loops, planes, rate, relaxation, Kind, NamedConfig, Options, DEFAULT_MIN_HOLD_S,
 };
 use dlw::design::Design;
 use dlw::fit::Prefilter;
@@ -136,185 +136,74 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     ));
     let context = || format!("{} analysis of {name}", kind.name());
     let report = args.output.join("report.html");
-    let json = |value: &dyn erased::Json| value.print(kind, &args.recording, report.clone());
-    match kind {
-        Kind::Loops => {
-            let r = loops(&recording, &joint, &planes, &options).with_context(context)?;
-            heading(
-                &mut page,
-                "Resistance-strain loops (Section IV-A1, Fig. 4, Table III)",
-            );
-            r.add_to_page(&mut page, "", "");
-            page.write(&args.output)?;
-            if args.json {
-                json(&r)?;
-            } else {
-                print_loops(&r);
-            }
-        }
-        Kind::Rate => {
-            let r = rate(&recording, &joint, &planes, &options).with_context(context)?;
-            heading(&mut page, "Rate dependence (Section IV-A2, Fig. 5)");
-            r.add_to_page(&mut page, "", "");
-            page.write(&args.output)?;
-            if args.json {
-                json(&r)?;
-            } else {
-                print_rate(&r);
-            }
-        }
-        Kind::Relaxation => {
-            let r = relaxation(&recording, &joint, &planes, &options).with_context(context)?;
-            heading(&mut page, "Relaxation (Section IV-A3, Fig. 6)");
-            r.add_to_page(&mut page, "", "");
-            page.write(&args.output)?;
-            if args.json {
-                json(&r)?;
-            } else {
-                print_relaxation(&r);
-            }
-        }
-        Kind::Estimation => {
-            let r = estimate(&recording, &configs, &options).with_context(context)?;
-            heading(
-                &mut page,
-                "Angle estimation (Section IV-B, Tables IV-V, Figs. 7-8)",
-            );
-            r.add_to_page(&mut page, "", "");
-            page.write(&args.output)?;
-            if args.json {
-                json(&r)?;
-            } else {
-                print_estimation(&r);
-            }
-        }
-    }
-    if !args.json {
-        println!("report {}", report.display());
-    }
-    Ok(())
-}
-
-/// `--json` for any result, without naming its type at the call.
-mod erased {
-    use super::{Kind, Report};
-    use std::path::{Path, PathBuf};
-
-    pub trait Json {
-        fn print(&self, kind: Kind, recording: &Path, report: PathBuf) -> anyhow::Result<()>;
-    }
-
-    impl<T: serde::Serialize> Json for T {
-        fn print(&self, kind: Kind, recording: &Path, report: PathBuf) -> anyhow::Result<()> {
-            let r = Report {
-                kind,
-                recording,
-                report,
-                result: self,
-            };
-            println!("{}", dlw::finite::to_json(&r)?);
+    let finish = |page: Page, heading: &str, r: &dyn Section| -> anyhow::Result<()> {
+        let mut page = page;
+        page.heading(heading);
+        r.add(&mut page);
+        page.write(&args.output)?;
+        if args.json {
+            r.print_json(kind, &args.recording, report.clone())
+        } else {
+            print!("{}", r.text());
+            println!("report {}", report.display());
             Ok(())
         }
+    };
+    match kind {
+        Kind::Loops => finish(
+            page,
+            "Resistance-strain loops (Section IV-A1, Fig. 4, Table III)",
+            &loops(&recording, &joint, &planes, &options).with_context(context)?,
+        ),
+        Kind::Rate => finish(
+            page,
+            "Rate dependence (Section IV-A2, Fig. 5)",
+            &rate(&recording, &joint, &planes, &options).with_context(context)?,
+        ),
+        Kind::Relaxation => finish(
+            page,
+            "Relaxation (Section IV-A3, Fig. 6)",
+            &relaxation(&recording, &joint, &planes, &options).with_context(context)?,
+        ),
+        Kind::Estimation => finish(
+            page,
+            "Angle estimation (Section IV-B, Tables IV-V, Figs. 7-8)",
+            &estimate(&recording, &configs, &options).with_context(context)?,
+        ),
     }
 }
 
-fn heading(page: &mut Page, text: &str) {
-    page.heading(text);
+/// Any analysis's result, through [`Analysis`], without naming its type at the call.
+trait Section {
+    fn add(&self, page: &mut Page);
+    fn text(&self) -> String;
+    fn print_json(&self, kind: Kind, recording: &Path, report: PathBuf) -> anyhow::Result<()>;
+}
+
+impl<T: Analysis> Section for T {
+    fn add(&self, page: &mut Page) {
+        self.add_to_page(page, Placement::ALONE);
+    }
+
+    fn text(&self) -> String {
+        self.summary()
+    }
+
+    fn print_json(&self, kind: Kind, recording: &Path, report: PathBuf) -> anyhow::Result<()> {
+        let r = Report {
+            kind,
+            recording,
+            report,
+            result: self,
+        };
+        println!("{}", dlw::finite::to_json(&r)?);
+        Ok(())
+    }
 }
 
 fn prefilter_name(p: Prefilter) -> String {
     match p {
         Prefilter::None => "none".into(),
         Prefilter::MovingAverage(n) => format!("ma:{n}"),
-    }
-}
-
-fn print_loops(r: &LoopsResult) {
-    for s in &r.sensors {
-        let m = &s.summary;
-        println!("sensor {}: {} cycles", m.sensor, m.cycles);
-        println!(
-            "  linear  GF = {:.4}, R0 = {:.1} Ω, r² = {:.4}, RMSE {:.1} Ω",
-            m.gauge_factor, m.r0_ohm, m.r2, m.linear_rmse_ohm
-        );
-        if let Some(c) = &m.characteristic {
-            println!(
-                "  Table III  R_c = {:.2} kΩ, ε_c = {:.3} %, m_c = {:.0} kΩ, R_peak = {:.2} kΩ, ε_peak = {:.3} %",
-                c.center_ohm / 1e3,
-                c.center_strain * 100.0,
-                c.center_slope_ohm / 1e3,
-                c.peak_ohm / 1e3,
-                c.peak_strain * 100.0
-            );
-        }
-        match (&m.pi_rmse_ohm, &m.pi_error) {
-            (Some(x), _) => println!("  PI      RMSE {x:.1} Ω"),
-            (None, Some(e)) => println!("  PI      not fitted: {e}"),
-            _ => {}
-        }
-    }
-}
-
-fn print_rate(r: &RateResult) {
-    for s in &r.sensors {
-        println!(
-            "sensor {}: {} equal-amplitude cycles ({} smaller left out)",
-            s.sensor,
-            s.cycles.len(),
-            s.smaller_cycles
-        );
-        for c in &s.cycles {
-            println!(
-                "  cycle {:>2}  rise {:>6.2} s  GF {:.4}  R0 {:.1} Ω",
-                c.number, c.rise_s, c.gauge_factor, c.r0_ohm
-            );
-        }
-        println!(
-            "  correlation of GF with rise time {:.4}; GF changes {:+.2} % from the fastest to the slowest",
-            s.gf_rise_correlation,
-            s.gf_relative_change * 100.0
-        );
-        println!("  std dev of R0 {:.3} kΩ", s.r0_std_ohm / 1e3);
-    }
-}
-
-fn print_relaxation(r: &RelaxationResult) {
-    for s in &r.sensors {
-        println!(
-            "sensor {}: {} holds of at least {} s",
-            s.sensor,
-            s.holds.len(),
-            r.min_hold_s
-        );
-        for h in &s.holds {
-            println!(
-                "  hold {:>2} at {:>7.1} s  stroke {:.3} mm  strain decay {:+.4} %  tau {}  ΔR {:+.1} Ω",
-                h.number,
-                h.start_s,
-                h.stroke_mm,
-                h.strain_decay * 100.0,
-                if h.tau_unresolved {
-                    "not resolved".to_owned()
-                } else {
-                    format!("{:.2} s", h.tau_s)
-                },
-                h.delta_ohm
-            );
-        }
-        println!(
-            "  correlation of ΔR with Δε over the holds {:.3}; share of Δε the resistance followed {:.2}",
-            s.correlation, s.followed_share
-        );
-    }
-}
-
-fn print_estimation(r: &EstimationResult) {
-    for run in &r.runs {
-        println!(
-            "{:<28} RMSE {:>7.3}°   max |error| {:>7.3}°",
-            run.name(),
-            run.metrics.rmse_deg,
-            run.metrics.max_abs_error_deg
-        );
     }
 }

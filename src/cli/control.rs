@@ -8,12 +8,11 @@ use dlw::control::{report, Control, DesiredSource, Gains, Scheme, PAPER_GAINS};
 use dlw::design::Design;
 use dlw::output::write_folder_atomic;
 use dlw::replay::load_config;
-use dlw::sim::{ProtocolKind, Scenario};
 use dlw_estimator::FilterConfig;
 use serde::Serialize;
 
 use super::estimate::parse_filter;
-use super::simulate::parse_protocol;
+use super::scenario_args::ScenarioArgs;
 
 /// Arguments of `dlw control`.
 #[derive(Debug, clap::Args)]
@@ -24,16 +23,11 @@ pub struct Args {
     /// Estimator config (.toml or .json) the closed loop senses the angle with.
     #[arg(long)]
     config: PathBuf,
-    /// Scenario file (TOML): the bench's effects. Relaxation and backlash are what make open
-    /// loop drift; without a scenario only ADC and tracker noise are on.
-    #[arg(long)]
-    scenario: Option<PathBuf>,
+    #[command(flatten)]
+    scenario: ScenarioArgs,
     /// Desired angle CSV with the header `time_s,angle_deg`, interpolated linearly.
     #[arg(long, conflicts_with = "protocol")]
     profile: Option<PathBuf>,
-    /// Desired angle from a protocol's stroke profile times the plant gain (e.g. random).
-    #[arg(long, value_parser = parse_protocol)]
-    protocol: Option<ProtocolKind>,
     /// PID gains `kp,ki,kd` on the angle error: kp in mm/°, ki in mm/(°·s), kd in mm·s/°
     /// (default: the paper's 0.1,0.1,0).
     #[arg(long, value_parser = parse_gains)]
@@ -44,12 +38,6 @@ pub struct Args {
     /// Filter on the sensed angle, replacing the config's output_filter: none, ma:N or lp:T.
     #[arg(long, value_parser = parse_filter)]
     filter: Option<FilterConfig>,
-    /// Length (s); default: the protocol's, or the profile's last time.
-    #[arg(long)]
-    duration_s: Option<f64>,
-    /// Seed of every random stream; overrides the scenario's.
-    #[arg(long)]
-    seed: Option<u64>,
     /// Output folder: report.html, its SVG figures and control.csv.
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
@@ -130,7 +118,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &args.output,
         [&args.design, &args.config]
             .into_iter()
-            .chain(&args.scenario)
+            .chain(&args.scenario.scenario)
             .chain(&args.profile),
         args.force,
     )?;
@@ -150,19 +138,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(filter) = args.filter {
         config.output_filter = filter;
     }
-    let mut scenario = match &args.scenario {
-        Some(path) => Scenario::load(path)?,
-        None => Scenario::default(),
-    };
-    if args.protocol.is_some() {
-        scenario.protocol = args.protocol;
-    }
-    if let Some(seed) = args.seed {
-        scenario.seed = seed;
-    }
-    if args.duration_s.is_some() {
-        scenario.duration_s = args.duration_s;
-    }
+    let scenario = args.scenario.load()?;
     let source = match args.profile {
         Some(path) => DesiredSource::Csv(path),
         None => DesiredSource::Protocol,

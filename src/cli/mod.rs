@@ -18,6 +18,7 @@ mod import_recording;
 mod inspect;
 mod program;
 mod reproduce;
+mod scenario_args;
 mod simulate;
 
 /// From a sensing continuum-robot joint's design parameters to drawings, laser programs and a

@@ -145,15 +145,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "Joint D control RMSE (°): open loop {:.2} / {:.2} / {:.2}, closed loop {:.2} / {:.2} / {:.2} (sensed-actual / actual-desired / sensed-desired)",
         o[0], o[1], o[2], c[0], c[1], c[2]
     );
-    for p in dlw::reproduce::patterns(&r) {
+    let list = dlw::reproduce::patterns(&r);
+    for p in &list {
         println!(
             "pattern {}: {} (paper: {}; dlw: {})",
-            if p.held { "held" } else { "NOT held" },
+            p.verdict(),
             p.name,
             p.paper,
             p.dlw
         );
+        if let Some(why) = &p.cannot_show {
+            println!("  why: {why}");
+        }
     }
+    println!("{}", dlw::reproduce::patterns::tally(&list));
     println!(
         "report {} ({:.1} s)",
         report.display(),

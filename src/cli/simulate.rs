@@ -5,7 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use dlw::design::Design;
-use dlw::sim::{self, ProtocolKind, Recording, Scenario};
+use dlw::sim::{self, ProtocolKind, Recording};
+
+use super::scenario_args::ScenarioArgs;
 
 /// Arguments of `dlw simulate`.
 #[derive(Debug, clap::Args)]
@@ -13,21 +15,8 @@ pub struct Args {
     /// Design file (TOML).
     #[arg(long)]
     design: PathBuf,
-    /// Stroke profile: characterization, rate-dependence, relaxation, random, or custom (with
-    /// --profile). Overrides the scenario's `protocol`.
-    #[arg(long, value_parser = parse_protocol)]
-    protocol: Option<ProtocolKind>,
-    /// Scenario file (TOML): which effects are on, with their parameters. Without one, only
-    /// white ADC and EM-tracker noise are on.
-    #[arg(long)]
-    scenario: Option<PathBuf>,
-    /// Seed of every random stream (noise, drift, the random pattern); overrides the scenario's.
-    #[arg(long)]
-    seed: Option<u64>,
-    /// Recording length (s); defaults to the protocol's: 10 s at rest, then 1000 s
-    /// characterization or 3000 s of the others; a CSV profile's last time.
-    #[arg(long)]
-    duration_s: Option<f64>,
+    #[command(flatten)]
+    scenario: ScenarioArgs,
     /// `realistic` switches the correlated ADC and tracker noise on (`[adc.correlated]`,
     /// `[tracker.correlated]`, with the scenario's or the default parameters); `white` switches
     /// it off. Without the flag the scenario decides (default: white only).
@@ -54,38 +43,16 @@ enum NoisePreset {
     Realistic,
 }
 
-pub(super) fn parse_protocol(s: &str) -> Result<ProtocolKind, String> {
-    ProtocolKind::from_name(s).ok_or_else(|| {
-        let names: Vec<&str> = ProtocolKind::ALL.iter().map(|(_, n)| *n).collect();
-        format!(
-            "unknown protocol {s:?} (expected one of: {})",
-            names.join(", ")
-        )
-    })
-}
-
 pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim(
         &args.output,
         std::iter::once(&args.design)
-            .chain(&args.scenario)
+            .chain(&args.scenario.scenario)
             .chain(&args.profile),
         args.force,
     )?;
     let design = Design::load(&args.design)?;
-    let mut scenario = match &args.scenario {
-        Some(path) => Scenario::load(path)?,
-        None => Scenario::default(),
-    };
-    if args.protocol.is_some() {
-        scenario.protocol = args.protocol;
-    }
-    if let Some(seed) = args.seed {
-        scenario.seed = seed;
-    }
-    if args.duration_s.is_some() {
-        scenario.duration_s = args.duration_s;
-    }
+    let mut scenario = args.scenario.load()?;
     if let Some(noise) = args.noise {
         scenario.set_correlated_noise(noise == NoisePreset::Realistic);
     }

@@ -27,7 +27,7 @@ mod linear;
 mod nnls;
 mod pi;
 mod plays;
-mod report;
+pub(crate) mod report;
 mod request;
 
 use std::time::Instant;

@@ -99,45 +99,8 @@ fn sensor_section(page: &mut Page, fit: &SensorFit, at: Placement<'_>) {
     let name = sensor_name(fit);
     let obs = &fit.observations;
     page.heading(format!("{}Sensor {name}", label(at)));
-    let strain_pct: Vec<f64> = obs.strain.iter().map(|e| e * 100.0).collect();
-    let kohm: Vec<f64> = obs.ohm.iter().map(|r| r / 1e3).collect();
-    let mut loops = Chart::new(
-        format!("Resistance against strain, {name}"),
-        "strain (%)",
-        "resistance (kΩ)",
-    );
+    let mut loops = loop_chart(fit, format!("Resistance against strain, {name}"));
     loops.size = (900, 560);
-    loops.legend = Legend::LowerRight;
-    let count = fit.cycles.len();
-    for (i, c) in fit.cycles.iter().enumerate() {
-        let r = c.range();
-        // Past eight cycles the legend names only the first and the last.
-        let label = if count <= 8 || i == 0 || i + 1 == count {
-            format!("cycle {}", i + 1)
-        } else {
-            String::new()
-        };
-        loops.push(Series::line(
-            label,
-            Series::zip(&strain_pct[r.clone()], &kohm[r]),
-            PALETTE[i % PALETTE.len()],
-        ));
-    }
-    let (lo, hi) = obs
-        .strain
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &e| {
-            (a.min(e), b.max(e))
-        });
-    let black = (20, 20, 20);
-    loops.push(Series::reference(
-        "linear fit",
-        [lo, hi]
-            .iter()
-            .map(|&e| (e * 100.0, fit.linear.resistance(e) / 1e3))
-            .collect(),
-        black,
-    ));
     let mut residuals = Chart::new(
         format!("Residual R_model − R over time, {name}"),
         "time (s)",
@@ -180,22 +143,10 @@ fn sensor_section(page: &mut Page, fit: &SensorFit, at: Placement<'_>) {
             format!("{:.4}", c.peak_strain * 100.0),
         ]);
     }
-    for (label, result, color) in [
-        // Dark colours outside the cycles' palette, so a fit is not mistaken for a cycle.
-        ("PI", &fit.pi, (60, 0, 120)),
-        ("continuous PI", &fit.continuous_pi, (0, 95, 95)),
-    ] {
+    for ((label, color), result) in MODEL_COLOURS.iter().zip([&fit.pi, &fit.continuous_pi]) {
+        let (label, color) = (*label, *color);
         let Ok(pi) = result else { continue };
         let model = pi.predict_observed(obs);
-        loops.push(Series::reference(
-            format!("{label} fit"),
-            model
-                .iter()
-                .zip(&strain_pct)
-                .map(|(r, e)| (*e, r / 1e3))
-                .collect(),
-            color,
-        ));
         let res: Vec<f64> = model
             .iter()
             .zip(&obs.ohm)
@@ -222,8 +173,8 @@ fn sensor_section(page: &mut Page, fit: &SensorFit, at: Placement<'_>) {
     page.figure(
         format!("{}loops-v{}", at.figure_prefix, fit.plane.column()),
         loops,
-        "Each loading/unloading cycle in its own colour; the fitted models drawn over the data \
-         (cf. the paper's Fig. 4(d-f)).",
+        "Each loading/unloading cycle in its own colour; the linear fit, and the hysteretic \
+         models over the last cycle (cf. the paper's Fig. 4(d-f)).",
     );
     page.figure(
         format!("{}residuals-v{}", at.figure_prefix, fit.plane.column()),
@@ -231,6 +182,74 @@ fn sensor_section(page: &mut Page, fit: &SensorFit, at: Placement<'_>) {
         "Model minus measured resistance over the recording.",
     );
     page.table(params);
+}
+
+/// Colours of the fitted models: linear in green and PI in purple, as in the paper's Fig. 4,
+/// darker than the cycles' palette so a fit is not mistaken for a cycle.
+const LINEAR_COLOUR: (u8, u8, u8) = (0, 110, 40);
+const MODEL_COLOURS: [(&str, (u8, u8, u8)); 2] =
+    [("PI", (90, 0, 150)), ("continuous PI", (0, 95, 95))];
+
+/// The resistance-strain loops of one sensor's fit (the paper's Fig. 4(d-f)): each cycle in its
+/// own colour (every sample when no cycle was found), the linear fit, and each fitted
+/// hysteretic model over the last cycle. The models run over the whole recording (their plays
+/// remember the history) and are drawn over the last cycle, so that they show the loop without
+/// hiding the data. The one loop chart of `dlw fit`'s and `dlw characterize`'s reports.
+pub fn loop_chart(fit: &SensorFit, title: String) -> Chart {
+    let obs = &fit.observations;
+    let strain_pct: Vec<f64> = obs.strain.iter().map(|e| e * 100.0).collect();
+    let kohm: Vec<f64> = obs.ohm.iter().map(|r| r / 1e3).collect();
+    let mut chart = Chart::new(title, "strain (%)", "resistance (kΩ)");
+    chart.size = (900, 520);
+    chart.legend = Legend::LowerRight;
+    let count = fit.cycles.len();
+    for (i, c) in fit.cycles.iter().enumerate() {
+        let r = c.range();
+        // Past eight cycles the legend names only the first and the last.
+        let name = if count <= 8 || i == 0 || i + 1 == count {
+            format!("cycle {}", i + 1)
+        } else {
+            String::new()
+        };
+        chart.push(Series::line(
+            name,
+            Series::zip(&strain_pct[r.clone()], &kohm[r]),
+            PALETTE[i % PALETTE.len()],
+        ));
+    }
+    if fit.cycles.is_empty() {
+        chart.push(Series::dots(
+            "samples",
+            Series::zip(&strain_pct, &kohm),
+            PALETTE[7],
+        ));
+    }
+    let (lo, hi) = crate::stats::min_max(&obs.strain);
+    chart.push(Series::reference(
+        "linear fit",
+        [lo, hi]
+            .iter()
+            .map(|&e| (e * 100.0, fit.linear.resistance(e) / 1e3))
+            .collect(),
+        LINEAR_COLOUR,
+    ));
+    let shown = fit
+        .cycles
+        .last()
+        .map_or(0..=obs.len().saturating_sub(1), |c| c.range());
+    for ((label, colour), result) in MODEL_COLOURS.iter().zip([&fit.pi, &fit.continuous_pi]) {
+        let Ok(pi) = result else { continue };
+        let model = pi.predict_observed(obs);
+        chart.push(Series::reference(
+            format!("{label} fit (last cycle)"),
+            shown
+                .clone()
+                .map(|i| (strain_pct[i], model[i] / 1e3))
+                .collect(),
+            *colour,
+        ));
+    }
+    chart
 }
 
 fn fmt_all(v: &[f64]) -> String {

@@ -87,12 +87,13 @@ pub fn list_frames(dir: &Path) -> Result<Vec<PathBuf>, FluoroError> {
 /// [`FluoroError::Decode`] for a file `image` cannot decode, [`FluoroError::PixelType`] for
 /// float or other pixel types.
 pub fn read_frame(path: &Path) -> Result<Frame, FluoroError> {
-    let bytes = crate::output::read_limited_bytes(path, crate::limits::MAX_FRAME_BYTES).map_err(
-        |e| FluoroError::Decode {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        },
-    )?;
+    let bytes =
+        crate::output::read_limited_bytes(path, crate::limits::MAX_FRAME_BYTES).map_err(|e| {
+            FluoroError::Decode {
+                path: path.to_path_buf(),
+                message: e.to_string(),
+            }
+        })?;
     let img = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| FluoroError::Decode {

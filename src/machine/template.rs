@@ -137,12 +137,18 @@ mod tests {
     fn renders_placeholders_and_refuses_unknown_ones() {
         let t = Template::parse("S{power_mw}", &["power_mw", "power_w"]).unwrap();
         assert_eq!(t.render(&VALUES), vec!["S160"]);
-        let t = Template::parse("P={power_w} Q={power_percent}", &["power_w", "power_percent"])
-            .unwrap();
+        let t = Template::parse(
+            "P={power_w} Q={power_percent}",
+            &["power_w", "power_percent"],
+        )
+        .unwrap();
         assert_eq!(t.render(&VALUES), vec!["P=0.16 Q=6.4"]);
         // One G-code line: a newline (or any control character) could add an unchecked move.
         let err = Template::parse("M3\nG0 X900", &[]).unwrap_err();
-        assert!(err.contains("U+000A") && err.contains("one G-code line"), "{err}");
+        assert!(
+            err.contains("U+000A") && err.contains("one G-code line"),
+            "{err}"
+        );
         assert!(Template::parse("M3\tS1", &[]).is_err());
         let err = Template::parse("S{power}", &["power_mw"]).unwrap_err();
         assert!(

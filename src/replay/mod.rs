@@ -218,6 +218,36 @@ pub(crate) fn run_estimator(
     })
 }
 
+impl Replay {
+    /// The replay as an offline, zero-phase filter would give it: the estimates moved earlier
+    /// by the filters' delay (rounded to a sample), so that a filter applied after the fact (the
+    /// paper's moving averages, MATLAB's centred `movmean`) costs no lag. The last `delay`
+    /// samples, which have no estimate left, are not compared; the metrics are computed again
+    /// and keep the delay they compensated in `filter_delay_*`.
+    pub fn delay_compensated(mut self, recording: &Recording) -> Self {
+        let shift = self.metrics.filter_delay_samples.round().max(0.0) as usize;
+        let n = self.estimate_deg.len();
+        if shift == 0 || shift >= n {
+            return self;
+        }
+        self.estimate_deg.drain(..shift);
+        let last = self.estimate_deg[self.estimate_deg.len() - 1];
+        self.estimate_deg.resize(n, last);
+        let samples = &recording.samples;
+        let (mut sum_sq, mut max_abs, mut compared) = (0.0f64, 0.0f64, 0usize);
+        for i in (0..n - shift).filter(|&i| samples.angle_valid(i)) {
+            let err = self.estimate_deg[i] - samples.angle_deg[i];
+            sum_sq += err * err;
+            max_abs = max_abs.max(err.abs());
+            compared += 1;
+        }
+        self.metrics.rmse_deg = (sum_sq / compared.max(1) as f64).sqrt();
+        self.metrics.max_abs_error_deg = max_abs;
+        self.metrics.samples = compared;
+        self
+    }
+}
+
 /// Warnings for each configured sensor whose divider resistor or supply differs from the
 /// bench's (`divider_ohm[i]` for sensor `i + 1`, `supply_v`, as written in `source`, e.g.
 /// `rig.toml`): the estimator would then read a wrong resistance.

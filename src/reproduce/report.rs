@@ -5,8 +5,9 @@ use super::paper::{
     R0_STD_OHM, RATE_CORRELATION, RELAXATION_CORRELATION, TABLE_III, TABLE_IV, TABLE_V,
     TWO_SENSOR_RMSE,
 };
-use super::patterns::MAX_RATE_CORRELATION;
+use super::patterns::max_rate_correlation;
 use super::{prose, Reproduction, CONTROL_ORDER};
+use crate::analysis::{Analysis, Placement};
 use crate::characterize::{EstimationResult, LoopsSensor};
 use crate::control::{report as control_report, PAPER_TABLE_VI};
 use crate::report::{Block, Page, Table};
@@ -19,19 +20,22 @@ fn k(ohm: f64) -> String {
 /// The paper's patterns, held or not, at the top of the report.
 fn patterns_section(page: &mut Page, r: &Reproduction) {
     let list = super::patterns(r);
-    let held = list.iter().filter(|p| p.held).count();
     page.heading("The paper's patterns");
-    page.text(format!(
-        "{held} of the paper's {} patterns hold in this run.",
-        list.len()
-    ));
-    let mut t = Table::new(["pattern", "held", "paper", "dlw"]);
+    page.text(super::patterns::tally(&list));
+    let mut t = Table::new([
+        "pattern",
+        "held",
+        "paper",
+        "dlw",
+        "why the simulated joints cannot show it",
+    ]);
     for p in &list {
         t.row([
             p.name.clone(),
-            if p.held { "held" } else { "NOT held" }.to_owned(),
+            p.verdict().to_owned(),
             p.paper.clone(),
             p.dlw.clone(),
+            p.cannot_show.clone().unwrap_or_default(),
         ]);
     }
     page.table(t);
@@ -181,8 +185,10 @@ fn table_iii(page: &mut Page, r: &Reproduction) {
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
         page.heading(format!("Joint {}: loops and fits (Fig. 4)", j.letter));
-        j.loops
-            .add_to_page(page, &format!("Joint {}", j.letter), &format!("{l}-loops"));
+        j.loops.add_to_page(
+            page,
+            placement(&format!("Joint {}", j.letter), &format!("{l}-loops")),
+        );
     }
 }
 
@@ -214,7 +220,12 @@ fn rate(page: &mut Page, r: &Reproduction) {
         .iter()
         .map(|j| j.rate.sensors[0].gf_rise_correlation)
         .collect();
-    page.text(prose::rate(&letters, &correlations, MAX_RATE_CORRELATION));
+    let thresholds: Vec<f64> = r
+        .joints
+        .iter()
+        .map(|j| max_rate_correlation(j.rate.sensors[0].cycles.len()))
+        .collect();
+    page.text(prose::rate(&letters, &correlations, &thresholds));
     let per_cycle =
         |f: &dyn Fn(&crate::characterize::RateCycle) -> (f64, f64)| -> Vec<Option<f64>> {
             r.joints
@@ -226,30 +237,48 @@ fn rate(page: &mut Page, r: &Reproduction) {
                 })
                 .collect()
         };
-    page.text(prose::rate_cause(
-        &letters,
-        &per_cycle(&|c| (c.amplitude_strain, c.rise_s)),
-        &per_cycle(&|c| (c.gauge_factor, c.amplitude_strain)),
+    if correlations
+        .iter()
+        .zip(&thresholds)
+        .any(|(c, t)| c.abs() > *t)
+    {
+        page.text(prose::rate_cause(
+            &letters,
+            &per_cycle(&|c| (c.amplitude_strain, c.rise_s)),
+            &per_cycle(&|c| (c.gauge_factor, c.amplitude_strain)),
+        ));
+    }
+    let ranges: Vec<String> = r
+        .joints
+        .iter()
+        .map(|j| {
+            let [lo, hi] = j.rate.sensors[0].matched_strain;
+            format!("{:.3}-{:.3} % (Joint {})", lo * 100.0, hi * 100.0, j.letter)
+        })
+        .collect();
+    page.text(format!(
+        "How it is measured. Each cycle's GF is the slope over one strain range shared by every \
+         cycle of the joint: {}. The simulated sensors have no rate dependence of their own (the \
+         paper found none), but the simulated joints relax during the slower rises, so the slow \
+         cycles reach a lower peak strain; fitted over its own range, a curved sensor's line \
+         changes slope with the range, and GF would follow the rise time through the amplitude. \
+         A correlation counts as a rate dependence only when it is significant (two-sided 5 %, \
+         above |r| = tanh(1.96/√(n − 3)) for n cycles): the coefficient is scale-free, and \
+         without a trend it is the correlation of noise with the rise time. The R₀ spread comes \
+         from the simulator's baseline drift, a random walk sized so that its spread over \
+         3000 s is the paper's.",
+        ranges.join(", ")
     ));
-    page.text(
-        "Why they can differ. The simulated sensors have no rate dependence of their own (the \
-         paper found none). But the simulated joints relax during the slower rises, so the slow \
-         cycles reach a lower peak strain, and the least-squares line through a curved sensor \
-         depends on the range it spans: on a curve that saturates, the line over a shorter range \
-         is steeper (GF rises with the rise time); on a curve that bends upward it is shallower. \
-         The paper's sensors, fitted over a nearly constant range, showed no such trend. The \
-         correlation coefficient is scale-free: without a trend it is the correlation of noise \
-         with the rise time. The R₀ spread comes from the simulator's baseline drift, a random \
-         walk sized so that its spread over 3000 s is the paper's.",
-    );
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
         page.heading(format!(
             "Joint {}: GF and R₀ per cycle (Fig. 5(d), (e))",
             j.letter
         ));
-        j.rate
-            .add_to_page(page, &format!("Joint {}", j.letter), &format!("{l}"));
+        j.rate.add_to_page(
+            page,
+            placement(&format!("Joint {}", j.letter), &format!("{l}")),
+        );
     }
 }
 
@@ -293,8 +322,10 @@ fn relaxation(page: &mut Page, r: &Reproduction) {
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
         page.heading(format!("Joint {}: holds (Fig. 6)", j.letter));
-        j.relaxation
-            .add_to_page(page, &format!("Joint {}", j.letter), &format!("{l}"));
+        j.relaxation.add_to_page(
+            page,
+            placement(&format!("Joint {}", j.letter), &format!("{l}")),
+        );
     }
 }
 
@@ -343,7 +374,8 @@ fn table_iv(page: &mut Page, r: &Reproduction) {
         "Each joint's linear and PI configs are dlw fit's, from its characterization run; the \
          estimates are the runtime estimator's over the random pattern, with the paper's \
          processing (the PI model clamps to the characterized resistance and strain ranges, a \
-         1000-sample moving average on the angle, whose 1 s delay the RMSE includes).",
+         1000-sample moving average on the angle, applied offline as the paper did, so its delay \
+         is taken out before the RMSE).",
     );
     let lines: Vec<String> = r
         .joints
@@ -356,20 +388,29 @@ fn table_iv(page: &mut Page, r: &Reproduction) {
         })
         .collect();
     page.text(lines.join(" "));
-    page.text(
-        "Why they can differ. The simulated sensors are PI models with white noise, which a PI \
-         fit can recover; the paper's Joint C had a nearly linear sensor, for which a PI fit's \
-         tanh flattens near both ends of the characterized range, where a few ohms of model \
-         error become a large strain error. The moving average's lag on the random pattern's \
-         ramps is part of every RMSE here.",
-    );
+    let why: Vec<String> = super::patterns(r)
+        .into_iter()
+        .filter(|p| p.name.contains("(Table IV)"))
+        .filter_map(|p| Some(format!("{}: {}.", p.name, p.cannot_show?)))
+        .collect();
+    page.text(if why.is_empty() {
+        "The simulated sensors are PI models with white noise, which a PI fit can recover."
+            .to_owned()
+    } else {
+        format!(
+            "Why they differ. The simulated sensors are PI models with white noise, which a PI \
+             fit can recover; the paper's Joint C had a nearly linear sensor, for which a PI \
+             fit's tanh flattens near both ends of the characterized range, where a few ohms of \
+             model error become a large strain error. {}",
+            why.join(" ")
+        )
+    });
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
         page.heading(format!("Joint {}: estimates (Fig. 7)", j.letter));
         runs(&j.estimation, false).add_to_page(
             page,
-            &format!("Joint {}", j.letter),
-            &format!("{l}-one"),
+            placement(&format!("Joint {}", j.letter), &format!("{l}-one")),
         );
     }
 }
@@ -433,18 +474,26 @@ fn table_v(page: &mut Page, r: &Reproduction) {
     ) {
         page.text(prose::table_v(tension, compression, both, TWO_SENSOR_RMSE));
     }
-    page.text(
-        "Why they can differ. The paper's r² of 0.89 reflects its sensors' hysteresis and \
-         drift; the simulated tension sensor is a narrow PI loop and the compression sensor is \
-         linear. Eq. 7 averages the two sensors' noises, but the moving average's lag is common \
-         to all three estimates, and an error in either sensor's linear model enters the \
-         two-sensor estimate.",
-    );
+    let why = super::patterns(r)
+        .into_iter()
+        .find(|p| p.name.contains("Table V)"))
+        .and_then(|p| p.cannot_show);
+    page.text(match why {
+        Some(why) => format!(
+            "Why they differ: {why}. The r² columns above show it: the paper's two sensors fit \
+             a line about equally well, the simulated ones do not."
+        ),
+        None => "Eq. 7 averages the two sensors' errors; with errors of similar size and little \
+                 correlation the average beats each alone."
+            .to_owned(),
+    });
     let l = c.letter.to_ascii_lowercase();
     runs(&c.estimation, true).add_to_page(
         page,
-        &format!("Joint {}, two sensors", c.letter),
-        &format!("{l}-two"),
+        placement(
+            &format!("Joint {}, two sensors", c.letter),
+            &format!("{l}-two"),
+        ),
     );
 }
 
@@ -508,5 +557,13 @@ fn table_vi(page: &mut Page, r: &Reproduction) {
             Block::Heading(h) => Block::Heading(format!("Joint D: {h}")),
             other => other,
         });
+    }
+}
+
+/// Where a joint's analysis lands on the shared page.
+fn placement<'a>(label: &'a str, figure_prefix: &'a str) -> Placement<'a> {
+    Placement {
+        label,
+        figure_prefix,
     }
 }

@@ -80,9 +80,9 @@ pub use protocol::{
 pub use rng::{streams, Stream};
 /// The scenario file: every effect, switchable, with documented defaults.
 pub use scenario::{
-    AdcCorrelated, AdcParams, Backlash, Creep, Drift, NotchLimit, PlantParams, RateDependence,
-    RateForm, Relaxation, Saturation, Scenario, ScenarioError, SensorModelKind, SensorParams,
-    TrackerCorrelated, TrackerParams, SIGNED_RATE_LEAD_S,
+    AdcCorrelated, AdcParams, Backlash, Creep, Drift, NotchLimit, Overrides, PlantParams,
+    RateDependence, RateForm, Relaxation, Saturation, Scenario, ScenarioError, SensorModelKind,
+    SensorParams, TrackerCorrelated, TrackerParams, SIGNED_RATE_LEAD_S,
 };
 /// Strain → resistance with saturation, drift, rate dependence and creep.
 pub use sensor::Sensor;

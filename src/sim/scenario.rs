@@ -718,6 +718,21 @@ impl Scenario {
         Ok(self)
     }
 
+    /// The scenario with the command line's choices put over the file's: each `Some` replaces
+    /// the scenario's value.
+    pub fn overridden(mut self, o: &Overrides) -> Self {
+        if o.protocol.is_some() {
+            self.protocol = o.protocol;
+        }
+        if let Some(seed) = o.seed {
+            self.seed = seed;
+        }
+        if o.duration_s.is_some() {
+            self.duration_s = o.duration_s;
+        }
+        self
+    }
+
     /// Switches the correlated ADC and tracker noise on or off (`--noise realistic` / `white`),
     /// keeping their parameters.
     pub fn set_correlated_noise(&mut self, on: bool) {
@@ -892,6 +907,17 @@ impl Checker {
     fn finish(self) -> Result<(), ScenarioError> {
         self.first.map_or(Ok(()), Err)
     }
+}
+
+/// What a command line may put over a scenario file's values ([`Scenario::overridden`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Overrides {
+    /// The stroke protocol.
+    pub protocol: Option<ProtocolKind>,
+    /// The seed of every random stream.
+    pub seed: Option<u64>,
+    /// The recording's length (s).
+    pub duration_s: Option<f64>,
 }
 
 #[cfg(test)]
