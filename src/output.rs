@@ -548,13 +548,11 @@ fn persist(shown: &Path, target: &Path, tmp: tempfile::NamedTempFile) -> Result<
     })
 }
 
-/// Reads a text input of at most `limit` bytes: a file past it (or a device that never ends,
-/// such as a link to `/dev/zero`) is refused with the limit named, after reading `limit + 1`
-/// bytes, instead of filling memory.
+/// Reads a binary input of at most `limit` bytes, as [`read_limited`] does a text one.
 ///
 /// # Errors
-/// The file cannot be read, is past the limit, or is not UTF-8.
-pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<String> {
+/// The file cannot be read or is past the limit.
+pub fn read_limited_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     use std::io::Read;
     let mut bytes = Vec::new();
     std::fs::File::open(path)?
@@ -569,6 +567,17 @@ pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<String> {
             ),
         ));
     }
+    Ok(bytes)
+}
+
+/// Reads a text input of at most `limit` bytes: a file past it (or a device that never ends,
+/// such as a link to `/dev/zero`) is refused with the limit named, after reading `limit + 1`
+/// bytes, instead of filling memory.
+///
+/// # Errors
+/// The file cannot be read, is past the limit, or is not UTF-8.
+pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<String> {
+    let bytes = read_limited_bytes(path, limit)?;
     String::from_utf8(bytes).map_err(|e| {
         std::io::Error::new(
             std::io::ErrorKind::InvalidData,

@@ -1,23 +1,24 @@
 //! `dlw import-recording --daq FILE --voltage CH[,CH2] --divider-ohm R[,R2] --supply-v V
 //! --stroke CH --stroke-mm-per-v K --tracker FILE [--tool N] [--reference-tool M]
-//! [--tracker-hz 40] -o REC [--force] [--json]`: a DAQ's CSV export and an NDI Aurora log
-//! become one recording folder (`docs/import.md`).
+//! [--tracker-hz 40] -o REC [--force] [--json]`: a DAQ's CSV export or TDMS file and an NDI
+//! Aurora log become one recording folder (`docs/import.md`).
 
 use std::path::PathBuf;
 
 use anyhow::Context;
-use dlw::import::{import, ImportRequest};
+use dlw::import::{import, DaqFormat, ImportRequest};
 
 /// Arguments of `dlw import-recording`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The DAQ file: a CSV export with a header row.
+    /// The DAQ file: a CSV export with a header row, or NI TDMS.
     #[arg(long)]
     daq: PathBuf,
-    /// The DAQ file's format: csv (TDMS and LVM are not read yet).
-    #[arg(long, default_value = "csv")]
-    daq_format: String,
-    /// The sensor voltage channel(s) by header name, sensor 1 first.
+    /// The DAQ file's format: csv or tdms (default: tdms for a .tdms file, else csv).
+    #[arg(long)]
+    daq_format: Option<String>,
+    /// The sensor voltage channel(s) by header name (TDMS: Group/Channel or Channel), sensor 1
+    /// first.
     #[arg(long, value_delimiter = ',', required = true)]
     voltage: Vec<String>,
     /// The divider's fixed resistor per sensor (Ω).
@@ -69,29 +70,27 @@ pub struct Args {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim(&args.output, [&args.daq, &args.tracker], args.force)?;
-    if args.daq_format != "csv" {
-        anyhow::bail!(
-            "--daq-format {:?} is not read yet: export the DAQ data as CSV (a header row of channel names, a time column or --daq-rate-hz); TDMS and LVM readers are issue 18's next step",
-            args.daq_format
-        );
-    }
+    let daq_format = match &args.daq_format {
+        Some(name) => DaqFormat::from_name(name)?,
+        None => DaqFormat::from_path(&args.daq),
+    };
     if args.sync != "auto" {
         anyhow::bail!(
             "--sync {:?}: only --sync auto (cross-correlation of the angle with the sensor) is supported yet",
             args.sync
         );
     }
-    let read = |p: &PathBuf| {
-        dlw::output::read_limited(p, MAX_INPUT_BYTES)
-            .with_context(|| format!("reading {}", p.display()))
-    };
-    let (daq_text, tracker_text) = (read(&args.daq)?, read(&args.tracker)?);
+    let daq_bytes = dlw::output::read_limited_bytes(&args.daq, MAX_INPUT_BYTES)
+        .with_context(|| format!("reading {}", args.daq.display()))?;
+    let tracker_text = dlw::output::read_limited(&args.tracker, MAX_INPUT_BYTES)
+        .with_context(|| format!("reading {}", args.tracker.display()))?;
     let (daq_path, tracker_path) = (
         args.daq.display().to_string(),
         args.tracker.display().to_string(),
     );
     let request = ImportRequest {
-        daq: (&daq_path, &daq_text),
+        daq: (&daq_path, &daq_bytes),
+        daq_format,
         voltage_channels: args.voltage.clone(),
         divider_ohm: args.divider_ohm.clone(),
         supply_v: args.supply_v,

@@ -1,5 +1,5 @@
-//! Importing real bench files (issue 18): a DAQ's CSV export ([`daq_csv`]) and an NDI Aurora
-//! tracker log ([`ndi`]) become one recording on the DAQ's clock: the bending angle from the
+//! Importing real bench files (issue 18): a DAQ's file (a CSV export, [`daq_csv`], or NI's TDMS,
+//! [`tdms`]) and an NDI Aurora tracker log ([`ndi`]) become one recording on the DAQ's clock: the bending angle from the
 //! tip tool's orientation ([`angle`]), the clocks aligned ([`align`]), the angle resampled onto
 //! the DAQ's samples (never across a gap of more than [`MAX_GAP_FRAMES`] missing frames: such
 //! rows are written with `tracker_valid = 0`), and an `[import]` table saying where it all came
@@ -9,6 +9,7 @@ pub mod align;
 pub mod angle;
 pub mod daq_csv;
 pub mod ndi;
+pub mod tdms;
 
 pub use ndi::{NdiError, ToolFrame, TrackerLog};
 
@@ -18,11 +19,59 @@ use crate::recording::{ImportInfo, ImportSource, Recording, Rig, Samples};
 use align::{AlignError, Alignment};
 use angle::{AngleError, BendingAngles};
 use daq_csv::{DaqCsvError, DaqTable};
+use tdms::TdmsError;
 
 /// The most missing tracker frames interpolated across.
 pub const MAX_GAP_FRAMES: usize = 3;
 /// The out-of-plane share of the in-plane range above which a warning is given.
 pub const OUT_OF_PLANE_WARNING: f64 = 0.05;
+
+/// The DAQ file's format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DaqFormat {
+    /// A CSV export with a header row ([`daq_csv`]).
+    Csv,
+    /// NI's TDMS ([`tdms`]).
+    Tdms,
+}
+
+impl DaqFormat {
+    /// The format named `name` (`csv`, `tdms`).
+    ///
+    /// # Errors
+    /// [`ImportError::Options`] naming the formats there are.
+    pub fn from_name(name: &str) -> Result<Self, ImportError> {
+        match name.to_ascii_lowercase().as_str() {
+            "csv" => Ok(DaqFormat::Csv),
+            "tdms" => Ok(DaqFormat::Tdms),
+            _ => Err(ImportError::Options(format!(
+                "--daq-format {name:?} is not one of csv, tdms"
+            ))),
+        }
+    }
+
+    /// The format a file's extension says (`.tdms`), CSV otherwise.
+    pub fn from_path(path: &std::path::Path) -> Self {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("tdms") => DaqFormat::Tdms,
+            _ => DaqFormat::Csv,
+        }
+    }
+}
+
+/// Why a DAQ file could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum DaqError {
+    /// A CSV export.
+    #[error(transparent)]
+    Csv(#[from] DaqCsvError),
+    /// A TDMS file.
+    #[error(transparent)]
+    Tdms(#[from] TdmsError),
+    /// A text format that is not UTF-8.
+    #[error("the DAQ file is not UTF-8 text ({0}); is --daq-format right?")]
+    NotText(std::str::Utf8Error),
+}
 
 /// Why an import failed.
 #[derive(Debug, thiserror::Error)]
@@ -33,7 +82,7 @@ pub enum ImportError {
         /// The file.
         path: String,
         /// Why.
-        source: DaqCsvError,
+        source: DaqError,
     },
     /// The tracker log.
     #[error("{path}: {source}")]
@@ -57,8 +106,10 @@ pub enum ImportError {
 /// What to import.
 #[derive(Debug, Clone)]
 pub struct ImportRequest<'a> {
-    /// The DAQ file's path (for messages and provenance) and text.
-    pub daq: (&'a str, &'a str),
+    /// The DAQ file's path (for messages and provenance) and bytes.
+    pub daq: (&'a str, &'a [u8]),
+    /// The DAQ file's format.
+    pub daq_format: DaqFormat,
     /// The voltage channels, sensor 1 first.
     pub voltage_channels: Vec<String>,
     /// The divider resistors, one per voltage channel (Ω).
@@ -130,8 +181,8 @@ pub struct TrackerJson {
     pub out_of_plane_max_deg: f64,
 }
 
-fn sha256(text: &str) -> String {
-    Sha256::digest(text.as_bytes())
+fn sha256(bytes: &[u8]) -> String {
+    Sha256::digest(bytes)
         .iter()
         .map(|b| format!("{b:02x}"))
         .collect()
@@ -169,13 +220,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
     }
     let mut names: Vec<&str> = req.voltage_channels.iter().map(String::as_str).collect();
     names.push(&req.stroke.0);
-    let daq = DaqTable::parse(
-        req.daq.1,
-        &names,
-        req.time_column.as_deref(),
-        req.daq_rate_hz,
-    )
-    .map_err(|source| ImportError::Daq {
+    let daq = read_daq(req, &names).map_err(|source| ImportError::Daq {
         path: req.daq.0.to_owned(),
         source,
     })?;
@@ -277,7 +322,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
             ImportSource {
                 role: "tracker".into(),
                 path: req.tracker.0.to_owned(),
-                sha256: sha256(req.tracker.1),
+                sha256: sha256(req.tracker.1.as_bytes()),
             },
         ],
         tool: req.tool as u32,
@@ -322,4 +367,16 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         warnings,
     };
     Ok((Recording { rig, samples }, summary))
+}
+
+/// The channels `names` of the request's DAQ file, in its format.
+fn read_daq(req: &ImportRequest<'_>, names: &[&str]) -> Result<DaqTable, DaqError> {
+    let (time_column, rate_hz) = (req.time_column.as_deref(), req.daq_rate_hz);
+    Ok(match req.daq_format {
+        DaqFormat::Csv => {
+            let text = std::str::from_utf8(req.daq.1).map_err(DaqError::NotText)?;
+            DaqTable::parse(text, names, time_column, rate_hz)?
+        }
+        DaqFormat::Tdms => tdms::daq_table(req.daq.1, names, time_column, rate_hz)?,
+    })
 }
