@@ -173,16 +173,19 @@ fn write_bench(dir: &Path, reference_moves: bool) -> Truth {
 }
 
 fn import(dir: &Path, extra: &[&str]) -> std::process::Output {
+    import_daq(dir, "daq.csv", extra)
+}
+
+/// `dlw import-recording` with the DAQ file `daq` of `dir`.
+fn import_daq(dir: &Path, daq: &str, extra: &[&str]) -> std::process::Output {
     let mut args = vec![
         "import-recording".to_owned(),
         "--daq".into(),
-        arg(&dir.join("daq.csv")),
+        arg(&dir.join(daq)),
         "--divider-ohm".into(),
         DIVIDER.to_string(),
         "--supply-v".into(),
         SUPPLY_V.to_string(),
-        "--stroke".into(),
-        "AI2".into(),
         "--stroke-mm-per-v".into(),
         MM_PER_V.to_string(),
         "--tracker".into(),
@@ -193,6 +196,9 @@ fn import(dir: &Path, extra: &[&str]) -> std::process::Output {
     ];
     if !extra.contains(&"--voltage") {
         args.extend(["--voltage".to_owned(), "AI0".to_owned()]);
+    }
+    if !extra.contains(&"--stroke") {
+        args.extend(["--stroke".to_owned(), "AI2".to_owned()]);
     }
     args.extend(extra.iter().map(|s| s.to_string()));
     dlw(&args)
@@ -295,6 +301,101 @@ fn bad_input_is_refused_with_nothing_written() {
     assert!(err.contains("AI9") && err.contains("Time,AI0"), "{err}");
     assert!(!dir.path().join("rec").exists());
     let o = import(dir.path(), &["--daq-format", "tdms"]);
-    assert!(String::from_utf8_lossy(&o.stderr).contains("not read yet"));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("not the TDMS tag"), "{err}");
     assert!(!dir.path().join("rec").exists());
+}
+
+/// Converts the bench's `daq.csv` into `daq.tdms` with npTDMS (`tests/scripts/tdms_fixture.py
+/// bench`): four segments; AI0 as i16 counts with a linear scale, AI1 f64, AI2 f32; time from
+/// `wf_increment`.
+fn write_bench_tdms(dir: &Path) {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scripts/tdms_fixture.py");
+    let out = std::process::Command::new("python3")
+        .arg(script)
+        .args(["bench", &arg(&dir.join("daq.csv")), &arg(&dir.join("daq.tdms")), "4"])
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run python3 ({e}): this test needs python3 with npTDMS (scripts/test.sh installs it)"));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The imported angle's RMSE against the truth over the valid rows (°).
+fn angle_rmse(rec: &Path, truth: &Truth) -> f64 {
+    let rec = dlw::recording::Recording::read(rec).unwrap();
+    let s = &rec.samples;
+    let rows = s.valid_angle_rows();
+    (rows
+        .iter()
+        .map(|&i| (s.angle_deg[i] - truth.angle_deg(s.time_s[i])).powi(2))
+        .sum::<f64>()
+        / rows.len() as f64)
+        .sqrt()
+}
+
+/// The same bench with its DAQ side as a TDMS file written by npTDMS (format chosen from the
+/// extension, channels named bare and as Group/Channel): the same acceptance as the CSV.
+#[test]
+fn a_tdms_bench_import_recovers_the_angle_and_the_clocks() {
+    let dir = tempfile::tempdir().unwrap();
+    let truth = write_bench(dir.path(), false);
+    write_bench_tdms(dir.path());
+    let o = import_daq(dir.path(), "daq.tdms", &["--stroke", "daq/AI2"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    eprintln!("{j}");
+    let offset = j["alignment"]["offset_s"].as_f64().unwrap();
+    let drift = j["alignment"]["drift_ppm"].as_f64().unwrap();
+    assert!((offset - OFFSET_S).abs() < 0.002, "offset {offset} s");
+    assert!((drift - DRIFT_PPM).abs() < 30.0, "drift {drift} ppm");
+    assert_eq!(j["samples"].as_u64(), Some((DURATION_S * DAQ_HZ) as u64));
+    let rmse = angle_rmse(&dir.path().join("rec"), &truth);
+    eprintln!("angle RMSE {rmse}°");
+    assert!(rmse < 0.3, "angle RMSE {rmse}°");
+    let rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();
+    assert!(
+        (rec.rig.sample_hz - DAQ_HZ).abs() < 1e-6,
+        "{}",
+        rec.rig.sample_hz
+    );
+}
+
+/// Bad TDMS input: a file cut mid-segment, a channel that is not there, DAQmx raw data; an
+/// error that says so, and nothing written.
+#[test]
+fn bad_tdms_is_refused_with_nothing_written() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench(dir.path(), false);
+    write_bench_tdms(dir.path());
+    let bytes = std::fs::read(dir.path().join("daq.tdms")).unwrap();
+    let refused = |daq: &str, extra: &[&str], wanted: &[&str]| {
+        let o = import_daq(dir.path(), daq, extra);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{daq} {extra:?} was accepted");
+        for w in wanted {
+            assert!(err.contains(w), "{daq} {extra:?}: {err:?} lacks {w:?}");
+        }
+        assert!(!dir.path().join("rec").exists(), "{daq} {extra:?} wrote");
+    };
+    std::fs::write(dir.path().join("cut.tdms"), &bytes[..bytes.len() * 3 / 8]).unwrap();
+    refused("cut.tdms", &[], &["truncated mid-segment"]);
+    refused(
+        "daq.tdms",
+        &["--voltage", "AI9"],
+        &["AI9", "daq/AI0, daq/AI1, daq/AI2"],
+    );
+    // DAQmx raw data: AI0's raw data index made DAQmx's format-changing scaler header.
+    let path = b"/'daq'/'AI0'";
+    let at = bytes
+        .windows(path.len())
+        .position(|w| w == path)
+        .expect("AI0's path")
+        + path.len();
+    let mut daqmx = bytes.clone();
+    daqmx[at..at + 4].copy_from_slice(&0x6912_0000u32.to_le_bytes());
+    std::fs::write(dir.path().join("daqmx.tdms"), daqmx).unwrap();
+    refused("daqmx.tdms", &[], &["DAQmx raw data", "export scaled data"]);
 }

@@ -63,7 +63,9 @@ const I32_INTERCEPT: f64 = 0.25;
 fn segment_values(k: usize, n: usize) -> [Vec<f64>; 4] {
     let x = |i: usize| (k * 1000 + i) as f64;
     [
-        (0..n).map(|i| (0.37 * x(i)).sin() * 4.2 + 1e-9 * x(i)).collect(),
+        (0..n)
+            .map(|i| (0.37 * x(i)).sin() * 4.2 + 1e-9 * x(i))
+            .collect(),
         (0..n)
             .map(|i| f64::from(((0.11 * x(i)).cos() * 3.3) as f32))
             .collect(),
@@ -126,8 +128,14 @@ fn values_equal_what_nptdms_wrote() {
             all.extend(seg);
         }
     }
-    want[2] = want[2].iter().map(|c| c * I16_SLOPE + I16_INTERCEPT).collect();
-    want[3] = want[3].iter().map(|c| c * I32_SLOPE + I32_INTERCEPT).collect();
+    want[2] = want[2]
+        .iter()
+        .map(|c| c * I16_SLOPE + I16_INTERCEPT)
+        .collect();
+    want[3] = want[3]
+        .iter()
+        .map(|c| c * I32_SLOPE + I32_INTERCEPT)
+        .collect();
     let theirs = nptdms_values(dir.path(), &file);
     for (name, want) in ["g/f64", "f32", "i16", "g/i32"].iter().zip(&want) {
         let id = tdms.find(name).unwrap();
@@ -141,7 +149,11 @@ fn values_equal_what_nptdms_wrote() {
     }
     let wf = tdms.waveform(tdms.find("g/f64").unwrap());
     assert_eq!(wf.increment_s, Some(0.001));
-    assert_eq!(wf.samples_per_write, Some(200), "the last segment's wf_samples");
+    assert_eq!(
+        wf.samples_per_write,
+        Some(200),
+        "the last segment's wf_samples"
+    );
     assert_eq!(
         wf.start_time,
         Some(Timestamp {
