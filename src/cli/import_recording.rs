@@ -1,7 +1,7 @@
 //! `dlw import-recording --daq FILE --voltage CH[,CH2] --divider-ohm R[,R2] --supply-v V
 //! --stroke CH --stroke-mm-per-v K --tracker FILE [--tool N] [--reference-tool M]
-//! [--tracker-hz 40] -o REC [--force] [--json]`: a DAQ's CSV export or TDMS file and an NDI
-//! Aurora log become one recording folder (`docs/import.md`).
+//! [--tracker-hz 40] -o REC [--force] [--json]`: a DAQ's CSV export, TDMS or LVM file and an
+//! NDI Aurora log become one recording folder (`docs/import.md`).
 
 use std::path::PathBuf;
 
@@ -11,10 +11,11 @@ use dlw::import::{import, DaqFormat, ImportRequest};
 /// Arguments of `dlw import-recording`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The DAQ file: a CSV export with a header row, or NI TDMS.
+    /// The DAQ file: a CSV export with a header row, NI TDMS, or a LabVIEW .lvm file.
     #[arg(long)]
     daq: PathBuf,
-    /// The DAQ file's format: csv or tdms (default: tdms for a .tdms file, else csv).
+    /// The DAQ file's format: csv, tdms or lvm (default: from a .tdms or .lvm extension, else
+    /// csv).
     #[arg(long)]
     daq_format: Option<String>,
     /// The sensor voltage channel(s) by header name (TDMS: Group/Channel or Channel), sensor 1

@@ -1,5 +1,5 @@
-//! Importing real bench files (issue 18): a DAQ's file (a CSV export, [`daq_csv`], or NI's TDMS,
-//! [`tdms`]) and an NDI Aurora tracker log ([`ndi`]) become one recording on the DAQ's clock: the bending angle from the
+//! Importing real bench files (issue 18): a DAQ's file (a CSV export, [`daq_csv`], NI's TDMS,
+//! [`tdms`], or a LabVIEW measurement file, [`lvm`]) and an NDI Aurora tracker log ([`ndi`]) become one recording on the DAQ's clock: the bending angle from the
 //! tip tool's orientation ([`angle`]), the clocks aligned ([`align`]), the angle resampled onto
 //! the DAQ's samples (never across a gap of more than [`MAX_GAP_FRAMES`] missing frames: such
 //! rows are written with `tracker_valid = 0`), and an `[import]` table saying where it all came
@@ -8,6 +8,7 @@
 pub mod align;
 pub mod angle;
 pub mod daq_csv;
+pub mod lvm;
 pub mod ndi;
 pub mod tdms;
 
@@ -33,6 +34,8 @@ pub enum DaqFormat {
     Csv,
     /// NI's TDMS ([`tdms`]).
     Tdms,
+    /// A LabVIEW measurement file ([`lvm`]).
+    Lvm,
 }
 
 impl DaqFormat {
@@ -44,16 +47,18 @@ impl DaqFormat {
         match name.to_ascii_lowercase().as_str() {
             "csv" => Ok(DaqFormat::Csv),
             "tdms" => Ok(DaqFormat::Tdms),
+            "lvm" => Ok(DaqFormat::Lvm),
             _ => Err(ImportError::Options(format!(
-                "--daq-format {name:?} is not one of csv, tdms"
+                "--daq-format {name:?} is not one of csv, tdms, lvm"
             ))),
         }
     }
 
-    /// The format a file's extension says (`.tdms`), CSV otherwise.
+    /// The format a file's extension says (`.tdms`, `.lvm`), CSV otherwise.
     pub fn from_path(path: &std::path::Path) -> Self {
         match path.extension().and_then(|e| e.to_str()) {
             Some(e) if e.eq_ignore_ascii_case("tdms") => DaqFormat::Tdms,
+            Some(e) if e.eq_ignore_ascii_case("lvm") => DaqFormat::Lvm,
             _ => DaqFormat::Csv,
         }
     }
@@ -68,6 +73,9 @@ pub enum DaqError {
     /// A TDMS file.
     #[error(transparent)]
     Tdms(#[from] TdmsError),
+    /// A LabVIEW measurement file.
+    #[error(transparent)]
+    Lvm(#[from] lvm::LvmError),
     /// A text format that is not UTF-8.
     #[error("the DAQ file is not UTF-8 text ({0}); is --daq-format right?")]
     NotText(std::str::Utf8Error),
@@ -378,5 +386,9 @@ fn read_daq(req: &ImportRequest<'_>, names: &[&str]) -> Result<DaqTable, DaqErro
             DaqTable::parse(text, names, time_column, rate_hz)?
         }
         DaqFormat::Tdms => tdms::daq_table(req.daq.1, names, time_column, rate_hz)?,
+        DaqFormat::Lvm => {
+            let text = std::str::from_utf8(req.daq.1).map_err(DaqError::NotText)?;
+            lvm::daq_table(text, names, time_column, rate_hz)?
+        }
     })
 }
