@@ -190,10 +190,11 @@ fn import_daq(dir: &Path, daq: &str, extra: &[&str]) -> std::process::Output {
         MM_PER_V.to_string(),
         "--tracker".into(),
         arg(&dir.join("aurora.csv")),
-        "-o".into(),
-        arg(&dir.join("rec")),
         "--json".into(),
     ];
+    if !extra.contains(&"-o") {
+        args.extend(["-o".to_owned(), arg(&dir.join("rec"))]);
+    }
     if !extra.contains(&"--voltage") {
         args.extend(["--voltage".to_owned(), "AI0".to_owned()]);
     }
@@ -398,4 +399,112 @@ fn bad_tdms_is_refused_with_nothing_written() {
     daqmx[at..at + 4].copy_from_slice(&0x6912_0000u32.to_le_bytes());
     std::fs::write(dir.path().join("daqmx.tdms"), daqmx).unwrap();
     refused("daqmx.tdms", &[], &["DAQmx raw data", "export scaled data"]);
+}
+
+/// Converts the bench's `daq.csv` into a LabVIEW measurement file `name`: separator `sep`
+/// (`Tab` or `Comma`), decimal separator `decimal`, `segments` segments each with its header,
+/// and the time in an `X_Value` column, or (with `x_column` false) empty `X_Value` fields and
+/// the time from each segment's `X0` and `Delta_X`.
+fn write_bench_lvm(
+    dir: &Path,
+    name: &str,
+    sep: &str,
+    decimal: char,
+    x_column: bool,
+    segments: usize,
+) {
+    let csv = std::fs::read_to_string(dir.join("daq.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    let s = if sep == "Tab" { "\t" } else { "," };
+    let num = |v: &str| v.replace('.', &decimal.to_string());
+    let mut out = format!(
+        "LabVIEW Measurement{s}\nWriter_Version{s}2\nReader_Version{s}2\nSeparator{s}{sep}\n\
+         Decimal_Separator{s}{decimal}\nMulti_Headings{s}Yes\nX_Columns{s}{}\n\
+         Time_Pref{s}Relative\nOperator{s}bench\nDate{s}2026/11/25\nTime{s}18:00:00\n\
+         ***End_of_Header***{s}\n{s}\n",
+        if x_column { "One" } else { "No" }
+    );
+    let per = rows.len().div_ceil(segments);
+    for chunk in rows.chunks(per) {
+        let x0 = num(chunk[0][0]);
+        let dx = num(&format!("{}", 1.0 / DAQ_HZ));
+        writeln!(out, "Channels{s}3{s}{s}{s}").unwrap();
+        let n = chunk.len();
+        writeln!(out, "Samples{s}{n}{s}{n}{s}{n}{s}").unwrap();
+        writeln!(out, "Date{s}2026/11/25{s}2026/11/25{s}2026/11/25{s}").unwrap();
+        writeln!(out, "X_Dimension{s}Time{s}Time{s}Time{s}").unwrap();
+        writeln!(out, "X0{s}{x0}{s}{x0}{s}{x0}{s}").unwrap();
+        writeln!(out, "Delta_X{s}{dx}{s}{dx}{s}{dx}{s}").unwrap();
+        writeln!(out, "***End_of_Header***{s}{s}{s}{s}").unwrap();
+        writeln!(out, "X_Value{s}AI0{s}AI1{s}AI2{s}Comment").unwrap();
+        for r in chunk {
+            let t = if x_column { num(r[0]) } else { String::new() };
+            writeln!(out, "{t}{s}{}{s}{}{s}{}", num(r[1]), num(r[2]), num(r[3])).unwrap();
+        }
+    }
+    std::fs::write(dir.join(name), out).unwrap();
+}
+
+/// The bench's DAQ side as LabVIEW measurement files written here by hand: tab-separated with
+/// a decimal point and an X column; comma-separated with a decimal point, two segments; tab-
+/// separated with a decimal comma, no X column (time from X0 and Delta_X), three segments.
+/// Each imports to the CSV's acceptance.
+#[test]
+fn lvm_bench_imports_recover_the_angle_and_the_clocks() {
+    let dir = tempfile::tempdir().unwrap();
+    let truth = write_bench(dir.path(), false);
+    for (k, (sep, decimal, x, segments)) in [
+        ("Tab", '.', true, 1),
+        ("Comma", '.', true, 2),
+        ("Tab", ',', false, 3),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let name = format!("daq{k}.lvm");
+        write_bench_lvm(dir.path(), &name, sep, decimal, x, segments);
+        let rec = format!("rec{k}");
+        let o = import_daq(dir.path(), &name, &["-o", &arg(&dir.path().join(&rec))]);
+        let what = format!("{sep} {decimal:?} X column {x}, {segments} segment(s)");
+        assert!(
+            o.status.success(),
+            "{what}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let offset = j["alignment"]["offset_s"].as_f64().unwrap();
+        let drift = j["alignment"]["drift_ppm"].as_f64().unwrap();
+        let rmse = angle_rmse(&dir.path().join(&rec), &truth);
+        eprintln!("{what}: offset {offset} s, drift {drift} ppm, angle RMSE {rmse}°");
+        assert!(
+            (offset - OFFSET_S).abs() < 0.002,
+            "{what}: offset {offset} s"
+        );
+        assert!(
+            (drift - DRIFT_PPM).abs() < 30.0,
+            "{what}: drift {drift} ppm"
+        );
+        assert!(rmse < 0.3, "{what}: angle RMSE {rmse}°");
+        assert_eq!(
+            j["samples"].as_u64(),
+            Some((DURATION_S * DAQ_HZ) as u64),
+            "{what}"
+        );
+    }
+    // An unknown channel lists the columns there are; nothing is written.
+    let o = import_daq(
+        dir.path(),
+        "daq2.lvm",
+        &["--voltage", "AI9", "-o", &arg(&dir.path().join("bad"))],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("AI9") && err.contains("AI0, AI1, AI2"),
+        "{err}"
+    );
+    assert!(!dir.path().join("bad").exists());
 }
