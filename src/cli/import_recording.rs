@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use dlw::import::{import, DaqFormat, ImportRequest};
+use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod};
 
 /// Arguments of `dlw import-recording`.
 #[derive(Debug, clap::Args)]
@@ -55,9 +55,13 @@ pub struct Args {
     /// The still start the rest axis is averaged over (s).
     #[arg(long, default_value_t = 2.0)]
     rest_s: f64,
-    /// How the clocks are aligned: auto (a sync channel is not supported yet).
+    /// How the clocks are aligned: auto (cross-correlation of the angle with sensor 1), or a DAQ
+    /// channel carrying a TTL sync pulse that the tracker log also holds (--tracker-sync-column).
     #[arg(long, default_value = "auto")]
     sync: String,
+    /// With --sync CH: the tracker log's column holding the same TTL level per frame.
+    #[arg(long)]
+    tracker_sync_column: Option<String>,
     /// Output recording folder (must not exist or be empty, unless --force).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
@@ -75,12 +79,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Some(name) => DaqFormat::from_name(name)?,
         None => DaqFormat::from_path(&args.daq),
     };
-    if args.sync != "auto" {
-        anyhow::bail!(
-            "--sync {:?}: only --sync auto (cross-correlation of the angle with the sensor) is supported yet",
-            args.sync
-        );
-    }
+    let sync = match (args.sync.as_str(), &args.tracker_sync_column) {
+        ("auto", None) => SyncMethod::Auto,
+        ("auto", Some(_)) => {
+            anyhow::bail!("--tracker-sync-column is for --sync CH (a sync pulse channel); --sync auto does not use it")
+        }
+        (channel, Some(column)) => SyncMethod::Pulse {
+            daq_channel: channel.to_owned(),
+            tracker_column: column.clone(),
+        },
+        (channel, None) => anyhow::bail!(
+            "--sync {channel:?} needs --tracker-sync-column NAME: the tracker log's column holding the same TTL pulse (NDI's own logs have none; docs/import.md)"
+        ),
+    };
     let daq_bytes = dlw::output::read_limited_bytes(&args.daq, MAX_INPUT_BYTES)
         .with_context(|| format!("reading {}", args.daq.display()))?;
     let tracker_text = dlw::output::read_limited(&args.tracker, MAX_INPUT_BYTES)
@@ -103,6 +114,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         reference_tool: args.reference_tool,
         tracker_hz: args.tracker_hz,
         rest_s: args.rest_s,
+        sync,
     };
     let (recording, summary) = import(&request)?;
     dlw::finite::check(&summary)?;
@@ -119,7 +131,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         let a = &summary.alignment;
         println!(
-            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm (r = {:.3}); tracker: {} frames, {} missing, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)",
+            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm ({}); tracker: {} frames, {} missing, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)",
             args.output.display(),
             summary.samples,
             summary.duration_s,
@@ -127,7 +139,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             a.offset_uncertainty_s,
             a.drift_ppm,
             a.drift_uncertainty_ppm,
-            a.correlation,
+            match (a.correlation, a.sync_edges) {
+                (Some(r), _) => format!("r = {r:.3}"),
+                (None, Some(n)) => format!("{n} sync edges"),
+                (None, None) => String::new(),
+            },
             summary.tracker.frames,
             summary.tracker.missing_frames,
             summary.tracker.out_of_plane_rms_deg,

@@ -10,6 +10,7 @@ pub mod angle;
 pub mod daq_csv;
 pub mod lvm;
 pub mod ndi;
+pub mod sync;
 pub mod tdms;
 
 pub use ndi::{NdiError, ToolFrame, TrackerLog};
@@ -17,9 +18,10 @@ pub use ndi::{NdiError, ToolFrame, TrackerLog};
 use sha2::{Digest, Sha256};
 
 use crate::recording::{ImportInfo, ImportSource, Recording, Rig, Samples};
-use align::{AlignError, Alignment};
+use align::AlignError;
 use angle::{AngleError, BendingAngles};
 use daq_csv::{DaqCsvError, DaqTable};
+use sync::SyncError;
 use tdms::TdmsError;
 
 /// The most missing tracker frames interpolated across.
@@ -84,16 +86,16 @@ pub enum DaqError {
 /// Why an import failed.
 #[derive(Debug, thiserror::Error)]
 pub enum ImportError {
-    /// The DAQ file.
-    #[error("{path}: {source}")]
+    /// The DAQ file (its error is the source, printed after the path in an error chain).
+    #[error("{path}")]
     Daq {
         /// The file.
         path: String,
         /// Why.
         source: DaqError,
     },
-    /// The tracker log.
-    #[error("{path}: {source}")]
+    /// The tracker log (its error is the source, printed after the path in an error chain).
+    #[error("{path}")]
     Tracker {
         /// The file.
         path: String,
@@ -101,11 +103,14 @@ pub enum ImportError {
         source: NdiError,
     },
     /// The bending angle.
-    #[error("{0}")]
+    #[error(transparent)]
     Angle(#[from] AngleError),
-    /// The clocks.
-    #[error("{0}")]
+    /// The clocks (`--sync auto`).
+    #[error(transparent)]
     Align(#[from] AlignError),
+    /// The clocks (`--sync CH`).
+    #[error(transparent)]
+    Sync(#[from] SyncError),
     /// Bad options.
     #[error("{0}")]
     Options(String),
@@ -140,6 +145,8 @@ pub struct ImportRequest<'a> {
     pub tracker_hz: f64,
     /// The still start the rest axis is averaged over (s of tracker time).
     pub rest_s: f64,
+    /// How the clocks are aligned.
+    pub sync: SyncMethod,
 }
 
 /// What an import found, as `dlw import-recording --json` prints it.
@@ -170,10 +177,28 @@ pub struct AlignmentJson {
     pub offset_uncertainty_s: f64,
     /// Standard error (ppm).
     pub drift_uncertainty_ppm: f64,
-    /// `auto`.
+    /// `auto` (cross-correlation) or `pulse` (a sync channel).
     pub method: &'static str,
-    /// The whole-recording correlation.
-    pub correlation: f64,
+    /// `auto`: the whole-recording correlation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub correlation: Option<f64>,
+    /// `pulse`: the sync edges paired.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sync_edges: Option<usize>,
+}
+
+/// How the clocks are aligned.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SyncMethod {
+    /// Cross-correlating the angle with sensor 1's voltage ([`align`]).
+    Auto,
+    /// A TTL pulse on a DAQ channel and in a tracker log column ([`sync`]).
+    Pulse {
+        /// The DAQ channel.
+        daq_channel: String,
+        /// The tracker log's column.
+        tracker_column: String,
+    },
 }
 
 /// `tracker` in the JSON.
@@ -227,7 +252,11 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         )));
     }
     let mut names: Vec<&str> = req.voltage_channels.iter().map(String::as_str).collect();
+    let stroke_at = names.len();
     names.push(&req.stroke.0);
+    if let SyncMethod::Pulse { daq_channel, .. } = &req.sync {
+        names.push(daq_channel);
+    }
     let daq = read_daq(req, &names).map_err(|source| ImportError::Daq {
         path: req.daq.0.to_owned(),
         source,
@@ -247,8 +276,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         rest_frames,
     )?;
     let rate_hz = daq.rate_hz();
-    let dt_s = 1.0 / rate_hz;
-    let alignment: Alignment = align::auto(&log.tau_s, &angles.angle_deg, &daq.channels[0], dt_s)?;
+    let alignment = clocks(req, &log, &angles, &daq)?;
 
     // The angle on the DAQ's samples; rows beyond the log or across a gap are invalid.
     let n = daq.time_s.len();
@@ -279,7 +307,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         angle_deg.push(value.unwrap_or(0.0));
         valid.push(value.is_some());
     }
-    let stroke_mm: Vec<f64> = daq.channels[names.len() - 1]
+    let stroke_mm: Vec<f64> = daq.channels[stroke_at]
         .iter()
         .map(|v| v * req.stroke.1)
         .collect();
@@ -316,7 +344,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         time_s: daq.time_s.clone(),
         stroke_mm,
         angle_deg,
-        volts: daq.channels[..names.len() - 1].to_vec(),
+        volts: daq.channels[..stroke_at].to_vec(),
         tracker_valid: if invalid_rows > 0 { valid } else { Vec::new() },
     };
     let info = ImportInfo {
@@ -335,7 +363,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         ],
         tool: req.tool as u32,
         reference_tool: req.reference_tool.map(|t| t as u32),
-        alignment_method: "auto".into(),
+        alignment_method: alignment.method.into(),
         offset_s: alignment.offset_s,
         drift_ppm: alignment.drift_ppm,
         offset_uncertainty_s: alignment.offset_uncertainty_s,
@@ -357,14 +385,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
     let summary = ImportSummary {
         samples: n,
         duration_s: daq.time_s[n - 1],
-        alignment: AlignmentJson {
-            offset_s: alignment.offset_s,
-            drift_ppm: alignment.drift_ppm,
-            offset_uncertainty_s: alignment.offset_uncertainty_s,
-            drift_uncertainty_ppm: alignment.drift_uncertainty_ppm,
-            method: "auto",
-            correlation: alignment.correlation,
-        },
+        alignment,
         tracker: TrackerJson {
             frames,
             missing_frames: missing,
@@ -391,4 +412,44 @@ fn read_daq(req: &ImportRequest<'_>, names: &[&str]) -> Result<DaqTable, DaqErro
             lvm::daq_table(text, names, time_column, rate_hz)?
         }
     })
+}
+
+/// The clocks, by the request's method: the sync channel is the DAQ table's last.
+fn clocks(
+    req: &ImportRequest<'_>,
+    log: &TrackerLog,
+    angles: &BendingAngles,
+    daq: &DaqTable,
+) -> Result<AlignmentJson, ImportError> {
+    let dt_s = 1.0 / daq.rate_hz();
+    match &req.sync {
+        SyncMethod::Auto => {
+            let a = align::auto(&log.tau_s, &angles.angle_deg, &daq.channels[0], dt_s)?;
+            Ok(AlignmentJson {
+                offset_s: a.offset_s,
+                drift_ppm: a.drift_ppm,
+                offset_uncertainty_s: a.offset_uncertainty_s,
+                drift_uncertainty_ppm: a.drift_uncertainty_ppm,
+                method: "auto",
+                correlation: Some(a.correlation),
+                sync_edges: None,
+            })
+        }
+        SyncMethod::Pulse { tracker_column, .. } => {
+            let levels = sync::tracker_column(req.tracker.1, tracker_column)?;
+            let daq_levels = daq.channels.last().map_or(&[][..], Vec::as_slice);
+            let daq_edges = sync::rising_edges(&daq.time_s, daq_levels, "DAQ")?;
+            let tracker_edges = sync::rising_edges(&log.tau_s, &levels, "tracker")?;
+            let a = sync::align(&daq_edges, &tracker_edges, 1.0 / req.tracker_hz)?;
+            Ok(AlignmentJson {
+                offset_s: a.offset_s,
+                drift_ppm: a.drift_ppm,
+                offset_uncertainty_s: a.offset_uncertainty_s,
+                drift_uncertainty_ppm: a.drift_uncertainty_ppm,
+                method: "pulse",
+                correlation: None,
+                sync_edges: Some(a.edges),
+            })
+        }
+    }
 }

@@ -867,20 +867,21 @@ impl LeadIn {
             end,
             file_bytes: bytes.len(),
         };
-        let lead = bytes
-            .get(offset..offset + LEAD_IN_BYTES)
-            .ok_or_else(|| truncated((offset + LEAD_IN_BYTES) as u64))?;
-        let tag: &[u8] = &lead[..4];
+        // The tag first, so that a short file that is not TDMS is not called truncated.
+        let tag = &bytes[offset..bytes.len().min(offset + 4)];
         if tag == TAG_INDEX {
             return Err(TdmsError::IndexFile);
         }
-        if tag != TAG_DATA {
+        if !TAG_DATA.starts_with(tag) {
             return Err(TdmsError::NotTdms {
                 segment,
                 offset,
                 found: String::from_utf8_lossy(tag).into_owned(),
             });
         }
+        let lead = bytes
+            .get(offset..offset + LEAD_IN_BYTES)
+            .ok_or_else(|| truncated((offset + LEAD_IN_BYTES) as u64))?;
         let toc = u32::from_le_bytes([lead[4], lead[5], lead[6], lead[7]]);
         let big_endian = toc & TOC_BIG_ENDIAN != 0;
         let mut c = Cursor {
@@ -1485,6 +1486,9 @@ mod tests {
                 "cut at {cut}: {err}"
             );
         }
+        // A short file that is not TDMS is called that, not truncated.
+        let err = TdmsFile::parse(b"x").unwrap_err();
+        assert!(matches!(err, TdmsError::NotTdms { .. }), "{err}");
         // A value count far beyond the segment.
         let huge = meta(&[("/'g'/'a'", Some((10, u64::MAX / 2)), &[])]);
         let err = TdmsFile::parse(&segment(ALL, &huge, &raw)).unwrap_err();
