@@ -643,3 +643,59 @@ fn a_sync_pulse_aligns_the_clocks() {
     eprintln!("AI1 as the sync channel: {err}");
     assert!(!out.exists());
 }
+
+/// `--rate-hz 100` on the 500 Hz bench: 100 rows a second, each sensor voltage the mean of the
+/// DAQ's five samples around it, the angle still within 0.3°; rates out of bounds refused with
+/// nothing written.
+#[test]
+fn rate_hz_resamples_the_daq() {
+    let dir = tempfile::tempdir().unwrap();
+    let truth = write_bench(dir.path(), false);
+    let o = import(dir.path(), &["--rate-hz", "100"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();
+    assert_eq!(rec.rig.sample_hz, 100.0);
+    let s = &rec.samples;
+    assert_eq!(s.time_s.len(), (DURATION_S * 100.0) as usize);
+    let daq: Vec<(f64, f64)> = std::fs::read_to_string(dir.path().join("daq.csv"))
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            (f[0], f[1])
+        })
+        .collect();
+    for j in [1, 777, 12_345, 23_998] {
+        let t = j as f64 / 100.0;
+        let inside: Vec<f64> = daq
+            .iter()
+            .filter(|(u, _)| *u >= t - 0.005 - 1e-9 && *u < t + 0.005 - 1e-9)
+            .map(|(_, v)| *v)
+            .collect();
+        assert_eq!(inside.len(), 5, "row {j}");
+        let mean = inside.iter().sum::<f64>() / 5.0;
+        assert!(
+            (s.volts[0][j] - mean).abs() < 1e-6,
+            "row {j}: {} against {mean}",
+            s.volts[0][j]
+        );
+    }
+    let rmse = angle_rmse(&dir.path().join("rec"), &truth);
+    eprintln!("angle RMSE at 100 Hz {rmse}°");
+    assert!(rmse < 0.3, "angle RMSE {rmse}°");
+    let out = dir.path().join("bad");
+    for (hz, says) in [
+        ("0", "not a rate"),
+        ("5001", "at most 10 times"),
+        ("0.1", "leaves 24 samples"),
+    ] {
+        let o = import(dir.path(), &["--rate-hz", hz, "-o", &arg(&out)]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success() && err.contains(says),
+            "--rate-hz {hz}: {err}"
+        );
+        assert!(!out.exists());
+    }
+}

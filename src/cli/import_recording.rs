@@ -62,6 +62,10 @@ pub struct Args {
     /// With --sync CH: the tracker log's column holding the same TTL level per frame.
     #[arg(long)]
     tracker_sync_column: Option<String>,
+    /// The recording's sample rate (Hz; default: the DAQ's): the DAQ's channels are averaged
+    /// down to it, or interpolated up (at most 10 times the DAQ's rate).
+    #[arg(long)]
+    rate_hz: Option<f64>,
     /// Output recording folder (must not exist or be empty, unless --force).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
@@ -115,6 +119,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         tracker_hz: args.tracker_hz,
         rest_s: args.rest_s,
         sync,
+        rate_hz: args.rate_hz,
     };
     let (recording, summary) = import(&request)?;
     dlw::finite::check(&summary)?;

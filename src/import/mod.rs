@@ -10,6 +10,7 @@ pub mod angle;
 pub mod daq_csv;
 pub mod lvm;
 pub mod ndi;
+pub mod resample;
 pub mod sync;
 pub mod tdms;
 
@@ -111,6 +112,9 @@ pub enum ImportError {
     /// The clocks (`--sync CH`).
     #[error(transparent)]
     Sync(#[from] SyncError),
+    /// `--rate-hz`.
+    #[error(transparent)]
+    Resample(#[from] resample::ResampleError),
     /// Bad options.
     #[error("{0}")]
     Options(String),
@@ -147,6 +151,8 @@ pub struct ImportRequest<'a> {
     pub rest_s: f64,
     /// How the clocks are aligned.
     pub sync: SyncMethod,
+    /// The recording's rate, when not the DAQ's (Hz).
+    pub rate_hz: Option<f64>,
 }
 
 /// What an import found, as `dlw import-recording --json` prints it.
@@ -275,8 +281,14 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         log.tools.get(1).map(Vec::as_slice),
         rest_frames,
     )?;
-    let rate_hz = daq.rate_hz();
     let alignment = clocks(req, &log, &angles, &daq)?;
+    let (daq, rate_hz) = match req.rate_hz {
+        Some(hz) => (resample::resample(&daq, hz)?, hz),
+        None => {
+            let hz = daq.rate_hz();
+            (daq, hz)
+        }
+    };
 
     // The angle on the DAQ's samples; rows beyond the log or across a gap are invalid.
     let n = daq.time_s.len();
