@@ -1,4 +1,4 @@
-//! dlw's TDMS reader (`src/import/tdms.rs`) on files from another writer: Python's npTDMS
+//! dlw's TDMS reader (`src/import/tdms/`) on files from another writer: Python's npTDMS
 //! (`tests/scripts/tdms_fixture.py`, installed by `scripts/test.sh`) writes f64, f32, and i16
 //! and i32 with linear scales over several segments, with waveform properties; the values
 //! dlw reads must equal the ones written, and the ones npTDMS reads back. npTDMS cannot write

@@ -108,6 +108,9 @@ pub enum LvmError {
         /// The value.
         value: f64,
     },
+    /// No channel was asked for.
+    #[error("no LVM channel was asked for")]
+    NothingAsked,
     /// Fewer rows than an import needs.
     #[error("the LVM file has {rows} data rows; an import needs at least {min}")]
     TooShort {
@@ -166,6 +169,9 @@ pub fn daq_table(
     time_column: Option<&str>,
     rate_hz: Option<f64>,
 ) -> Result<DaqTable, LvmError> {
+    if channels.is_empty() {
+        return Err(LvmError::NothingAsked);
+    }
     if let Some(hz) = rate_hz {
         if !(hz.is_finite() && hz > 0.0) {
             return Err(LvmError::Rate {
@@ -195,6 +201,13 @@ pub fn daq_table(
             let (names_line, names) =
                 next_nonempty(&mut lines).ok_or(LvmError::NoColumns { line })?;
             columns = Some(locate(&format, names_line, names, channels, time_column)?);
+            row_in_segment = 0;
+            continue;
+        }
+        if first == X_VALUE {
+            // Column names without a segment header before them: no X0 or Delta_X.
+            timing = SegmentTiming::default();
+            columns = Some(locate(&format, line, l, channels, time_column)?);
             row_in_segment = 0;
             continue;
         }
