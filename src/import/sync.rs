@@ -140,7 +140,7 @@ pub fn rising_edges(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
             (a.min(v), b.max(v))
         });
-    if !(hi > lo) {
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         return Err(SyncError::Flat {
             what,
             level: if lo.is_finite() { lo } else { 0.0 },
@@ -178,7 +178,7 @@ pub fn align(daq_s: &[f64], tracker_s: &[f64], frame_s: f64) -> Result<PulseAlig
     let slope = sxy / sxx;
     let intercept = my - slope * mx;
     let drift_ppm = (slope - 1.0) * 1e6;
-    if !(drift_ppm.abs() <= MAX_DRIFT_PPM) {
+    if drift_ppm.is_nan() || drift_ppm.abs() > MAX_DRIFT_PPM {
         return Err(SyncError::Drift { drift_ppm });
     }
     let allowed = 1.5 * frame_s;
@@ -190,7 +190,7 @@ pub fn align(daq_s: &[f64], tracker_s: &[f64], frame_s: f64) -> Result<PulseAlig
     if let Some((edge, r)) = residuals
         .iter()
         .enumerate()
-        .find(|(_, r)| !(r.abs() <= allowed))
+        .find(|(_, r)| r.is_nan() || r.abs() > allowed)
     {
         return Err(SyncError::Mismatch {
             edge: edge + 1,

@@ -83,7 +83,7 @@ fn time_base(
     if let Some(dt) = increments[0] {
         for (k, inc) in increments.iter().enumerate().skip(1) {
             let other = inc.unwrap_or(f64::NAN);
-            if !((other - dt).abs() <= INCREMENT_TOLERANCE * dt.abs()) {
+            if other.is_nan() || (other - dt).abs() > INCREMENT_TOLERANCE * dt.abs() {
                 return Err(TdmsError::Increments {
                     first: file.name(ids[0]),
                     first_s: dt,

@@ -516,9 +516,12 @@ mod tests {
         T(&'s str),
     }
 
+    /// A test object: its path, its raw data (type code, values) or none, its properties.
+    type TestObject<'s> = (&'s str, Option<(u32, u64)>, &'s [(&'s str, P<'s>)]);
+
     /// Metadata listing `objects` as (path, Some((type code, values)) or None, properties);
     /// type code 0 writes "same as before".
-    fn meta(objects: &[(&str, Option<(u32, u64)>, &[(&str, P)])]) -> Vec<u8> {
+    fn meta(objects: &[TestObject<'_>]) -> Vec<u8> {
         let mut m = (objects.len() as u32).to_le_bytes().to_vec();
         for (path, raw, props) in objects {
             m.extend(string(path));
