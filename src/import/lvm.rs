@@ -492,6 +492,27 @@ mod tests {
         }
     }
 
+    /// `X_Columns` `Multi`: each channel's time is the `X_Value` column before it.
+    #[test]
+    fn multi_x_columns_give_each_channel_its_own_time() {
+        let mut text = String::from(
+            "LabVIEW Measurement\nSeparator\tTab\nDecimal_Separator\t.\nX_Columns\tMulti\n***End_of_Header***\n\nChannels\t2\nX0\t0\t0\nDelta_X\t1\t1\n***End_of_Header***\nX_Value\tA\tX_Value\tB\tComment\n",
+        );
+        for i in 0..120 {
+            text += &format!(
+                "{}\t{i}\t{}\t{}\n",
+                i as f64 * 0.01,
+                5.0 + i as f64 * 0.02,
+                -i
+            );
+        }
+        let a = daq_table(&text, &["A"], None, None).unwrap();
+        assert!((a.time_s[100] - 1.0).abs() < 1e-12, "{}", a.time_s[100]);
+        let b = daq_table(&text, &["B"], None, None).unwrap();
+        assert!((b.time_s[100] - 2.0).abs() < 1e-12, "{}", b.time_s[100]);
+        assert_eq!(b.channels[0][7], -7.0);
+    }
+
     #[test]
     fn bad_files_name_the_problem() {
         let err = daq_table("time,a\n1,2\n", &["a"], None, None).unwrap_err();
