@@ -232,31 +232,7 @@ fn sha256(bytes: &[u8]) -> String {
 /// # Errors
 /// [`ImportError`].
 pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), ImportError> {
-    if req.voltage_channels.is_empty() || req.voltage_channels.len() > 2 {
-        return Err(ImportError::Options(format!(
-            "--voltage names {} channels; a joint has 1 or 2 sensors",
-            req.voltage_channels.len()
-        )));
-    }
-    if req.divider_ohm.len() != req.voltage_channels.len() {
-        return Err(ImportError::Options(format!(
-            "--divider-ohm gives {} resistors for {} voltage channels",
-            req.divider_ohm.len(),
-            req.voltage_channels.len()
-        )));
-    }
-    if !(req.supply_v.is_finite() && req.supply_v > 0.0) {
-        return Err(ImportError::Options(format!(
-            "--supply-v {} is not a supply voltage (finite and above 0)",
-            req.supply_v
-        )));
-    }
-    if !(req.stroke.1.is_finite() && req.stroke.1 != 0.0) {
-        return Err(ImportError::Options(format!(
-            "--stroke-mm-per-v {} is not a scale (finite and not 0)",
-            req.stroke.1
-        )));
-    }
+    check_options(req)?;
     let mut names: Vec<&str> = req.voltage_channels.iter().map(String::as_str).collect();
     let stroke_at = names.len();
     names.push(&req.stroke.0);
@@ -289,77 +265,150 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
             (daq, hz)
         }
     };
-
-    // The angle on the DAQ's samples; rows beyond the log or across a gap are invalid.
-    let n = daq.time_s.len();
-    let frames = log.tau_s.len();
-    let mut angle_deg = Vec::with_capacity(n);
-    let mut valid = Vec::with_capacity(n);
-    let scale = 1.0 + alignment.drift_ppm * 1e-6;
-    for &t in &daq.time_s {
-        let tau = (t - alignment.offset_s) / scale;
-        let k = log.tau_s.partition_point(|&x| x <= tau);
-        let value = if k == 0 || k >= frames {
-            None
-        } else {
-            let prev = (0..k).rev().find(|&i| angles.angle_deg[i].is_some());
-            let next = (k..frames).find(|&i| angles.angle_deg[i].is_some());
-            match (prev, next) {
-                (Some(p), Some(q)) if q - p - 1 <= MAX_GAP_FRAMES => {
-                    let (a, b) = (
-                        angles.angle_deg[p].unwrap_or(0.0),
-                        angles.angle_deg[q].unwrap_or(0.0),
-                    );
-                    let f = (tau - log.tau_s[p]) / (log.tau_s[q] - log.tau_s[p]);
-                    Some(a + (b - a) * f.clamp(0.0, 1.0))
-                }
-                _ => None,
-            }
-        };
-        angle_deg.push(value.unwrap_or(0.0));
-        valid.push(value.is_some());
-    }
+    let (mut angle_deg, valid) = angle_on_daq(&daq.time_s, &log.tau_s, &angles, &alignment);
     let stroke_mm: Vec<f64> = daq.channels[stroke_at]
         .iter()
         .map(|v| v * req.stroke.1)
         .collect();
-    // Pulling the tendon bends positive.
-    let pulls_positive = {
-        let rows: Vec<usize> = (0..n).filter(|&i| valid[i]).collect();
-        let m = |x: &dyn Fn(usize) -> f64| {
-            rows.iter().map(|&i| x(i)).sum::<f64>() / rows.len().max(1) as f64
-        };
-        let (ma, ms) = (m(&|i| angle_deg[i]), m(&|i| stroke_mm[i]));
-        rows.iter()
-            .map(|&i| (angle_deg[i] - ma) * (stroke_mm[i] - ms))
-            .sum::<f64>()
-            >= 0.0
-    };
-    if !pulls_positive {
+    if !pulls_positive(&angle_deg, &valid, &stroke_mm) {
         angle_deg.iter_mut().for_each(|a| *a = -*a);
     }
-    let missing = (0..frames)
-        .filter(|&i| angles.angle_deg[i].is_none())
-        .count();
+    let frames = log.tau_s.len();
+    let missing = angles.angle_deg.iter().filter(|a| a.is_none()).count();
     let invalid_rows = valid.iter().filter(|v| !**v).count();
-    let mut warnings = Vec::new();
-    if angles.out_of_plane_rms_deg > OUT_OF_PLANE_WARNING * angles.in_plane_range_deg {
-        warnings.push(format!(
+    let n = daq.time_s.len();
+    let summary = ImportSummary {
+        samples: n,
+        duration_s: daq.time_s[n - 1],
+        alignment: alignment.clone(),
+        tracker: TrackerJson {
+            frames,
+            missing_frames: missing,
+            out_of_plane_rms_deg: angles.out_of_plane_rms_deg,
+            out_of_plane_max_deg: angles.out_of_plane_max_deg,
+        },
+        invalid_rows,
+        warnings: out_of_plane_warning(&angles).into_iter().collect(),
+    };
+    let rig = Rig {
+        sample_hz: rate_hz,
+        supply_v: req.supply_v,
+        divider_ohm: req.divider_ohm.clone(),
+        notes: None,
+        protocol: None,
+        simulation: None,
+        design: None,
+        scenario: None,
+        import: Some(provenance(req, &alignment, frames, missing)),
+    };
+    let samples = Samples {
+        volts: daq.channels[..stroke_at].to_vec(),
+        time_s: daq.time_s,
+        stroke_mm,
+        angle_deg,
+        tracker_valid: if invalid_rows > 0 { valid } else { Vec::new() },
+    };
+    Ok((Recording { rig, samples }, summary))
+}
+
+/// Checks the options that need no file.
+fn check_options(req: &ImportRequest<'_>) -> Result<(), ImportError> {
+    let bad = |message: String| Err(ImportError::Options(message));
+    if req.voltage_channels.is_empty() || req.voltage_channels.len() > 2 {
+        return bad(format!(
+            "--voltage names {} channels; a joint has 1 or 2 sensors",
+            req.voltage_channels.len()
+        ));
+    }
+    if req.divider_ohm.len() != req.voltage_channels.len() {
+        return bad(format!(
+            "--divider-ohm gives {} resistors for {} voltage channels",
+            req.divider_ohm.len(),
+            req.voltage_channels.len()
+        ));
+    }
+    if !(req.supply_v.is_finite() && req.supply_v > 0.0) {
+        return bad(format!(
+            "--supply-v {} is not a supply voltage (finite and above 0)",
+            req.supply_v
+        ));
+    }
+    if !(req.stroke.1.is_finite() && req.stroke.1 != 0.0) {
+        return bad(format!(
+            "--stroke-mm-per-v {} is not a scale (finite and not 0)",
+            req.stroke.1
+        ));
+    }
+    Ok(())
+}
+
+/// The tracker's angle at each DAQ time `time_s`, linearly between the frames around it, and
+/// whether it is a measurement: not past the log's ends, nor across more than
+/// [`MAX_GAP_FRAMES`] missing frames (such rows get 0°, marked invalid).
+fn angle_on_daq(
+    time_s: &[f64],
+    tau_s: &[f64],
+    angles: &BendingAngles,
+    alignment: &AlignmentJson,
+) -> (Vec<f64>, Vec<bool>) {
+    let frames = tau_s.len();
+    let scale = 1.0 + alignment.drift_ppm * 1e-6;
+    let seen = |i: usize| angles.angle_deg[i].is_some();
+    let at = |t: f64| {
+        let tau = (t - alignment.offset_s) / scale;
+        let k = tau_s.partition_point(|&x| x <= tau);
+        if k == 0 || k >= frames {
+            return None;
+        }
+        let p = (0..k).rev().find(|&i| seen(i))?;
+        let q = (k..frames).find(|&i| seen(i))?;
+        if q - p - 1 > MAX_GAP_FRAMES {
+            return None;
+        }
+        let (a, b) = (angles.angle_deg[p]?, angles.angle_deg[q]?);
+        let f = (tau - tau_s[p]) / (tau_s[q] - tau_s[p]);
+        Some(a + (b - a) * f.clamp(0.0, 1.0))
+    };
+    time_s
+        .iter()
+        .map(|&t| at(t).map_or((0.0, false), |a| (a, true)))
+        .unzip()
+}
+
+/// Whether the angle rises with the stroke over the valid rows (pulling the tendon bends
+/// positive), by the sign of their covariance.
+fn pulls_positive(angle_deg: &[f64], valid: &[bool], stroke_mm: &[f64]) -> bool {
+    let rows: Vec<usize> = (0..angle_deg.len()).filter(|&i| valid[i]).collect();
+    let mean = |x: &[f64]| rows.iter().map(|&i| x[i]).sum::<f64>() / rows.len().max(1) as f64;
+    let (ma, ms) = (mean(angle_deg), mean(stroke_mm));
+    rows.iter()
+        .map(|&i| (angle_deg[i] - ma) * (stroke_mm[i] - ms))
+        .sum::<f64>()
+        >= 0.0
+}
+
+/// The warning when the tip leaves its bending plane by more than [`OUT_OF_PLANE_WARNING`] of
+/// the in-plane range.
+fn out_of_plane_warning(angles: &BendingAngles) -> Option<String> {
+    (angles.out_of_plane_rms_deg > OUT_OF_PLANE_WARNING * angles.in_plane_range_deg).then(|| {
+        format!(
             "the tip moves out of its bending plane by {:.2}° RMS ({:.2}° at most), more than {:.0} % of the in-plane range of {:.1}°: is the joint twisting, or the tool loose?",
             angles.out_of_plane_rms_deg,
             angles.out_of_plane_max_deg,
             OUT_OF_PLANE_WARNING * 100.0,
             angles.in_plane_range_deg
-        ));
-    }
-    let samples = Samples {
-        time_s: daq.time_s.clone(),
-        stroke_mm,
-        angle_deg,
-        volts: daq.channels[..stroke_at].to_vec(),
-        tracker_valid: if invalid_rows > 0 { valid } else { Vec::new() },
-    };
-    let info = ImportInfo {
+        )
+    })
+}
+
+/// The `[import]` table: the sources with their SHA-256, the tools, the clocks, the frames.
+fn provenance(
+    req: &ImportRequest<'_>,
+    alignment: &AlignmentJson,
+    frames: usize,
+    missing: usize,
+) -> ImportInfo {
+    ImportInfo {
         dlw_version: env!("CARGO_PKG_VERSION").to_owned(),
         sources: vec![
             ImportSource {
@@ -382,32 +431,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         drift_uncertainty_ppm: alignment.drift_uncertainty_ppm,
         tracker_frames: frames as u64,
         missing_frames: missing as u64,
-    };
-    let rig = Rig {
-        sample_hz: rate_hz,
-        supply_v: req.supply_v,
-        divider_ohm: req.divider_ohm.clone(),
-        notes: None,
-        protocol: None,
-        simulation: None,
-        design: None,
-        scenario: None,
-        import: Some(info),
-    };
-    let summary = ImportSummary {
-        samples: n,
-        duration_s: daq.time_s[n - 1],
-        alignment,
-        tracker: TrackerJson {
-            frames,
-            missing_frames: missing,
-            out_of_plane_rms_deg: angles.out_of_plane_rms_deg,
-            out_of_plane_max_deg: angles.out_of_plane_max_deg,
-        },
-        invalid_rows,
-        warnings,
-    };
-    Ok((Recording { rig, samples }, summary))
+    }
 }
 
 /// The channels `names` of the request's DAQ file, in its format.
