@@ -305,6 +305,13 @@ fn bad_input_is_refused_with_nothing_written() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("not the TDMS tag"), "{err}");
     assert!(!dir.path().join("rec").exists());
+    let o = import(dir.path(), &["--daq-format", "xlsx"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("\"xlsx\" is not one of csv, tdms, lvm"),
+        "{err}"
+    );
+    assert!(!dir.path().join("rec").exists());
 }
 
 /// Converts the bench's `daq.csv` into `daq.tdms` with npTDMS (`tests/scripts/tdms_fixture.py

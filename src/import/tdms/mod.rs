@@ -669,6 +669,31 @@ mod tests {
         assert_eq!(f.values(f.find("x").unwrap()).unwrap(), [1.5, -2.5]);
     }
 
+    /// A segment its writer never closed (next segment offset all ones) runs to the end of the
+    /// file; a last chunk cut short gives each channel the values whole in it.
+    #[test]
+    fn an_unclosed_segment_runs_to_the_end_of_the_file() {
+        let m = meta(&[
+            ("/'g'/'a'", Some((10, 2)), &[]),
+            ("/'g'/'b'", Some((10, 2)), &[]),
+        ]);
+        // Two whole chunks, then a third with a's two values and half of b's first.
+        let values = [1.0f64, 2.0, 10.0, 20.0, 3.0, 4.0, 30.0, 40.0, 5.0, 6.0];
+        let mut raw: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        raw.extend([0u8; 4]);
+        let mut file = segment(ALL, &m, &raw);
+        file[12..20].copy_from_slice(&u64::MAX.to_le_bytes());
+        let f = TdmsFile::parse(&file).unwrap();
+        assert_eq!(
+            f.values(f.find("a").unwrap()).unwrap(),
+            [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
+        );
+        assert_eq!(
+            f.values(f.find("b").unwrap()).unwrap(),
+            [10.0, 20.0, 30.0, 40.0]
+        );
+    }
+
     /// Garbage, truncation and huge counts are errors, never panics or huge allocations.
     #[test]
     fn bad_files_are_errors() {
