@@ -312,3 +312,44 @@ fn a_file_cut_mid_segment_is_refused() {
         assert!(err.contains("truncated"), "cut at {cut}: {err}");
     }
 }
+
+/// A segment its writer never closed (next segment offset all ones), its last chunk cut short
+/// mid-value: dlw reads the values that are whole, and npTDMS reads the same ones.
+#[test]
+fn an_unclosed_segment_reads_as_nptdms_reads_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut meta = 2u32.to_le_bytes().to_vec();
+    for name in ["a", "b"] {
+        meta.extend(string(&format!("/'g'/'{name}'")));
+        meta.extend(20u32.to_le_bytes());
+        meta.extend(10u32.to_le_bytes());
+        meta.extend(1u32.to_le_bytes());
+        meta.extend(2u64.to_le_bytes());
+        meta.extend(0u32.to_le_bytes());
+    }
+    let values = [1.0f64, 2.0, 10.0, 20.0, 3.0, 4.0, 30.0, 40.0, 5.0, 6.0];
+    let mut raw: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    raw.extend([0u8; 4]);
+    let mut file = segment(
+        K_TOC_META_DATA | K_TOC_NEW_OBJ_LIST | K_TOC_RAW_DATA,
+        &meta,
+        &raw,
+    );
+    file[12..20].copy_from_slice(&u64::MAX.to_le_bytes());
+    let path = dir.path().join("unclosed.tdms");
+    std::fs::write(&path, &file).unwrap();
+    let theirs = nptdms_values(dir.path(), &path);
+    let tdms = TdmsFile::parse(&file).unwrap();
+    for (name, want) in [
+        ("g/a", vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+        ("g/b", vec![10.0, 20.0, 30.0, 40.0]),
+    ] {
+        let got = tdms.values(tdms.find(name).unwrap()).unwrap();
+        assert_same(name, &got, &want);
+        assert_same(
+            &format!("npTDMS {name}"),
+            &as_f64s(&theirs[name]["values"]),
+            &want,
+        );
+    }
+}
