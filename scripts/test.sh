@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test of the workspace, installing first what the tests check outputs with:
-# Python's ezdxf (reads and audits every DXF) and LinuxCNC's standalone `rs274` interpreter
+# Python's ezdxf (reads and audits every DXF), Python's npTDMS (writes the TDMS files the
+# importer is tested on) and LinuxCNC's standalone `rs274` interpreter
 # (runs every laser program), from Debian's linuxcnc-uspace.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,6 +9,12 @@ cd "$(dirname "$0")/.."
 if ! python3 -c "import ezdxf" 2>/dev/null; then
   echo "installing ezdxf (pip)"
   python3 -m pip install --quiet --disable-pip-version-check ezdxf
+fi
+# npTDMS (pip name nptdms): another TDMS writer and reader, which the TDMS import is tested
+# against (tests/import_tdms.rs, tests/import_recording.rs).
+if ! python3 -c "import nptdms" 2>/dev/null; then
+  echo "installing npTDMS (pip)"
+  python3 -m pip install --quiet --disable-pip-version-check nptdms
 fi
 # pytest and numpy for the Python package's tests, then the package itself, built from this
 # checkout by maturin (PEP 517; an abi3 wheel, docs/python.md). Rebuilt every run, so the tests

@@ -400,6 +400,109 @@ fn recording_reader_survives_random_and_mutated_recordings() {
     assert!(s.cases > 0);
 }
 
+/// TDMS seeds built from NI's format description: a segment with metadata (a float channel
+/// with waveform properties, an i16 with a linear scale), a non-interleaved raw data chunk
+/// repeated twice, then an interleaved segment reusing the layout.
+fn tdms_seeds() -> Vec<Vec<u8>> {
+    fn string(s: &str) -> Vec<u8> {
+        let mut b = (s.len() as u32).to_le_bytes().to_vec();
+        b.extend(s.as_bytes());
+        b
+    }
+    fn segment(toc: u32, meta: &[u8], raw: &[u8]) -> Vec<u8> {
+        let mut s = b"TDSm".to_vec();
+        s.extend(toc.to_le_bytes());
+        s.extend(4713u32.to_le_bytes());
+        s.extend(((meta.len() + raw.len()) as u64).to_le_bytes());
+        s.extend((meta.len() as u64).to_le_bytes());
+        s.extend(meta);
+        s.extend(raw);
+        s
+    }
+    let float = |name: &str, v: f64| {
+        [
+            string(name),
+            10u32.to_le_bytes().to_vec(),
+            v.to_le_bytes().to_vec(),
+        ]
+        .concat()
+    };
+    let text =
+        |name: &str, v: &str| [string(name), 0x20u32.to_le_bytes().to_vec(), string(v)].concat();
+    let mut meta = 2u32.to_le_bytes().to_vec();
+    for (name, code, props) in [
+        ("a", 10u32, vec![float("wf_increment", 0.002)]),
+        (
+            "b",
+            2,
+            vec![
+                text("NI_Scale[0]_Scale_Type", "Linear"),
+                float("NI_Scale[0]_Linear_Slope", 0.01),
+                float("NI_Scale[0]_Linear_Y_Intercept", 1.5),
+            ],
+        ),
+    ] {
+        meta.extend(string(&format!("/'g'/'{name}'")));
+        meta.extend(20u32.to_le_bytes());
+        meta.extend(code.to_le_bytes());
+        meta.extend(1u32.to_le_bytes());
+        meta.extend(4u64.to_le_bytes());
+        meta.extend((props.len() as u32).to_le_bytes());
+        meta.extend(props.concat());
+    }
+    let chunk: Vec<u8> = (0..4)
+        .flat_map(|i| f64::from(i).to_le_bytes())
+        .chain((0..4i16).flat_map(|i| (i * 100).to_le_bytes()))
+        .collect();
+    let mut first = segment(0b1110, &meta, &[chunk.clone(), chunk].concat());
+    let rows: Vec<u8> = (0..4)
+        .flat_map(|i| {
+            [
+                f64::from(i).to_le_bytes().to_vec(),
+                (i as i16).to_le_bytes().to_vec(),
+            ]
+            .concat()
+        })
+        .collect();
+    let second = segment((1 << 3) | (1 << 5), &[], &rows);
+    let one = first.clone();
+    first.extend(second);
+    vec![one, first]
+}
+
+#[test]
+fn tdms_reader_survives_random_and_mutated_files() {
+    let seeds = tdms_seeds();
+    assert!(seeds.iter().all(|s| entry::tdms(s)), "the seeds read");
+    let s = fuzz("tdms", seeds, &entry::tdms);
+    assert!(s.cases > 0);
+}
+
+#[test]
+fn lvm_reader_survives_random_and_mutated_files() {
+    let mut seeds = Vec::new();
+    for (sep, decimal, sep_name) in [("\t", ".", "Tab"), (",", ".", "Comma"), ("\t", ",", "Tab")] {
+        let mut text = format!(
+            "LabVIEW Measurement{sep}\nSeparator{sep}{sep_name}\nDecimal_Separator{sep}{decimal}\n\
+             ***End_of_Header***{sep}\n\nChannels{sep}2\nSamples{sep}120{sep}120\n\
+             X0{sep}0{sep}0\nDelta_X{sep}0{decimal}5{sep}0{decimal}5\n***End_of_Header***\n\
+             X_Value{sep}A{sep}B{sep}Comment\n"
+        );
+        for i in 0..120 {
+            let t = if sep_name == "Comma" {
+                format!("{}", i as f64 * 0.5)
+            } else {
+                String::new()
+            };
+            text += &format!("{t}{sep}{i}{decimal}25{sep}-{i}\n");
+        }
+        seeds.push(text.into_bytes());
+    }
+    assert!(seeds.iter().all(|s| entry::lvm(s)), "the seeds read");
+    let s = fuzz("lvm", seeds, &entry::lvm);
+    assert!(s.cases > 0);
+}
+
 /// The harness itself can fail: a target that panics on some inputs, one that hoards memory.
 #[test]
 fn the_harness_catches_panics_and_hoarding() {

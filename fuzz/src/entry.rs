@@ -41,3 +41,31 @@ pub fn recording(data: &[u8], dir: &Path) -> bool {
     }
     dlw::sim::Recording::read(dir).is_ok()
 }
+
+/// `dlw import-recording --daq-format tdms`: the bytes as a TDMS file, every channel's values
+/// and waveform read.
+pub fn tdms(data: &[u8]) -> bool {
+    let Ok(file) = dlw::import::tdms::TdmsFile::parse(data) else {
+        return false;
+    };
+    let mut all = true;
+    for name in file.channel_names() {
+        match file.find(&name) {
+            Ok(id) => {
+                let _ = file.waveform(id);
+                all &= file.values(id).is_ok();
+            }
+            Err(_) => all = false,
+        }
+    }
+    all
+}
+
+/// `dlw import-recording --daq-format lvm`: the bytes as a LabVIEW measurement file, channels
+/// `A` and `B` asked for.
+pub fn lvm(data: &[u8]) -> bool {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return false;
+    };
+    dlw::import::lvm::daq_table(text, &["A", "B"], None, None).is_ok()
+}

@@ -1,23 +1,25 @@
 //! `dlw import-recording --daq FILE --voltage CH[,CH2] --divider-ohm R[,R2] --supply-v V
 //! --stroke CH --stroke-mm-per-v K --tracker FILE [--tool N] [--reference-tool M]
-//! [--tracker-hz 40] -o REC [--force] [--json]`: a DAQ's CSV export and an NDI Aurora log
-//! become one recording folder (`docs/import.md`).
+//! [--tracker-hz 40] -o REC [--force] [--json]`: a DAQ's CSV export, TDMS or LVM file and an
+//! NDI Aurora log become one recording folder (`docs/import.md`).
 
 use std::path::PathBuf;
 
 use anyhow::Context;
-use dlw::import::{import, ImportRequest};
+use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod};
 
 /// Arguments of `dlw import-recording`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The DAQ file: a CSV export with a header row.
+    /// The DAQ file: a CSV export with a header row, NI TDMS, or a LabVIEW .lvm file.
     #[arg(long)]
     daq: PathBuf,
-    /// The DAQ file's format: csv (TDMS and LVM are not read yet).
-    #[arg(long, default_value = "csv")]
-    daq_format: String,
-    /// The sensor voltage channel(s) by header name, sensor 1 first.
+    /// The DAQ file's format: csv, tdms or lvm (default: from a .tdms or .lvm extension, else
+    /// csv).
+    #[arg(long)]
+    daq_format: Option<String>,
+    /// The sensor voltage channel(s) by header name (TDMS: Group/Channel or Channel), sensor 1
+    /// first.
     #[arg(long, value_delimiter = ',', required = true)]
     voltage: Vec<String>,
     /// The divider's fixed resistor per sensor (Ω).
@@ -53,9 +55,17 @@ pub struct Args {
     /// The still start the rest axis is averaged over (s).
     #[arg(long, default_value_t = 2.0)]
     rest_s: f64,
-    /// How the clocks are aligned: auto (a sync channel is not supported yet).
+    /// How the clocks are aligned: auto (cross-correlation of the angle with sensor 1), or a DAQ
+    /// channel carrying a TTL sync pulse that the tracker log also holds (--tracker-sync-column).
     #[arg(long, default_value = "auto")]
     sync: String,
+    /// With --sync CH: the tracker log's column holding the same TTL level per frame.
+    #[arg(long)]
+    tracker_sync_column: Option<String>,
+    /// The recording's sample rate (Hz; default: the DAQ's): the DAQ's channels are averaged
+    /// down to it, or interpolated up (at most 10 times the DAQ's rate).
+    #[arg(long)]
+    rate_hz: Option<f64>,
     /// Output recording folder (must not exist or be empty, unless --force).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
@@ -70,29 +80,34 @@ pub struct Args {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim(&args.output, [&args.daq, &args.tracker], args.force)?;
-    if args.daq_format != "csv" {
-        anyhow::bail!(
-            "--daq-format {:?} is not read yet: export the DAQ data as CSV (a header row of channel names, a time column or --daq-rate-hz); TDMS and LVM readers are issue 18's next step",
-            args.daq_format
-        );
-    }
-    if args.sync != "auto" {
-        anyhow::bail!(
-            "--sync {:?}: only --sync auto (cross-correlation of the angle with the sensor) is supported yet",
-            args.sync
-        );
-    }
-    let read = |p: &PathBuf| {
-        dlw::output::read_limited(p, MAX_INPUT_BYTES)
-            .with_context(|| format!("reading {}", p.display()))
+    let daq_format = match &args.daq_format {
+        Some(name) => DaqFormat::from_name(name)?,
+        None => DaqFormat::from_path(&args.daq),
     };
-    let (daq_text, tracker_text) = (read(&args.daq)?, read(&args.tracker)?);
+    let sync = match (args.sync.as_str(), &args.tracker_sync_column) {
+        ("auto", None) => SyncMethod::Auto,
+        ("auto", Some(_)) => {
+            anyhow::bail!("--tracker-sync-column is for --sync CH (a sync pulse channel); --sync auto does not use it")
+        }
+        (channel, Some(column)) => SyncMethod::Pulse {
+            daq_channel: channel.to_owned(),
+            tracker_column: column.clone(),
+        },
+        (channel, None) => anyhow::bail!(
+            "--sync {channel:?} needs --tracker-sync-column NAME: the tracker log's column holding the same TTL pulse (NDI's own logs have none; docs/import.md)"
+        ),
+    };
+    let daq_bytes = dlw::output::read_limited_bytes(&args.daq, MAX_INPUT_BYTES)
+        .with_context(|| format!("reading {}", args.daq.display()))?;
+    let tracker_text = dlw::output::read_limited(&args.tracker, MAX_INPUT_BYTES)
+        .with_context(|| format!("reading {}", args.tracker.display()))?;
     let (daq_path, tracker_path) = (
         args.daq.display().to_string(),
         args.tracker.display().to_string(),
     );
     let request = ImportRequest {
-        daq: (&daq_path, &daq_text),
+        daq: (&daq_path, &daq_bytes),
+        daq_format,
         voltage_channels: args.voltage.clone(),
         divider_ohm: args.divider_ohm.clone(),
         supply_v: args.supply_v,
@@ -104,6 +119,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         reference_tool: args.reference_tool,
         tracker_hz: args.tracker_hz,
         rest_s: args.rest_s,
+        sync,
+        rate_hz: args.rate_hz,
     };
     let (recording, summary) = import(&request)?;
     dlw::finite::check(&summary)?;
@@ -120,7 +137,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         let a = &summary.alignment;
         println!(
-            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm (r = {:.3}); tracker: {} frames, {} missing, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)",
+            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm ({}); tracker: {} frames, {} missing, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)",
             args.output.display(),
             summary.samples,
             summary.duration_s,
@@ -128,7 +145,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             a.offset_uncertainty_s,
             a.drift_ppm,
             a.drift_uncertainty_ppm,
-            a.correlation,
+            match (a.correlation, a.sync_edges) {
+                (Some(r), _) => format!("r = {r:.3}"),
+                (None, Some(n)) => format!("{n} sync edges"),
+                (None, None) => String::new(),
+            },
             summary.tracker.frames,
             summary.tracker.missing_frames,
             summary.tracker.out_of_plane_rms_deg,

@@ -17,7 +17,7 @@ pub enum DaqCsvError {
         found: String,
     },
     /// No time column and no rate.
-    #[error("the DAQ file has no time column (time_s, time, Time or t; or name it with --time-column) and no --rate-hz was given")]
+    #[error("the DAQ file has no time column (time_s, time, Time or t; or name it with --time-column) and no --daq-rate-hz was given")]
     NoTime,
     /// A field that is not a finite number.
     #[error("DAQ line {line}: {column} = {text:?} is not a finite number")]
@@ -48,7 +48,7 @@ pub enum DaqCsvError {
         min: usize,
     },
     /// A bad rate.
-    #[error("--rate-hz {hz} is not a rate (finite and above 0)")]
+    #[error("--daq-rate-hz {hz} is not a rate (finite and above 0)")]
     Rate {
         /// The rate.
         hz: f64,
