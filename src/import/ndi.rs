@@ -164,7 +164,7 @@ impl TrackerLog {
                     .ok_or_else(|| NdiError::Number {
                         row,
                         column: header.get(c).copied().unwrap_or("?").to_string(),
-                        text: field(c).to_string(),
+                        text: crate::limits::quote(field(c)),
                     })
             };
             // Differences are taken before scaling, so that frame 101 of a log starting at 100
