@@ -17,6 +17,23 @@ const DURATION_S: f64 = 300.0;
 /// Runs `dlw discover --json` on a generated recording; returns the set of (effect, channel).
 fn names(dir: &Path, bench: &Bench, name: &str) -> BTreeSet<(String, String)> {
     let report = discover_json(dir, bench, name);
+    // A saturation is written in the library's one form; the scenario says how much a curve
+    // of any shape would fit better, and the JSON carries both RMSEs.
+    for d in report["discovered"].as_array().unwrap() {
+        if d["effect"] == "saturation" {
+            let (library, any) = (
+                d["form"]["library_rmse"].as_f64().unwrap(),
+                d["form"]["any_shape_rmse"].as_f64().unwrap(),
+            );
+            assert!(library.is_finite() && any.is_finite() && any > 0.0, "{d}");
+            let scenario =
+                std::fs::read_to_string(dir.join(format!("{name}-out/scenario.toml"))).unwrap();
+            assert!(
+                scenario.contains("saturation on sensor1: written in the library's form"),
+                "{scenario}"
+            );
+        }
+    }
     report["discovered"]
         .as_array()
         .unwrap()

@@ -14,6 +14,7 @@ pub mod model;
 pub mod noise;
 pub mod report;
 pub mod scenario;
+mod search;
 mod summary;
 pub mod terms;
 pub mod unexplained;
@@ -21,20 +22,19 @@ pub mod unexplained;
 /// `dlw discover --json`'s summary and the scenario file's text.
 pub use summary::{scenario_text, Named, Scored, Summary};
 
-use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 use dlw_geometry::Joint;
 use serde::Serialize;
 
-use crate::fit::min_max;
 use crate::sim::Recording;
 use data::Data;
-use locate::{locate, Place};
-use model::{correlation_time, fit, score, Channel, ChannelModel, Fitted};
+use locate::Place;
+use model::{Channel, ChannelModel, Fitted};
 use noise::ArNoise;
+use search::{Pick, Search};
 use terms::{Effect, Term};
-use unexplained::{Residuals, Unexplained};
+use unexplained::Unexplained;
 
 /// Evidence (nats of held-out whitened likelihood) a candidate needs to be named. Calibrated on
 /// clean recordings with correlated noise (`docs/discovery.md`).
@@ -187,9 +187,24 @@ pub struct Discovery {
     pub runner_up: Option<(Effect, f64)>,
     /// Its parameters in the scenario's units.
     pub parameters: BTreeMap<String, f64>,
+    /// For an effect whose shape the library fixes (saturation's `ε_s·tanh(ε/ε_s)`): how well
+    /// that form fits against a memoryless curve of any shape, so that a reader knows what the
+    /// scenario's form leaves out.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub form: Option<FormFit>,
     /// The shape.
     #[serde(skip)]
     pub term: Term,
+}
+
+/// The held-out RMSE (channel unit) of a channel's model with a named effect in the library's
+/// form, and with a memoryless curve of any shape in its place.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FormFit {
+    /// With the effect as the library writes it.
+    pub library_rmse: f64,
+    /// With a 25-knot piecewise-linear curve (and a tanh) instead.
+    pub any_shape_rmse: f64,
 }
 
 /// A channel left with a disagreement no candidate explains clearly.
@@ -290,127 +305,9 @@ pub fn discover(
     known: &Known,
     progress: &dyn Fn(&str),
 ) -> Result<Outcome, DiscoverError> {
-    let sensors = match joint.style() {
-        dlw_geometry::NotchStyle::Bsn => 2,
-        _ => 1,
-    };
-    let style = if sensors == 2 { "BSN" } else { "UAN" };
-    for rec in std::iter::once(recording).chain(holdout) {
-        let columns = rec.samples.volts.len();
-        if columns != sensors {
-            return Err(DiscoverError::Sensors {
-                columns,
-                sensors,
-                style,
-            });
-        }
-    }
-    if let Some(h) = holdout {
-        same_rig(recording, h)?;
-    }
     progress("reading and decimating");
-    let data = Data::new(recording, joint)?;
-    let (train, test_data, test) = match holdout {
-        Some(h) => {
-            let other = Data::new(h, joint)?;
-            let mask = other.moving();
-            (data.moving(), other, mask)
-        }
-        None => {
-            let (train, test) = data.split()?;
-            (train, data.clone(), test)
-        }
-    };
-    let on = if holdout.is_some() {
-        "holdout"
-    } else {
-        "held-out blocks"
-    };
-    let channels: Vec<Channel> = std::iter::once(Channel::Plant)
-        .chain((1..=sensors).map(Channel::Sensor))
-        .collect();
-
-    // Base models, calibrated; the noise frozen from each base residual at rest.
-    let span_of = |ch: Channel| match ch {
-        Channel::Plant => {
-            let (lo, hi) = min_max(&data.stroke_mm);
-            hi - lo
-        }
-        Channel::Sensor(_) => data.strain.iter().fold(0.0_f64, |a, e| a.max(e.abs())),
-    };
-    let base_model = |ch: Channel| {
-        let mut m = ChannelModel::base(ch);
-        for (c, t) in known {
-            if *c == ch {
-                let t = match t {
-                    // A PI sensor model of the scenario: plays over the recording's span.
-                    Term::Hysteresis { radii, .. } if radii.is_empty() => {
-                        Term::grid(Effect::Hysteresis, span_of(ch)).remove(4)
-                    }
-                    t => t.clone(),
-                };
-                m = m.with(t);
-            }
-        }
-        m
-    };
-    let mut models = BTreeMap::new();
-    let mut noises = BTreeMap::new();
-    let mut bases = BTreeMap::new();
-    // The sensors' candidate input, from the plant model (set once the plant is fitted).
-    let proxies = RefCell::new((Vec::new(), Vec::new()));
-    for &ch in &channels {
-        let m = base_model(ch);
-        let design = m.design(&data, &proxies.borrow().0);
-        let base = fit(&design, &ArNoise::white(1.0), &train)
-            .ok_or(DiscoverError::Base { channel: ch.name() })?;
-        let residual = base.residual(&design);
-        let noise = ArNoise::fit(&residual[..data.rest]);
-        let base =
-            fit(&design, &noise, &train).ok_or(DiscoverError::Base { channel: ch.name() })?;
-        if ch == Channel::Plant {
-            *proxies.borrow_mut() = (
-                proxy(&data, &m, &base, joint),
-                proxy(&test_data, &m, &base, joint),
-            );
-        }
-        bases.insert(ch, base);
-        noises.insert(ch, noise);
-        models.insert(ch, m);
-    }
-    let evaluate = |m: &ChannelModel, noise: &ArNoise| -> Option<(Fitted, f64, f64, usize)> {
-        let p = proxies.borrow();
-        let fitted = fit(&m.design(&data, &p.0), noise, &train)?;
-        let residual = fitted.residual(&m.design(&test_data, &p.1));
-        let (ss, rmse, n) = score(&residual, noise, &test);
-        Some((fitted, ss, rmse, n))
-    };
-
-    let train_ss = |m: &ChannelModel, term: &Term| {
-        let trial = m.with(term.clone());
-        fit(
-            &trial.design(&data, &proxies.borrow().0),
-            &noises[&m.channel],
-            &train,
-        )
-        .map(|f| f.train_ss)
-    };
-    let lags = (CORRELATION_WINDOW_S / data.dt_s) as usize;
-    // A model's held-out whitened sum of squares, and the correlation time of its training
-    // residual that divides the evidence for it.
-    let held_out_ss_and_tau = |with: &ChannelModel, noise: &ArNoise| -> Option<(f64, f64)> {
-        let (fitted, ss, _, _) = evaluate(with, noise)?;
-        let residual = fitted.residual(&with.design(&data, &proxies.borrow().0));
-        Some((ss, correlation_time(&residual, noise, &train, lags)))
-    };
-    // The evidence for adding `term` to `from`, as the candidates are scored.
-    let gain = |from: &ChannelModel, term: &Term| -> Option<f64> {
-        let noise = &noises[&from.channel];
-        let (_, from_ss, _, n) = evaluate(from, noise)?;
-        let (ss, tau) = held_out_ss_and_tau(&from.with(term.clone()), noise)?;
-        let e = evidence(n, from_ss, ss, tau);
-        e.is_finite().then_some(e)
-    };
+    let mut search = Search::new(recording, holdout, joint, known)?;
+    search.calibrate()?;
     let mut discovered: Vec<Discovery> = Vec::new();
     let mut candidates = Vec::new();
     let mut ambiguous = Vec::new();
@@ -419,125 +316,21 @@ pub fn discover(
     for round in 0..MAX_EFFECTS {
         progress(&format!("round {}: scoring candidates", round + 1));
         let mut best: Vec<(Candidate, Option<(Effect, f64)>)> = Vec::new();
-        for &ch in &channels {
+        for ch in search.channels.clone() {
             if closed.contains(&ch) {
                 continue;
             }
-            let m = &models[&ch];
-            let noise = &noises[&ch];
-            let Some((_, current_ss, _, n)) = evaluate(m, noise) else {
+            let Some(scored) = search.score(ch, round) else {
                 continue;
             };
-            let span = span_of(ch);
-            let effects: &[Effect] = match ch {
-                Channel::Plant => &Effect::PLANT,
-                Channel::Sensor(_) => &Effect::SENSOR,
-            };
-            let mut scored: Vec<Candidate> = Vec::new();
-            for &effect in effects {
-                if m.terms.iter().any(|t| t.effect() == effect) {
-                    continue;
-                }
-                // The grid's shape that fits the training blocks best, then its held-out
-                // score. Every candidate is scored on the same grid, so none is favoured by a
-                // finer search; the winner's shape is refined once it is named.
-                let chosen = Term::grid(effect, span)
-                    .into_iter()
-                    .filter_map(|term| Some((term.clone(), train_ss(m, &term)?)))
-                    .min_by(|a, b| a.1.total_cmp(&b.1));
-                let Some((term, _)) = chosen else { continue };
-                let Some((ss, tau)) = held_out_ss_and_tau(&m.with(term.clone()), noise) else {
-                    continue;
-                };
-                let gained = evidence(n, current_ss, ss, tau);
-                // Hysteresis is memory: score the plays against a memoryless curve of any
-                // shape (the tanh and a piecewise-linear curve), both with that curve, so that
-                // a saturation of another shape than tanh earns the plays nothing.
-                let memory = match &term {
-                    Term::Hysteresis {
-                        radii,
-                        center,
-                        width,
-                        ..
-                    } => {
-                        let flexible = |memory| {
-                            m.with(Term::Hysteresis {
-                                radii: radii.clone(),
-                                center: *center,
-                                width: *width,
-                                memory,
-                                knots: Term::static_knots(span),
-                            })
-                        };
-                        let curve = evaluate(&flexible(false), noise);
-                        let loops = held_out_ss_and_tau(&flexible(true), noise);
-                        match (curve, loops) {
-                            (Some((_, curve_ss, _, _)), Some((loop_ss, loop_tau))) => {
-                                Some(evidence(n, curve_ss, loop_ss, loop_tau))
-                            }
-                            _ => None,
-                        }
-                    }
-                    _ => None,
-                };
-                scored.push(Candidate {
-                    effect,
-                    channel: ch,
-                    evidence: if gained.is_finite() { gained } else { 0.0 },
-                    memory,
-                    round,
-                    shape: term.describe(),
-                    term,
-                });
-            }
-            scored.sort_by(|a, b| b.evidence.total_cmp(&a.evidence));
             candidates.extend(scored.iter().cloned());
-            prefer_simpler(&mut scored);
-            let Some(top) = scored.first() else { continue };
-            // Hysteresis bends like saturation (its tanh curve): it is no rival to a
-            // saturation that beats it. Creep and the signed rate are one family whose time
-            // constant tells them apart (`Term::same_family`): no rivals either.
-            let rival = |c: &&Candidate| {
-                let bends = top.effect == Effect::Saturation && c.effect == Effect::Hysteresis;
-                !(bends || top.term.same_family(&c.term))
-            };
-            let runner = scored
-                .iter()
-                .skip(1)
-                .find(rival)
-                .map(|c| (c.effect, c.evidence));
-            if top.evidence < THRESHOLD_NATS {
-                continue;
-            }
-            // Clear: ahead of the runner-up by CLEAR_RATIO, or, against every contender
-            // closer than that, nested evidence settles it: the top candidate still clears
-            // the threshold added to a model that has the contender, and the contender no
-            // longer does added to a model that has the top one (it explains what the
-            // contender explains, and more).
-            let ahead = runner.map_or(true, |(_, e)| top.evidence >= CLEAR_RATIO * e.max(0.0));
-            let clear = ahead
-                || scored
-                    .iter()
-                    .skip(1)
-                    .filter(|c| c.evidence * CLEAR_RATIO > top.evidence)
-                    .filter(rival)
-                    .all(|c| {
-                        let top_after = gain(&m.with(c.term.clone()), &top.term);
-                        let rival_after = gain(&m.with(top.term.clone()), &c.term);
-                        matches!((top_after, rival_after), (Some(t), Some(r)) if t >= THRESHOLD_NATS && r < THRESHOLD_NATS)
-                    });
-            if clear {
-                best.push((top.clone(), runner));
-            } else {
-                ambiguous.push(Ambiguity {
-                    channel: ch,
-                    contenders: scored
-                        .iter()
-                        .filter(|c| c.evidence * CLEAR_RATIO >= top.evidence && c.evidence > 0.0)
-                        .map(|c| (c.effect, c.evidence))
-                        .collect(),
-                });
-                closed.push(ch);
+            match search.pick(ch, scored) {
+                Pick::Nothing => {}
+                Pick::Clear(top, runner) => best.push((top, runner)),
+                Pick::Ambiguous(a) => {
+                    ambiguous.push(a);
+                    closed.push(ch);
+                }
             }
         }
         let Some((winner, runner_up)) = best
@@ -546,122 +339,38 @@ pub fn discover(
         else {
             break;
         };
-        let ch = winner.channel;
-        // The named effect's one continuous shape parameter, refined between its grid
-        // neighbours: a coarse width or time constant leaves a residual for which another
-        // effect would be named next on a long recording (Joint C's backlash at 3000 s: then
-        // relaxation).
-        let winner = Candidate {
-            term: {
-                let m = &models[&ch];
-                let ss = train_ss(m, &winner.term).unwrap_or(f64::INFINITY);
-                let grid = Term::grid(winner.effect, span_of(ch));
-                refine(winner.term.clone(), ss, &grid, &|t| train_ss(m, t))
-            },
-            ..winner
-        };
-        let updated = models[&ch].with(winner.term.clone());
-        let Some((fitted, _, rmse, _)) = evaluate(&updated, &noises[&ch]) else {
+        let winner = search.refine(winner);
+        let form = search.form_fit(&winner);
+        let Some((fitted, rmse)) = search.add(&winner) else {
             break;
         };
-        steps.entry(ch).or_default().push((winner.effect, rmse));
+        steps
+            .entry(winner.channel)
+            .or_default()
+            .push((winner.effect, rmse));
         discovered.push(Discovery {
             effect: winner.effect,
-            channel: ch,
+            channel: winner.channel,
             evidence: winner.evidence,
             runner_up,
             parameters: scenario::parameters(&winner.term, &fitted),
-            term: winner.term.clone(),
+            form,
+            term: winner.term,
         });
-        if ch == Channel::Plant {
-            let plant = &updated;
-            let f = fit(&plant.design(&data, &[]), &noises[&ch], &train);
-            if let Some(f) = f {
-                *proxies.borrow_mut() = (
-                    proxy(&data, plant, &f, joint),
-                    proxy(&test_data, plant, &f, joint),
-                );
-            }
-        }
-        models.insert(ch, updated);
     }
-
     merge_saturating_hysteresis(&mut discovered);
     progress("measuring the gaps");
-    let mut gaps = Vec::new();
-    let mut unexplained = Vec::new();
-    let mut reports = Vec::new();
-    for &ch in &channels {
-        let noise = &noises[&ch];
-        let base_model = base_model(ch);
-        let (base_fit, _, before, _) =
-            evaluate(&base_model, noise).ok_or(DiscoverError::Base { channel: ch.name() })?;
-        let (final_fit, _, after, _) =
-            evaluate(&models[&ch], noise).ok_or(DiscoverError::Base { channel: ch.name() })?;
-        let p = proxies.borrow();
-        let base_design = base_model.design(&test_data, &p.1);
-        let final_design = models[&ch].design(&test_data, &p.1);
-        let residual = base_fit.residual(&base_design);
-        let (before_deg, after_deg) = match ch {
-            Channel::Plant => (None, None),
-            Channel::Sensor(_) => {
-                let per_deg = base_fit.gain().abs() * joint.strain_per_deg();
-                if per_deg > 0.0 && per_deg.is_finite() {
-                    (Some(before / per_deg), Some(after / per_deg))
-                } else {
-                    (None, None)
-                }
-            }
-        };
-        gaps.push(Gap {
-            channel: ch,
-            unit: ch.unit(),
-            before,
-            after,
-            on,
-            before_deg,
-            after_deg,
-            steps: steps.get(&ch).cloned().unwrap_or_default(),
-            noise_floor: noise.sigma,
-        });
-        if !ambiguous.iter().any(|a| a.channel == ch) {
-            let train_design = models[&ch].design(&data, &p.0);
-            let residuals = Residuals {
-                train_design: &train_design,
-                test_design: &final_design,
-                data: &data,
-                test_data: &test_data,
-                train: &train,
-                test: &test,
-                noise,
-                lags,
-                span: span_of(ch),
-            };
-            unexplained.extend(residuals.test(ch));
-        }
-        reports.push(ChannelReport {
-            channel: ch,
-            noise: noise.clone(),
-            base: bases[&ch].clone(),
-            places: locate(&test_data, &residual, &test),
-            time_s: test_data.time_s.clone(),
-            measured: base_design.target.clone(),
-            before: base_fit.predict(&base_design),
-            after: final_fit.predict(&final_design),
-            held_out: test.clone(),
-            terms: models[&ch].terms.clone(),
-            fitted: final_fit,
-        });
-    }
+    let (gaps, unexplained, channels) = search.measure(&steps, &ambiguous)?;
+    let (samples, dt_s) = search.samples_and_dt();
     Ok(Outcome {
         discovered,
         candidates,
         ambiguous,
         gaps,
         unexplained,
-        channels: reports,
-        samples: data.len(),
-        dt_s: data.dt_s,
+        channels,
+        samples,
+        dt_s,
     })
 }
 

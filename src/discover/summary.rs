@@ -21,6 +21,9 @@ pub struct Named {
     pub evidence: f64,
     /// Its fitted parameters.
     pub parameters: BTreeMap<String, f64>,
+    /// A saturation's held-out RMSE in the library's form and with a curve of any shape.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub form: Option<super::FormFit>,
 }
 
 /// A candidate with its score.
@@ -68,6 +71,7 @@ impl Summary {
                     channel: d.channel.name(),
                     evidence: d.evidence,
                     parameters: d.parameters.clone(),
+                    form: d.form,
                 })
                 .collect(),
             candidates: outcome
@@ -117,7 +121,23 @@ pub fn scenario_text(
             .collect::<Vec<_>>()
             .join(", ")
     };
+    let notes: String = outcome
+        .discovered
+        .iter()
+        .filter_map(|d| {
+            let f = d.form?;
+            Some(format!(
+                "# {} on {}: written in the library's form; held-out RMSE {:.4} {unit} with it, \
+                 {:.4} {unit} with a memoryless curve of any shape.\n",
+                d.effect.name(),
+                d.channel.name(),
+                f.library_rmse,
+                f.any_shape_rmse,
+                unit = d.channel.unit()
+            ))
+        })
+        .collect();
     Ok(format!(
-        "# Written by dlw discover: the base scenario calibrated to the recording, with the named effects: {named}.\n{text}"
+        "# Written by dlw discover: the base scenario calibrated to the recording, with the named effects: {named}.\n{notes}{text}"
     ))
 }

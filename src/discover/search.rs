@@ -1,0 +1,503 @@
+//! The search [`super::discover`] runs, one method per step:
+//! 1. [`Search::new`] reads and decimates the recording and holds out its test samples;
+//! 2. [`Search::calibrate`] fits each channel's base model, freezes its noise from the rest,
+//!    and builds the sensors' proxy input from the plant model;
+//! 3. each round, [`Search::score`] scores every candidate on a channel and [`Search::pick`]
+//!    names its clear winner, leaves it ambiguous, or finds nothing;
+//! 4. [`Search::refine`] refines the round's winner's shape and [`Search::add`] puts it in the
+//!    channel's model (rebuilding the proxy after a plant effect);
+//! 5. [`Search::measure`] measures the held-out gaps and tests what is left on each channel.
+
+use std::collections::BTreeMap;
+
+use dlw_geometry::Joint;
+
+use super::data::Data;
+use super::locate::locate;
+use super::model::{correlation_time, fit, score, Channel, ChannelModel, Fitted};
+use super::noise::ArNoise;
+use super::terms::{Effect, Term};
+use super::unexplained::{Residuals, Unexplained};
+use super::{
+    evidence, prefer_simpler, proxy, refine, same_rig, Ambiguity, Candidate, ChannelReport,
+    DiscoverError, FormFit, Gap, Known, CLEAR_RATIO, CORRELATION_WINDOW_S, THRESHOLD_NATS,
+};
+use crate::sim::Recording;
+use crate::stats::min_max;
+
+/// What one round found on one channel.
+pub(super) enum Pick {
+    /// Nothing clears [`THRESHOLD_NATS`].
+    Nothing,
+    /// A clear winner, with the runner-up it beat.
+    Clear(Candidate, Option<(Effect, f64)>),
+    /// Contenders too close to tell apart: the channel is closed.
+    Ambiguous(Ambiguity),
+}
+
+/// A model's held-out fit: the fitted coefficients, the whitened held-out sum of squares, the
+/// held-out RMSE (channel unit) and the held-out sample count.
+type Evaluation = (Fitted, f64, f64, usize);
+
+/// The state of one discovery: the data, and per channel its model, noise and base fit.
+pub(super) struct Search<'a> {
+    joint: &'a Joint,
+    known: &'a Known,
+    /// The recording, decimated: the training samples and, without a holdout, the test ones.
+    data: Data,
+    /// The samples scored on: the holdout's, or `data` again.
+    test_data: Data,
+    /// Which samples of `data` are fitted.
+    train: Vec<bool>,
+    /// Which samples of `test_data` are scored.
+    test: Vec<bool>,
+    /// `holdout` or `held-out blocks`.
+    on: &'static str,
+    /// The plant, then each sensor.
+    pub(super) channels: Vec<Channel>,
+    models: BTreeMap<Channel, ChannelModel>,
+    noises: BTreeMap<Channel, ArNoise>,
+    bases: BTreeMap<Channel, Fitted>,
+    /// The sensors' candidate input on `data` and on `test_data`, from the plant model.
+    proxies: (Vec<f64>, Vec<f64>),
+    /// Lags over which a residual's correlation time is summed.
+    lags: usize,
+}
+
+impl<'a> Search<'a> {
+    /// Checks the recordings against the design and each other, decimates them and chooses
+    /// the held-out samples.
+    ///
+    /// # Errors
+    /// [`DiscoverError`]: a sensor count or rig mismatch, no rest, too short a recording.
+    pub(super) fn new(
+        recording: &Recording,
+        holdout: Option<&Recording>,
+        joint: &'a Joint,
+        known: &'a Known,
+    ) -> Result<Self, DiscoverError> {
+        let sensors = match joint.style() {
+            dlw_geometry::NotchStyle::Bsn => 2,
+            _ => 1,
+        };
+        let style = if sensors == 2 { "BSN" } else { "UAN" };
+        for rec in std::iter::once(recording).chain(holdout) {
+            let columns = rec.samples.volts.len();
+            if columns != sensors {
+                return Err(DiscoverError::Sensors {
+                    columns,
+                    sensors,
+                    style,
+                });
+            }
+        }
+        if let Some(h) = holdout {
+            same_rig(recording, h)?;
+        }
+        let data = Data::new(recording, joint)?;
+        let (train, test_data, test) = match holdout {
+            Some(h) => {
+                let other = Data::new(h, joint)?;
+                let mask = other.moving();
+                (data.moving(), other, mask)
+            }
+            None => {
+                let (train, test) = data.split()?;
+                (train, data.clone(), test)
+            }
+        };
+        let lags = (CORRELATION_WINDOW_S / data.dt_s) as usize;
+        Ok(Self {
+            joint,
+            known,
+            data,
+            test_data,
+            train,
+            test,
+            on: if holdout.is_some() {
+                "holdout"
+            } else {
+                "held-out blocks"
+            },
+            channels: std::iter::once(Channel::Plant)
+                .chain((1..=sensors).map(Channel::Sensor))
+                .collect(),
+            models: BTreeMap::new(),
+            noises: BTreeMap::new(),
+            bases: BTreeMap::new(),
+            proxies: (Vec::new(), Vec::new()),
+            lags,
+        })
+    }
+
+    /// Samples after decimation, and their spacing (s).
+    pub(super) fn samples_and_dt(&self) -> (usize, f64) {
+        (self.data.len(), self.data.dt_s)
+    }
+
+    /// The span of a channel's input: the stroke's range for the plant, the largest strain
+    /// for a sensor.
+    fn span_of(&self, ch: Channel) -> f64 {
+        match ch {
+            Channel::Plant => {
+                let (lo, hi) = min_max(&self.data.stroke_mm);
+                hi - lo
+            }
+            Channel::Sensor(_) => self.data.strain.iter().fold(0.0_f64, |a, e| a.max(e.abs())),
+        }
+    }
+
+    /// A channel's base model: calibration terms plus the effects the scenario already has.
+    fn base_model(&self, ch: Channel) -> ChannelModel {
+        let mut m = ChannelModel::base(ch);
+        for (c, t) in self.known {
+            if *c == ch {
+                let t = match t {
+                    // A PI sensor model of the scenario: plays over the recording's span.
+                    Term::Hysteresis { radii, .. } if radii.is_empty() => {
+                        Term::grid(Effect::Hysteresis, self.span_of(ch)).remove(4)
+                    }
+                    t => t.clone(),
+                };
+                m = m.with(t);
+            }
+        }
+        m
+    }
+
+    /// Fits every channel's base model, freezes its noise model from the base residual at
+    /// rest, and builds the sensors' proxy input from the calibrated plant.
+    ///
+    /// # Errors
+    /// [`DiscoverError::Base`] when a base model cannot be fitted.
+    pub(super) fn calibrate(&mut self) -> Result<(), DiscoverError> {
+        for ch in self.channels.clone() {
+            let m = self.base_model(ch);
+            let design = m.design(&self.data, &self.proxies.0);
+            let base = fit(&design, &ArNoise::white(1.0), &self.train)
+                .ok_or(DiscoverError::Base { channel: ch.name() })?;
+            let residual = base.residual(&design);
+            let noise = ArNoise::fit(&residual[..self.data.rest]);
+            let base = fit(&design, &noise, &self.train)
+                .ok_or(DiscoverError::Base { channel: ch.name() })?;
+            if ch == Channel::Plant {
+                self.proxies = (
+                    proxy(&self.data, &m, &base, self.joint),
+                    proxy(&self.test_data, &m, &base, self.joint),
+                );
+            }
+            self.bases.insert(ch, base);
+            self.noises.insert(ch, noise);
+            self.models.insert(ch, m);
+        }
+        Ok(())
+    }
+
+    /// `m` fitted on the training samples and scored on the held-out ones.
+    fn evaluate(&self, m: &ChannelModel, noise: &ArNoise) -> Option<Evaluation> {
+        let fitted = fit(&m.design(&self.data, &self.proxies.0), noise, &self.train)?;
+        let residual = fitted.residual(&m.design(&self.test_data, &self.proxies.1));
+        let (ss, rmse, n) = score(&residual, noise, &self.test);
+        Some((fitted, ss, rmse, n))
+    }
+
+    /// The training sum of squares of `m` with `term` added.
+    fn train_ss(&self, m: &ChannelModel, term: &Term) -> Option<f64> {
+        let trial = m.with(term.clone());
+        fit(
+            &trial.design(&self.data, &self.proxies.0),
+            &self.noises[&m.channel],
+            &self.train,
+        )
+        .map(|f| f.train_ss)
+    }
+
+    /// A model's held-out whitened sum of squares, and the correlation time of its training
+    /// residual that divides the evidence for it.
+    fn held_out_ss_and_tau(&self, with: &ChannelModel, noise: &ArNoise) -> Option<(f64, f64)> {
+        let (fitted, ss, _, _) = self.evaluate(with, noise)?;
+        let residual = fitted.residual(&with.design(&self.data, &self.proxies.0));
+        Some((
+            ss,
+            correlation_time(&residual, noise, &self.train, self.lags),
+        ))
+    }
+
+    /// The evidence for adding `term` to `from`, as the candidates are scored.
+    fn gain(&self, from: &ChannelModel, term: &Term) -> Option<f64> {
+        let noise = &self.noises[&from.channel];
+        let (_, from_ss, _, n) = self.evaluate(from, noise)?;
+        let (ss, tau) = self.held_out_ss_and_tau(&from.with(term.clone()), noise)?;
+        let e = evidence(n, from_ss, ss, tau);
+        e.is_finite().then_some(e)
+    }
+
+    /// Hysteresis is memory: the evidence of a hysteresis term's plays over a memoryless curve
+    /// of any shape (its tanh and a piecewise-linear curve), both with that curve, so that a
+    /// saturation of another shape than tanh earns the plays nothing. `None` for other terms.
+    fn memory_evidence(
+        &self,
+        m: &ChannelModel,
+        term: &Term,
+        span: f64,
+        n: usize,
+        noise: &ArNoise,
+    ) -> Option<f64> {
+        let Term::Hysteresis {
+            radii,
+            center,
+            width,
+            ..
+        } = term
+        else {
+            return None;
+        };
+        let flexible = |memory| {
+            m.with(Term::Hysteresis {
+                radii: radii.clone(),
+                center: *center,
+                width: *width,
+                memory,
+                knots: Term::static_knots(span),
+            })
+        };
+        let (_, curve_ss, _, _) = self.evaluate(&flexible(false), noise)?;
+        let (loop_ss, loop_tau) = self.held_out_ss_and_tau(&flexible(true), noise)?;
+        Some(evidence(n, curve_ss, loop_ss, loop_tau))
+    }
+
+    /// Every candidate effect of channel `ch` not yet in its model, each at the grid shape that
+    /// fits the training samples best, scored on the held-out ones; best first. `None` when the
+    /// channel's model cannot be evaluated.
+    pub(super) fn score(&self, ch: Channel, round: usize) -> Option<Vec<Candidate>> {
+        let m = &self.models[&ch];
+        let noise = &self.noises[&ch];
+        let (_, current_ss, _, n) = self.evaluate(m, noise)?;
+        let span = self.span_of(ch);
+        let effects: &[Effect] = match ch {
+            Channel::Plant => &Effect::PLANT,
+            Channel::Sensor(_) => &Effect::SENSOR,
+        };
+        let mut scored: Vec<Candidate> = Vec::new();
+        for &effect in effects {
+            if m.terms.iter().any(|t| t.effect() == effect) {
+                continue;
+            }
+            // Every candidate is scored on the same grid, so none is favoured by a finer
+            // search; the winner's shape is refined once it is named.
+            let chosen = Term::grid(effect, span)
+                .into_iter()
+                .filter_map(|term| Some((term.clone(), self.train_ss(m, &term)?)))
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            let Some((term, _)) = chosen else { continue };
+            let Some((ss, tau)) = self.held_out_ss_and_tau(&m.with(term.clone()), noise) else {
+                continue;
+            };
+            let gained = evidence(n, current_ss, ss, tau);
+            scored.push(Candidate {
+                effect,
+                channel: ch,
+                evidence: if gained.is_finite() { gained } else { 0.0 },
+                memory: self.memory_evidence(m, &term, span, n, noise),
+                round,
+                shape: term.describe(),
+                term,
+            });
+        }
+        scored.sort_by(|a, b| b.evidence.total_cmp(&a.evidence));
+        Some(scored)
+    }
+
+    /// Names channel `ch`'s winner among `scored` (best first) when it clears
+    /// [`THRESHOLD_NATS`] and is clear of its rivals: ahead of the runner-up by [`CLEAR_RATIO`],
+    /// or, against every contender closer than that, by nested evidence (the winner still
+    /// clears the threshold added after the contender, and the contender no longer does added
+    /// after the winner: it explains what the contender explains, and more).
+    pub(super) fn pick(&self, ch: Channel, mut scored: Vec<Candidate>) -> Pick {
+        prefer_simpler(&mut scored);
+        let Some(top) = scored.first() else {
+            return Pick::Nothing;
+        };
+        // Hysteresis bends like saturation (its tanh curve): it is no rival to a saturation
+        // that beats it. Creep and the signed rate are one family whose time constant tells
+        // them apart (`Term::same_family`): no rivals either.
+        let rival = |c: &&Candidate| {
+            let bends = top.effect == Effect::Saturation && c.effect == Effect::Hysteresis;
+            !(bends || top.term.same_family(&c.term))
+        };
+        let runner = scored
+            .iter()
+            .skip(1)
+            .find(rival)
+            .map(|c| (c.effect, c.evidence));
+        if top.evidence < THRESHOLD_NATS {
+            return Pick::Nothing;
+        }
+        let m = &self.models[&ch];
+        let ahead = runner.map_or(true, |(_, e)| top.evidence >= CLEAR_RATIO * e.max(0.0));
+        let clear = ahead
+            || scored
+                .iter()
+                .skip(1)
+                .filter(|c| c.evidence * CLEAR_RATIO > top.evidence)
+                .filter(rival)
+                .all(|c| {
+                    let top_after = self.gain(&m.with(c.term.clone()), &top.term);
+                    let rival_after = self.gain(&m.with(top.term.clone()), &c.term);
+                    matches!((top_after, rival_after), (Some(t), Some(r)) if t >= THRESHOLD_NATS && r < THRESHOLD_NATS)
+                });
+        if clear {
+            Pick::Clear(top.clone(), runner)
+        } else {
+            Pick::Ambiguous(Ambiguity {
+                channel: ch,
+                contenders: scored
+                    .iter()
+                    .filter(|c| c.evidence * CLEAR_RATIO >= top.evidence && c.evidence > 0.0)
+                    .map(|c| (c.effect, c.evidence))
+                    .collect(),
+            })
+        }
+    }
+
+    /// The named effect's one continuous shape parameter, refined between its grid
+    /// neighbours: a coarse width or time constant leaves a residual for which another effect
+    /// would be named next on a long recording (Joint C's backlash at 3000 s: then
+    /// relaxation).
+    pub(super) fn refine(&self, winner: Candidate) -> Candidate {
+        let m = &self.models[&winner.channel];
+        let ss = self.train_ss(m, &winner.term).unwrap_or(f64::INFINITY);
+        let grid = Term::grid(winner.effect, self.span_of(winner.channel));
+        Candidate {
+            term: refine(winner.term.clone(), ss, &grid, &|t| self.train_ss(m, t)),
+            ..winner
+        }
+    }
+
+    /// For a saturation (the library's one shape, `ε_s·tanh(ε/ε_s)`), the held-out RMSE with it
+    /// and with a memoryless curve of any shape in its place; `None` for other effects.
+    pub(super) fn form_fit(&self, winner: &Candidate) -> Option<FormFit> {
+        if winner.effect != Effect::Saturation {
+            return None;
+        }
+        let m = &self.models[&winner.channel];
+        let noise = &self.noises[&winner.channel];
+        let span = self.span_of(winner.channel);
+        let any_shape = Term::Hysteresis {
+            radii: Vec::new(),
+            center: 0.0,
+            width: span,
+            memory: false,
+            knots: Term::static_knots(span),
+        };
+        let (_, _, library_rmse, _) = self.evaluate(&m.with(winner.term.clone()), noise)?;
+        let (_, _, any_shape_rmse, _) = self.evaluate(&m.with(any_shape), noise)?;
+        Some(FormFit {
+            library_rmse,
+            any_shape_rmse,
+        })
+    }
+
+    /// Puts `winner` into its channel's model, and returns the model's fit and held-out RMSE.
+    /// After a plant effect the sensors' proxy input is rebuilt from the new plant model.
+    /// `None` when the extended model cannot be fitted (the search stops).
+    pub(super) fn add(&mut self, winner: &Candidate) -> Option<(Fitted, f64)> {
+        let ch = winner.channel;
+        let updated = self.models[&ch].with(winner.term.clone());
+        let (fitted, _, rmse, _) = self.evaluate(&updated, &self.noises[&ch])?;
+        if ch == Channel::Plant {
+            if let Some(f) = fit(
+                &updated.design(&self.data, &[]),
+                &self.noises[&ch],
+                &self.train,
+            ) {
+                self.proxies = (
+                    proxy(&self.data, &updated, &f, self.joint),
+                    proxy(&self.test_data, &updated, &f, self.joint),
+                );
+            }
+        }
+        self.models.insert(ch, updated);
+        Some((fitted, rmse))
+    }
+
+    /// Per channel: the held-out gap before and after the named effects (`steps` gives the
+    /// RMSE after each), what is left that the library cannot explain (channels left
+    /// `ambiguous` are not tested again), and the report's view.
+    ///
+    /// # Errors
+    /// [`DiscoverError::Base`] when a model cannot be fitted again.
+    pub(super) fn measure(
+        &self,
+        steps: &BTreeMap<Channel, Vec<(Effect, f64)>>,
+        ambiguous: &[Ambiguity],
+    ) -> Result<(Vec<Gap>, Vec<Unexplained>, Vec<ChannelReport>), DiscoverError> {
+        let mut gaps = Vec::new();
+        let mut unexplained = Vec::new();
+        let mut reports = Vec::new();
+        for &ch in &self.channels {
+            let noise = &self.noises[&ch];
+            let base_model = self.base_model(ch);
+            let (base_fit, _, before, _) = self
+                .evaluate(&base_model, noise)
+                .ok_or(DiscoverError::Base { channel: ch.name() })?;
+            let (final_fit, _, after, _) = self
+                .evaluate(&self.models[&ch], noise)
+                .ok_or(DiscoverError::Base { channel: ch.name() })?;
+            let base_design = base_model.design(&self.test_data, &self.proxies.1);
+            let final_design = self.models[&ch].design(&self.test_data, &self.proxies.1);
+            let residual = base_fit.residual(&base_design);
+            let (before_deg, after_deg) = match ch {
+                Channel::Plant => (None, None),
+                Channel::Sensor(_) => {
+                    let per_deg = base_fit.gain().abs() * self.joint.strain_per_deg();
+                    if per_deg > 0.0 && per_deg.is_finite() {
+                        (Some(before / per_deg), Some(after / per_deg))
+                    } else {
+                        (None, None)
+                    }
+                }
+            };
+            gaps.push(Gap {
+                channel: ch,
+                unit: ch.unit(),
+                before,
+                after,
+                on: self.on,
+                before_deg,
+                after_deg,
+                steps: steps.get(&ch).cloned().unwrap_or_default(),
+                noise_floor: noise.sigma,
+            });
+            if !ambiguous.iter().any(|a| a.channel == ch) {
+                let train_design = self.models[&ch].design(&self.data, &self.proxies.0);
+                let residuals = Residuals {
+                    train_design: &train_design,
+                    test_design: &final_design,
+                    data: &self.data,
+                    test_data: &self.test_data,
+                    train: &self.train,
+                    test: &self.test,
+                    noise,
+                    lags: self.lags,
+                    span: self.span_of(ch),
+                };
+                unexplained.extend(residuals.test(ch));
+            }
+            reports.push(ChannelReport {
+                channel: ch,
+                noise: noise.clone(),
+                base: self.bases[&ch].clone(),
+                places: locate(&self.test_data, &residual, &self.test),
+                time_s: self.test_data.time_s.clone(),
+                measured: base_design.target.clone(),
+                before: base_fit.predict(&base_design),
+                after: final_fit.predict(&final_design),
+                held_out: self.test.clone(),
+                terms: self.models[&ch].terms.clone(),
+                fitted: final_fit,
+            });
+        }
+        Ok((gaps, unexplained, reports))
+    }
+}
