@@ -11,6 +11,7 @@
 //! `cargo bench --bench characterize`; results in `docs/performance.md`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use dlw::analysis::{Analysis, Placement};
 use dlw::characterize::{estimate, loops, rate, relaxation, NamedConfig, Options};
 use dlw::design::Design;
 use dlw::report::Page;
@@ -48,7 +49,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let r = loops(&rec, j, &planes, &opts).expect("loops");
             let mut page = Page::new("loops");
-            r.add_to_page(&mut page, "", "");
+            r.add_to_page(&mut page, Placement::ALONE);
             page.files().expect("draws")
         })
     });
@@ -57,7 +58,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let r = rate(&rec, j, &planes, &opts).expect("rate");
             let mut page = Page::new("rate");
-            r.add_to_page(&mut page, "", "");
+            r.add_to_page(&mut page, Placement::ALONE);
             page.files().expect("draws")
         })
     });
@@ -66,7 +67,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let r = relaxation(&rec, j, &planes, &opts).expect("relaxation");
             let mut page = Page::new("relaxation");
-            r.add_to_page(&mut page, "", "");
+            r.add_to_page(&mut page, Placement::ALONE);
             page.files().expect("draws")
         })
     });
@@ -94,7 +95,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let r = estimate(&rec, &configs, &paper).expect("estimation");
             let mut page = Page::new("estimation");
-            r.add_to_page(&mut page, "", "");
+            r.add_to_page(&mut page, Placement::ALONE);
             page.files().expect("draws")
         })
     });
