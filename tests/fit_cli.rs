@@ -289,7 +289,12 @@ fn check_report(dir: &Path, sensors: usize) {
             "no SVG titled {want:?}; texts: {titles:?}"
         );
     }
-    for want in ["linear fit", "PI fit", "continuous PI fit", "cycle 1"] {
+    for want in [
+        "linear fit",
+        "PI fit (last cycle)",
+        "continuous PI fit (last cycle)",
+        "cycle 1",
+    ] {
         assert!(titles.iter().any(|t| t == want), "no legend {want:?}");
     }
     assert!(html.contains("GF"), "no parameter table");
