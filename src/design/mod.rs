@@ -24,13 +24,19 @@
 
 mod count;
 mod fabrication;
+mod material;
 
 use std::path::{Path, PathBuf};
 
-use dlw_geometry::{CrossSection, GeometryError, Joint, NotchStyle};
+use dlw_geometry::{CrossSection, GeometryError, Joint, Mechanics, NotchStyle};
 use serde::{Deserialize, Serialize};
 
 pub use fabrication::{Fabrication, Materials, ProcessChoice};
+/// The tube materials and their sources.
+pub use material::{
+    TubeMaterial, NITINOL_STRAIN_LIMIT, NITINOL_YOUNGS_MODULUS_PA, POLYIMIDE_STRAIN_LIMIT,
+    POLYIMIDE_YOUNGS_MODULUS_PA,
+};
 
 /// A design file as written, before validation.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -58,6 +64,11 @@ pub struct DesignFile {
     pub joint_length_mm: f64,
     /// Arc between the two arms of a sensor, `s_s` (mm).
     pub sensor_arc_mm: f64,
+    /// Tendon offset `r_t` from the tube axis, on the notch side (mm). `None` means at the
+    /// inner wall less half the paper's 0.28 mm tendon, `r_i − 0.14 mm`. Not written when
+    /// absent, so existing designs keep their checksum.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tendon_offset_mm: Option<f64>,
     /// Trace, pad, margin and cutting parameters.
     #[serde(default)]
     pub fabrication: Fabrication,
@@ -70,6 +81,12 @@ pub struct DesignFile {
 }
 
 impl DesignFile {
+    /// The tendon offset in force (mm): the file's, or `r_i − 0.14 mm`.
+    pub fn tendon_offset_mm(&self) -> f64 {
+        self.tendon_offset_mm
+            .unwrap_or_else(|| Mechanics::default_tendon_offset_mm(self.inner_radius_mm))
+    }
+
     /// Reads a design file without validating its values (the design rules do that, listing
     /// every problem at once).
     ///
@@ -137,6 +154,8 @@ pub struct Design {
     pub file: DesignFile,
     /// The joint geometry shared with the estimator.
     pub joint: Joint,
+    /// The joint's tendon mechanics (`docs/mechanics.md`).
+    pub mechanics: Mechanics,
     /// A checksum of the design's canonical TOML (FNV-1a 64, hex), printed in program headers
     /// so an operator can tell which design a program was made from.
     pub checksum: String,
@@ -185,11 +204,13 @@ impl Design {
             file.joint_length_mm,
         )
         .map_err(geometry)?;
+        let mechanics = Mechanics::new(joint, file.tendon_offset_mm()).map_err(geometry)?;
         let canonical = toml::to_string(&file).unwrap_or_default();
         let checksum = format!("{:016x}", fnv1a64(canonical.as_bytes()));
         Ok(Self {
             file,
             joint,
+            mechanics,
             checksum,
         })
     }
@@ -246,6 +267,64 @@ sensor_arc_mm = 0.4
             err.contains("inner_radius_mm = 1.3") && err.contains("1.24"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn the_tube_material_sets_the_backbone_limit_unless_given() {
+        let d = Design::from_toml(JOINT_A).unwrap();
+        assert_eq!(d.file.materials.tube, TubeMaterial::Polyimide);
+        assert_eq!(
+            d.file.materials.backbone_strain_limit,
+            POLYIMIDE_STRAIN_LIMIT
+        );
+        let niti =
+            Design::from_toml(&format!("{JOINT_A}\n[materials]\ntube = \"nitinol\"\n")).unwrap();
+        assert_eq!(
+            niti.file.materials.backbone_strain_limit,
+            NITINOL_STRAIN_LIMIT
+        );
+        assert_eq!(
+            niti.file.materials.youngs_modulus_pa(),
+            NITINOL_YOUNGS_MODULUS_PA
+        );
+        let own =
+            format!("{JOINT_A}\n[materials]\ntube = \"nitinol\"\nbackbone_strain_limit = 0.05\n");
+        assert_eq!(
+            Design::from_toml(&own)
+                .unwrap()
+                .file
+                .materials
+                .backbone_strain_limit,
+            0.05
+        );
+        let err = Design::from_toml(&format!("{JOINT_A}\n[materials]\ntube = \"steel\"\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("steel") && err.contains("nitinol"), "{err}");
+        let err = Design::from_toml(&format!("{JOINT_A}\n[materials]\nbackbone = 0.1\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("backbone"), "{err}");
+    }
+
+    /// New optional keys left out keep a design's canonical TOML, so its checksum (printed in
+    /// every program header) does not change.
+    #[test]
+    fn defaults_keep_the_canonical_text() {
+        let d = Design::from_toml(JOINT_A).unwrap();
+        let text = toml::to_string(&d.file).unwrap();
+        assert!(
+            !text.contains("tendon_offset_mm") && !text.contains("tube"),
+            "{text}"
+        );
+        assert!(text.contains("backbone_strain_limit = 0.03"), "{text}");
+        let with = format!("{JOINT_A}tendon_offset_mm = 0.5\n");
+        let d2 = Design::from_toml(&with).unwrap();
+        assert_eq!(d2.mechanics.tendon_offset_mm(), 0.5);
+        assert_ne!(d2.checksum, d.checksum);
+        // Written designs read back the same.
+        let back = DesignFile::from_toml(&toml::to_string(&d2.file).unwrap()).unwrap();
+        assert_eq!(back, d2.file);
     }
 
     #[test]

@@ -62,6 +62,6 @@ pub use error::GeometryError;
 /// Strain and angle along a whole joint (Eqs. 3 and 7, notch closing).
 pub use joint::Joint;
 /// Tendon stroke, material strain, bending stiffness and tendon force (York, Swaney et al.).
-pub use mechanics::{FibreSide, Mechanics, DEFAULT_TENDON_HALF_DIAMETER_MM};
+pub use mechanics::{FibreSide, Mechanics, RangeLimit, DEFAULT_TENDON_HALF_DIAMETER_MM};
 /// The notched cross-section (Eqs. 1 and 2).
 pub use section::{CrossSection, NotchStyle};

@@ -59,6 +59,30 @@ impl FibreSide {
     }
 }
 
+/// What ends a joint's usable range first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum RangeLimit {
+    /// The notch faces touch.
+    NotchClosing,
+    /// The backbone's farthest fibre reaches the material's strain limit.
+    Material,
+    /// The sensor reaches its saturation strain.
+    SensorSaturation,
+}
+
+impl RangeLimit {
+    /// The limit in words, for reports.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Self::NotchClosing => "notch closing",
+            Self::Material => "material strain",
+            Self::SensorSaturation => "sensor saturation",
+        }
+    }
+}
+
 /// The mechanics of a tendon-driven notched joint.
 ///
 /// Built by [`Mechanics::new`] from a validated [`Joint`] and the tendon offset; every method
@@ -219,11 +243,37 @@ impl Mechanics {
         self.n() * self.h() * strain_limit / d
     }
 
+    /// The usable range (rad) and what ends it: the smallest of the notch-closing angle, the
+    /// angle at which the farthest fibre reaches `material_strain_limit`, and the angle at which
+    /// the sensor reaches `saturation_strain` (Eq. 3). Ties go to the earlier in that order.
+    pub fn usable_range_rad(
+        &self,
+        saturation_strain: f64,
+        material_strain_limit: f64,
+    ) -> (f64, RangeLimit) {
+        let limits = [
+            (self.closing_angle_rad(), RangeLimit::NotchClosing),
+            (
+                self.angle_at_material_strain_rad(material_strain_limit),
+                RangeLimit::Material,
+            ),
+            (
+                self.joint.angle_at_strain(saturation_strain).abs(),
+                RangeLimit::SensorSaturation,
+            ),
+        ];
+        limits.into_iter().fold(
+            limits[0],
+            |best, next| if next.0 < best.0 { next } else { best },
+        )
+    }
+
     /// Area of the notched section (mm²): the annular sector `α·(r_o² − r_i²)` for UAN, two
     /// sectors `2β·(r_o² − r_i²)` for BSN.
     pub fn section_area_mm2(&self) -> f64 {
         let (ro, ri, half_rad) = self.ring_and_half_angle();
-        let sectors = f64::from(3 - self.joint.style().notches_per_level());
+        // One sector for UAN, two (one between each pair of notches) for BSN.
+        let sectors = f64::from(self.joint.style().notches_per_level());
         sectors * half_rad * (ro * ro - ri * ri)
     }
 
@@ -303,7 +353,11 @@ mod tests {
     #[test]
     fn joint_d_stroke_per_degree_by_hand() {
         let m = joint_d();
-        assert_relative_eq!(m.joint().section().neutral_axis_mm(), 0.609011, epsilon = 1e-6);
+        assert_relative_eq!(
+            m.joint().section().neutral_axis_mm(),
+            0.609011,
+            epsilon = 1e-6
+        );
         assert_relative_eq!(m.stroke_per_deg_mm(), 0.018832, epsilon = 1e-6);
         assert_relative_eq!(1.0 / m.stroke_per_deg_mm(), 53.10, epsilon = 0.01);
     }
@@ -350,6 +404,17 @@ mod tests {
         assert_relative_eq!(m.material_strain(lim), 0.03, max_relative = 1e-12);
         let (d, _) = m.farthest_fibre();
         assert_relative_eq!(m.material_strain(0.4), d * 0.4 / 5.0, max_relative = 1e-12);
+    }
+
+    /// Joint D by hand: A = α·(r_o² − r_i²) = 0.941593·0.2679 = 0.252253 mm²,
+    /// I₀ = (r_o⁴ − r_i⁴)/4·(α + sin α·cos α) and I = I₀ − A·ȳ² = 0.00251961 mm⁴; with
+    /// E = 2.5 GPa, F per degree = 2500·I·(π/1800)/(0.5·1.079011) = 0.0203777 N.
+    #[test]
+    fn joint_d_section_and_force_by_hand() {
+        let m = joint_d();
+        assert_relative_eq!(m.section_area_mm2(), 0.252253, epsilon = 1e-6);
+        assert_relative_eq!(m.second_moment_mm4(), 0.00251961, epsilon = 1e-8);
+        assert_relative_eq!(m.tendon_force_per_deg_n(2.5e9), 0.0203777, epsilon = 1e-7);
     }
 
     #[test]
