@@ -13,7 +13,7 @@ pub const POLYIMIDE_STRAIN_LIMIT: f64 = 0.03;
 /// the 75-83 GPa suppliers list (e.g. Fort Wayne Metals' Nitinol #1 datasheet).
 pub const NITINOL_YOUNGS_MODULUS_PA: f64 = 75.0e9;
 /// Strain limit of superelastic nitinol: 6 %, the recoverable strain notched-tube wrists are
-/// designed to (Swaney et al., ICRA 2015, keep peak strain within the superelastic plateau,
+/// designed to (York, Swaney et al., ICRA 2015, keep peak strain within the superelastic plateau,
 /// 6-8 %); the lower end is taken.
 pub const NITINOL_STRAIN_LIMIT: f64 = 0.06;
 

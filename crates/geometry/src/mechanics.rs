@@ -1,10 +1,10 @@
 //! Notched-tube mechanics: tendon stroke, curvature and angle, the farthest fibre's strain, the
 //! notched section's second moment of area, and the tendon force.
 //!
-//! The kinematics are the asymmetric-notch wrist model of York, Swaney and colleagues (Swaney,
-//! York, Gafford, Wood, Webster, "A wrist for needle-sized surgical robots", ICRA 2015; York et
-//! al., "A wrist for needle-sized surgical robots", ICRA 2015), and the same equations with
-//! `ȳ = 0` for symmetric notches (Rucker & Webster's tendon-driven notch joints). Every equation
+//! The kinematics are the asymmetric-notch wrist model of York, Swaney and colleagues (York,
+//! Swaney, Gilbert, Webster, "A wrist for needle-sized surgical robots", ICRA 2015), and the
+//! same equations with `ȳ = 0` for symmetric notches (Rucker and Webster's tendon-driven notch
+//! joints). Every equation
 //! is written out in `docs/mechanics.md`.
 //!
 //! Assumptions (the model's, not the paper's data): bending happens only in the `N` notched
