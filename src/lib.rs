@@ -8,6 +8,8 @@
 //!   drawing frame;
 //! - [`drawing`]: drawings of the joint: DXF for designers (written and read back), SVG for
 //!   people;
+//! - [`explore`]: from requirements to joints: a grid of candidates scored with the mechanics
+//!   and the sensing model, the design rules, the Pareto front (`dlw explore`);
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
 //! - [`process`], [`machine`]: laser parameter sets (Table II) and machine profiles;
 //! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting);
@@ -44,6 +46,7 @@ pub mod control;
 pub mod design;
 pub mod discover;
 pub mod drawing;
+pub mod explore;
 pub mod finite;
 pub mod fit;
 pub mod fixed;
