@@ -7,6 +7,9 @@ use crate::design::DesignFile;
 
 use super::catalogue::Tube;
 
+/// Written joint lengths are rounded to 1/this of a mm (1 pm).
+const LENGTH_ROUNDING_PER_MM: f64 = 1e9;
+
 /// A candidate's parameters (everything the explorer varies).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Params {
@@ -35,7 +38,10 @@ impl Params {
     /// it so the length rule holds by construction.
     pub fn joint_length_mm(&self) -> f64 {
         let n = f64::from(self.notch_count);
-        n * self.notch_width_mm + (n - 1.0) * self.notch_spacing_mm
+        let exact = n * self.notch_width_mm + (n - 1.0) * self.notch_spacing_mm;
+        // Rounded to 1 pm, far inside the length rule's 1 µm, so files read `6.8`, not
+        // `6.800000000000001`.
+        (exact * LENGTH_ROUNDING_PER_MM).round() / LENGTH_ROUNDING_PER_MM
     }
 
     /// The base design with these parameters, named `name`.
