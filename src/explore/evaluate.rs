@@ -110,6 +110,18 @@ impl Constraint {
         Constraint::MinSensitivity,
     ];
 
+    /// The constraint's name as in specs.
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::NotchesOpen => "notches_open",
+            Self::MaterialWithinLimit => "material_within_limit",
+            Self::NoSaturation => "no_saturation",
+            Self::MaxStroke => "max_stroke_per_deg_mm",
+            Self::MaxForce => "max_tendon_force_per_deg_n",
+            Self::MinSensitivity => "min_sensitivity_ohm_per_deg",
+        }
+    }
+
     /// This constraint's bit.
     pub fn bit(self) -> u8 {
         1 << (self as u8)

@@ -369,7 +369,7 @@ impl Exploration {
             .iter()
             .enumerate()
             .filter(|&(j, _)| j != k && screen.failing[j] > 0)
-            .map(|(j, c)| format!("{:?}: {}", c, screen.failing[j]))
+            .map(|(j, c)| format!("{} {}", c.key(), screen.failing[j]))
             .collect();
         if !others.is_empty() {
             msg.push_str(&format!("; other constraints fail: {}", others.join(", ")));
