@@ -38,6 +38,11 @@ pub use material::{
     POLYIMIDE_YOUNGS_MODULUS_PA,
 };
 
+/// Most notches (levels, per side for BSN) a design may have: far more than a tube on a rotary
+/// stage carries, and within what a DXF can number (16-bit XDATA integers). Defined here, with
+/// the design, so the layout and the rules depend on the design and not the other way round.
+pub const MAX_NOTCH_COUNT: u32 = 10_000;
+
 /// A design file as written, before validation.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

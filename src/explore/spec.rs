@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use dlw_geometry::NotchStyle;
 use serde::Deserialize;
 
-use crate::layout::MAX_NOTCH_COUNT;
+use crate::design::MAX_NOTCH_COUNT;
 
 /// Most values one axis may hold.
 pub const MAX_AXIS_VALUES: usize = 100_000;
