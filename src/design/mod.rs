@@ -15,9 +15,13 @@
 //! notch_count = 10         # N (per side for BSN)
 //! joint_length_mm = 9.5    # L
 //! sensor_arc_mm = 0.4      # s_s: arc between the two arms of a sensor
+//! tendon_offset_mm = 0.735 # optional r_t (default r_i − 0.14 mm; docs/mechanics.md)
 //!
 //! [fabrication]            # optional; see `Fabrication` for every key
 //! kerf_mm = 0.03
+//!
+//! [materials]              # optional; see `Materials`
+//! tube = "polyimide"       # or "nitinol": Young's modulus and default backbone_strain_limit
 //! ```
 //!
 //! Unknown keys are refused, so a misspelt parameter never silently takes its default.

@@ -39,7 +39,7 @@ pub use grid::{Grid, Params};
 /// The Pareto front.
 pub use pareto::{dominates, front};
 /// The output folder's files and the `--json` summary.
-pub use report::{files, Row, Summary};
+pub use report::{files, Files, Row, Summary};
 /// The spec file.
 pub use spec::{Axis, Constraints, Metric, Objectives, SpecError, SpecFile, Vary};
 /// Limits on a spec's size.
@@ -452,7 +452,7 @@ fn rules_binding(checked: &[(Candidate, Option<Violation>)]) -> String {
             None => counts.push((kind, 1, v.to_string())),
         }
     }
-    counts.sort_by(|a, b| b.1.cmp(&a.1));
+    counts.sort_by_key(|c| std::cmp::Reverse(c.1));
     let (_, n, example) = counts.first().cloned().unwrap_or_default();
     format!(
         "all {} candidates that meet the constraints break a design rule; the binding one is the rule {n} of them break, for example: {example}",

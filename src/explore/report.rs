@@ -22,6 +22,9 @@ const REPORT_TABLE_ROWS: usize = 25;
 /// Grey for all feasible candidates.
 const FEASIBLE_GREY: (u8, u8, u8) = (170, 170, 170);
 
+/// An output folder's files: names relative to the folder, and their bytes.
+pub type Files = Vec<(String, Vec<u8>)>;
+
 /// One candidate as written in CSV and JSON.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Row {
@@ -164,7 +167,7 @@ pub fn files(
     feasible: &[Candidate],
     front: &[usize],
     top_k: usize,
-) -> Result<(Vec<(String, Vec<u8>)>, Summary), ChartError> {
+) -> Result<(Files, Summary), ChartError> {
     let best = x.best(feasible, front, top_k);
     let mut files = Vec::new();
     let mut names = vec![None; feasible.len()];

@@ -258,7 +258,7 @@ impl Mechanics {
                 RangeLimit::Material,
             ),
             (
-                self.joint.angle_at_strain(saturation_strain).abs(),
+                libm::fabs(self.joint.angle_at_strain(saturation_strain)),
                 RangeLimit::SensorSaturation,
             ),
         ];
