@@ -271,3 +271,60 @@ proptest! {
         check_tube(&m, Some(FibreSide::NotchCorners));
     }
 }
+
+/// Values computed by hand (a calculator session, the formulas of docs/mechanics.md typed in
+/// directly) for Joint A, Joint C and a nitinol tube of York's wrist size (r_o 0.58, r_i 0.43,
+/// s_n 2.6 mm, h 0.4 mm, N 6, r_t 0.29 mm, E 75 GPa).
+#[test]
+fn hand_computed_values() {
+    // (mechanics, E, stroke mm/°, d mm, material limit ° at 3 %, A mm², I mm⁴, F N/°)
+    let load = |name: &str| {
+        let path = format!("{}/designs/joint-{name}.toml", env!("CARGO_MANIFEST_DIR"));
+        dlw::design::Design::load(path.as_ref()).unwrap().mechanics
+    };
+    let niti = mechanics(NotchStyle::Uan, 0.58, 0.43, 2.6, 0.3, 0.4, 6);
+    let table = [
+        (
+            load("a"),
+            2.5e9,
+            0.0291564,
+            0.377694,
+            22.7548,
+            0.678949,
+            0.0150312,
+            0.0785206,
+        ),
+        (
+            load("c"),
+            2.5e9,
+            0.0082030,
+            0.410997,
+            20.9110,
+            0.289089,
+            0.0133919,
+            0.248651,
+        ),
+        (
+            niti,
+            75e9,
+            0.0127886,
+            0.175515,
+            23.5040,
+            0.136382,
+            0.000654128,
+            0.486903,
+        ),
+    ];
+    for (m, e, stroke, d, mat, area, i, f) in table {
+        assert_relative_eq!(m.stroke_per_deg_mm(), stroke, max_relative = 1e-5);
+        assert_relative_eq!(m.farthest_fibre().0, d, max_relative = 1e-5);
+        assert_relative_eq!(
+            m.angle_at_material_strain_rad(0.03).to_degrees(),
+            mat,
+            max_relative = 1e-5
+        );
+        assert_relative_eq!(m.section_area_mm2(), area, max_relative = 1e-5);
+        assert_relative_eq!(m.second_moment_mm4(), i, max_relative = 1e-5);
+        assert_relative_eq!(m.tendon_force_per_deg_n(e), f, max_relative = 1e-5);
+    }
+}

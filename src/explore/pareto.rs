@@ -45,6 +45,26 @@ fn lexicographic_desc(a: &[f64], b: &[f64]) -> Ordering {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The sweep equals the definition, checked pair by pair, on random points with ties.
+        #[test]
+        fn front_is_the_brute_force_front(
+            points in proptest::collection::vec(proptest::collection::vec(0u8..6, 3), 0..60)
+        ) {
+            let p: Vec<Vec<f64>> = points
+                .iter()
+                .map(|v| v.iter().map(|&x| f64::from(x)).collect())
+                .collect();
+            let mut got = front(&p);
+            got.sort_unstable();
+            let want: Vec<usize> = (0..p.len())
+                .filter(|&i| !(0..p.len()).any(|j| dominates(&p[j], &p[i])))
+                .collect();
+            prop_assert_eq!(got, want);
+        }
+    }
 
     #[test]
     fn front_of_a_small_set() {
