@@ -239,6 +239,19 @@ impl Exploration {
                 source: "the base design".into(),
             }],
         };
+        for (name, empty) in [
+            ("vary.tube", v.tube.as_ref().is_some_and(Vec::is_empty)),
+            ("vary.style", v.style.as_ref().is_some_and(Vec::is_empty)),
+        ] {
+            if empty {
+                return Err(SpecError::Value {
+                    name: name.into(),
+                    value: "[]".into(),
+                    limit: "must hold at least one value".into(),
+                }
+                .into());
+            }
+        }
         let axis = |a: &Option<Axis>, name: &str, base: f64| match a {
             Some(a) => a.values(&format!("vary.{name}")),
             None => Ok(vec![base]),

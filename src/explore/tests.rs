@@ -6,7 +6,7 @@ fn spec_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("designs")
 }
 
-fn load(text: &str) -> Exploration {
+fn try_load(text: &str) -> Result<Exploration, ExploreError> {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("spec.toml");
     let text = text.replace(
@@ -18,7 +18,11 @@ fn load(text: &str) -> Exploration {
         &spec_dir().join("tubes.toml").display().to_string(),
     );
     std::fs::write(&path, text).unwrap();
-    Exploration::load(&path, &dir.path().join("out/x.toml")).unwrap()
+    Exploration::load(&path, &dir.path().join("out/x.toml"))
+}
+
+fn load(text: &str) -> Exploration {
+    try_load(text).unwrap()
 }
 
 const SMALL: &str = r#"
@@ -93,4 +97,43 @@ fn nothing_feasible_names_the_binding_constraint() {
     let screen = x.screen(&|_| {});
     let err = x.check_rules(&screen, &|_| {}).unwrap_err().to_string();
     assert!(err.starts_with("no candidate is feasible: the binding constraint is material strain within backbone_strain_limit = 0.03 up to min_range_deg = 200°"), "{err}");
+}
+
+#[test]
+fn empty_lists_are_refused_before_any_work() {
+    for (from, to) in [
+        (
+            r#"tube = ["paper-1.6", "paper-2.5", "od2.0-id1.6"]"#,
+            "tube = []",
+        ),
+        ("[vary]", "[vary]\nstyle = []"),
+    ] {
+        let err = try_load(&SMALL.replace(from, to)).unwrap_err().to_string();
+        assert!(err.contains("= [] must hold at least one value"), "{err}");
+    }
+    let err = try_load(&SMALL.replace("paper-1.6", "paper-9"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("\"paper-9\" is not in the catalogue") && err.contains("paper-2.5"),
+        "{err}"
+    );
+}
+
+/// Candidates that meet every constraint but all break a design rule: the message names the
+/// rule (here the sensor's arms, 0.1 mm apart, closer than the clearance).
+#[test]
+fn all_breaking_a_rule_names_the_rule() {
+    let x = load(&SMALL.replace("[vary]", "[vary]\nsensor_arc_mm = [0.1]"));
+    let screen = x.screen(&|_| {});
+    assert!(!screen.survivors.is_empty());
+    let err = x.check_rules(&screen, &|_| {}).unwrap_err().to_string();
+    assert!(
+        err.contains("candidates that meet the constraints break a design rule"),
+        "{err}"
+    );
+    assert!(
+        err.contains("from sensor 1 arm (clearance 0.080 mm required)"),
+        "{err}"
+    );
 }
