@@ -47,6 +47,9 @@ pub use spec::{MAX_AXIS_VALUES, MAX_CANDIDATES};
 
 /// Candidates scored per parallel task (and per progress update).
 const CHUNK: u64 = 1 << 14;
+/// Most survivors of the screen the design rules are run on: at about 1.2 ms each
+/// (`docs/performance.md`), 10⁶ take 10 minutes on two cores, and they stay in memory.
+pub const MAX_SURVIVORS: u64 = 1_000_000;
 
 /// Why an exploration stopped.
 #[derive(Debug, thiserror::Error)]
@@ -69,6 +72,14 @@ pub enum ExploreError {
         /// Candidates described (saturated at `u64::MAX`).
         count: u64,
         /// [`MAX_CANDIDATES`].
+        max: u64,
+    },
+    /// Too many candidates meet the constraints to run the design rules on them all.
+    #[error("{count} candidates meet the constraints; the design rules run on at most {max} (about 1.2 ms each): tighten a constraint or narrow an axis")]
+    TooManySurvivors {
+        /// Candidates meeting the constraints.
+        count: u64,
+        /// [`MAX_SURVIVORS`].
         max: u64,
     },
     /// Nothing meets every constraint and design rule.
@@ -102,8 +113,10 @@ pub struct Screen {
     pub best_failing_only: [Option<f64>; 6],
     /// The best value of the constraint's quantity over every candidate with a valid geometry.
     pub best_any: [Option<f64>; 6],
-    /// Candidates meeting every constraint, in grid order.
+    /// Candidates meeting every constraint, in grid order (at most [`MAX_SURVIVORS`] kept).
     pub survivors: Vec<Candidate>,
+    /// Candidates meeting every constraint, all counted.
+    pub survivors_total: u64,
 }
 
 impl Screen {
@@ -118,11 +131,14 @@ impl Screen {
             self.best_any[k] = Some(self.best_any[k].map_or(v, |b| c.better(b, v)));
         }
         if mask == 0 {
-            self.survivors.push(Candidate {
-                index,
-                params,
-                metrics,
-            });
+            self.survivors_total += 1;
+            if (self.survivors.len() as u64) < MAX_SURVIVORS {
+                self.survivors.push(Candidate {
+                    index,
+                    params,
+                    metrics,
+                });
+            }
             return;
         }
         for (k, c) in Constraint::ALL.into_iter().enumerate() {
@@ -154,7 +170,9 @@ impl Screen {
                 better(self.best_failing_only[k], other.best_failing_only[k]);
             self.best_any[k] = better(self.best_any[k], other.best_any[k]);
         }
+        self.survivors_total += other.survivors_total;
         self.survivors.extend(other.survivors);
+        self.survivors.truncate(MAX_SURVIVORS as usize);
         self
     }
 }
@@ -326,6 +344,12 @@ impl Exploration {
     ) -> Result<Vec<Candidate>, ExploreError> {
         if screen.survivors.is_empty() {
             return Err(ExploreError::Infeasible(self.binding(screen)));
+        }
+        if screen.survivors_total > MAX_SURVIVORS {
+            return Err(ExploreError::TooManySurvivors {
+                count: screen.survivors_total,
+                max: MAX_SURVIVORS,
+            });
         }
         let checked: Vec<(Candidate, Option<Violation>)> = screen
             .survivors
