@@ -532,3 +532,15 @@ fn table_vi(page: &mut Page, r: &Reproduction) {
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    /// The m_t paragraph carries the model's number, the paper's and their ratio.
+    #[test]
+    fn stroke_model_text_compares_with_the_papers_m_t() {
+        let t = super::stroke_model_text();
+        assert!(t.contains("gives Joint D 53.10 °/mm (0.01883 mm/°)"), "{t}");
+        assert!(t.contains("m_t = 35.49 °/mm"), "{t}");
+        assert!(t.contains("took 1.50 times"), "{t}");
+    }
+}
