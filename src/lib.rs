@@ -31,7 +31,7 @@
 //!   their provenance (simulated or imported); depends on nothing above it;
 //! - [`stats`]: the shared statistics (`min_max`, `moments`, `slope`, `rmse`, medians) and their
 //!   one NaN policy;
-//! - [`fixed`]: fixed-point CSV number formatting;
+//! - [`fixed`]: the one number formatter (programs, drawings, templates, CSV);
 //! - [`fluoro`]: the joint angle from fluoroscopy frames (the phantom's ground truth), and
 //!   synthetic frames to try it on;
 //! - [`sim`]: the bench simulator (stroke → angle → strain → resistance → voltage → ADC) and
