@@ -1,6 +1,18 @@
-//! Fixed-point number formatting for CSV files: fast, and identical on every platform.
+//! Fixed-point number formatting, the one place numbers become text: [`fixed`] for programs,
+//! drawings and templates (each caller adds only its presentation: a typographic minus, trimmed
+//! zeros), and [`push_fixed`] for CSV files (fast, and identical on every platform).
 
 use std::io::Write;
+
+/// `value` with `decimals` decimals, never `-0.000` (a negative value that rounds to zero is
+/// written without its sign).
+pub fn fixed(value: f64, decimals: usize) -> String {
+    let s = format!("{value:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(abs) if abs.chars().all(|c| c == '0' || c == '.') => abs.to_string(),
+        _ => s,
+    }
+}
 
 /// Appends `x` with exactly `decimals` digits after the point, rounding half away from zero.
 /// Much faster than `format!` and identical on every platform.
@@ -42,6 +54,16 @@ pub fn push_fixed(out: &mut Vec<u8>, x: f64, decimals: u32) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn fixed_never_writes_negative_zero() {
+        assert_eq!(fixed(-0.0001, 3), "0.000");
+        assert_eq!(fixed(-0.0, 2), "0.00");
+        assert_eq!(fixed(-1.26, 1), "-1.3");
+        assert_eq!(crate::machine::format_number(-0.00001), "0");
+        assert_eq!(crate::machine::format_number(160.0), "160");
+        assert_eq!(crate::machine::format_number(0.16), "0.16");
+    }
 
     fn fixed(x: f64, d: u32) -> String {
         let mut v = Vec::new();

@@ -8,6 +8,8 @@
 //!   drawing frame;
 //! - [`drawing`]: drawings of the joint: DXF for designers (written and read back), SVG for
 //!   people;
+//! - [`explore`]: from requirements to joints: a grid of candidates scored with the mechanics
+//!   and the sensing model, the design rules, the Pareto front (`dlw explore`);
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
 //! - [`process`], [`machine`]: laser parameter sets (Table II) and machine profiles;
 //! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting);
@@ -29,7 +31,7 @@
 //!   their provenance (simulated or imported); depends on nothing above it;
 //! - [`stats`]: the shared statistics (`min_max`, `moments`, `slope`, `rmse`, medians) and their
 //!   one NaN policy;
-//! - [`fixed`]: fixed-point CSV number formatting;
+//! - [`fixed`]: the one number formatter (programs, drawings, templates, CSV);
 //! - [`fluoro`]: the joint angle from fluoroscopy frames (the phantom's ground truth), and
 //!   synthetic frames to try it on;
 //! - [`sim`]: the bench simulator (stroke → angle → strain → resistance → voltage → ADC) and
@@ -44,6 +46,7 @@ pub mod control;
 pub mod design;
 pub mod discover;
 pub mod drawing;
+pub mod explore;
 pub mod finite;
 pub mod fit;
 pub mod fixed;

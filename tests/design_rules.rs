@@ -100,6 +100,10 @@ const RULES: &[(&str, Edit, &[&str])] = &[
         &["sensor_saturation_strain = 0 must be a finite number greater than 0"]),
     ("backbone limit positive", Edit::Materials("backbone_strain_limit = -0.03"),
         &["backbone_strain_limit = -0.03 must be a finite number greater than 0"]),
+    ("tendon in the lumen", Edit::A(&[("sensor_arc_mm = 0.4", "sensor_arc_mm = 0.4\ntendon_offset_mm = 0.9")]),
+        &["tendon_offset_mm = 0.9 must be at most the inner radius inner_radius_mm = 0.875 (the tendon runs in the lumen)"]),
+    ("tendon offset positive", Edit::A(&[("sensor_arc_mm = 0.4", "sensor_arc_mm = 0.4\ntendon_offset_mm = -0.1")]),
+        &["tendon_offset_mm = -0.1 must be greater than 0"]),
     ("spiral pitch ≥ trace width", Edit::Fabrication("pad_pitch_mm = 0.04"),
         &["pad_pitch_mm = 0.04 must be at least the trace width trace_width_mm = 0.05"]),
     ("clearance: arm to notch", Edit::A(&[("sensor_arc_mm = 0.4", "sensor_arc_mm = 2.0")]),
@@ -196,7 +200,7 @@ fn warnings_are_printed_and_do_not_block() {
         .unwrap()
         .contains("past sensor_saturation_strain = 2.00 %: the sensor saturates from 37.8° on"));
     assert!(warnings[1].as_str().unwrap().contains(
-        "past backbone_strain_limit = 3.00 %: the backbone passes its limit from 28.2° on"
+        "past backbone_strain_limit = 3.00 %: the backbone passes its limit from 22.8° on"
     ));
     let dir = tempfile::tempdir().unwrap();
     let dxf = dir.path().join("a.dxf");

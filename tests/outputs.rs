@@ -57,6 +57,21 @@ fn fixture() -> Fixture {
     }
 }
 
+/// A small exploration spec beside the fixture's design (written on first use).
+fn explore_spec(f: &Fixture) -> PathBuf {
+    let path = f.design.with_file_name("explore.toml");
+    if !path.exists() {
+        let tubes = shipped_design("tubes.toml");
+        let text = format!(
+            "base = \"joint-c.toml\"\ntubes = \"{}\"\ngauge_factor = 5.0\nr0_ohm = 1e5\n\
+             [vary]\nnotch_count = [8, 10]\n[objectives]\nmaximize = [\"range_deg\"]\n",
+            tubes
+        );
+        std::fs::write(&path, text).unwrap();
+    }
+    path
+}
+
 fn simulate_args(design: &Path, out: &Path, duration_s: &str) -> Vec<String> {
     [
         "simulate",
@@ -119,6 +134,12 @@ fn commands() -> Vec<Row> {
             kind: Kind::File,
             args: |f, out| strings(&["program", &arg(&f.design), "-o", out]),
             input: |f| f.design.clone(),
+        },
+        Row {
+            name: "explore",
+            kind: Kind::Folder,
+            args: |f, out| strings(&["explore", &arg(&explore_spec(f)), "-o", out]),
+            input: explore_spec,
         },
         Row {
             name: "build",

@@ -10,6 +10,7 @@ mod discover;
 mod draw;
 mod estimate;
 mod estimator_config;
+mod explore;
 mod fit;
 mod fluoro;
 mod fluoro_render;
@@ -42,6 +43,8 @@ enum Command {
     Program(program::Args),
     /// Write everything for one joint into a folder: DXF, SVGs, laser program, setup sheet.
     Build(build::Args),
+    /// Search a grid of designs for the Pareto front of a spec's objectives; write the best.
+    Explore(explore::Args),
     /// Simulate the paper's bench and write a recording folder.
     Simulate(simulate::Args),
     /// Write a nominal linear estimator config from a design's geometry.
@@ -74,6 +77,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::ImportDxf(args) => import_dxf::run(args),
         Command::Program(args) => program::run(args),
         Command::Build(args) => build::run(args),
+        Command::Explore(args) => explore::run(args),
         Command::Simulate(args) => simulate::run(args),
         Command::EstimatorConfig(args) => estimator_config::run(args),
         Command::Estimate(args) => estimate::run(args),

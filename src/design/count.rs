@@ -8,7 +8,7 @@
 
 use serde::de::{self, Deserializer, Visitor};
 
-use crate::layout::MAX_NOTCH_COUNT;
+use crate::design::MAX_NOTCH_COUNT;
 
 /// `deserialize_with` for `notch_count`.
 pub(super) fn deserialize_notch_count<'de, D: Deserializer<'de>>(d: D) -> Result<u32, D::Error> {

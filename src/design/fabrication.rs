@@ -2,6 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::material::TubeMaterial;
+
 /// Trace, pad, margin and cutting parameters (`[fabrication]`). Lengths in mm.
 ///
 /// | key | default | meaning |
@@ -63,27 +65,71 @@ impl Fabrication {
     }
 }
 
-/// Material limits (`[materials]`), as strain fractions.
+/// The tube's material and the limits on strain (`[materials]`), strains as fractions.
 ///
 /// | key | default | source |
 /// |---|---|---|
+/// | `tube` | `"polyimide"` | the tube material, from the table in [`TubeMaterial`] (`"polyimide"` or `"nitinol"`) |
 /// | `sensor_saturation_strain` | 0.02 | the paper's conclusion: saturation below 2 % strain |
-/// | `backbone_strain_limit` | 0.03 | polyimide film's yield strain, about 3 % |
+/// | `backbone_strain_limit` | the tube material's strain limit (polyimide 0.03) | peak strain the backbone may take; set it to override the material's |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(from = "MaterialsFile")]
 pub struct Materials {
+    /// The tube material (Young's modulus and strain limit from its table entry). Not written
+    /// when it is the default, so a design's canonical TOML (and checksum) is as before.
+    #[serde(skip_serializing_if = "TubeMaterial::is_default")]
+    pub tube: TubeMaterial,
     /// Strain at which the DLW sensor saturates.
     pub sensor_saturation_strain: f64,
-    /// Peak backbone strain the tube may take without yielding.
+    /// Peak backbone strain the tube may take: the file's value, or the material's limit.
     pub backbone_strain_limit: f64,
+}
+
+/// `[materials]` as written: the backbone limit may be left to the material.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialsFile {
+    #[serde(default)]
+    tube: TubeMaterial,
+    #[serde(default = "default_saturation")]
+    sensor_saturation_strain: f64,
+    #[serde(default)]
+    backbone_strain_limit: Option<f64>,
+}
+
+/// The paper's conclusion: the DLW sensor saturates below 2 % strain.
+const DEFAULT_SENSOR_SATURATION_STRAIN: f64 = 0.02;
+
+fn default_saturation() -> f64 {
+    DEFAULT_SENSOR_SATURATION_STRAIN
+}
+
+impl From<MaterialsFile> for Materials {
+    fn from(f: MaterialsFile) -> Self {
+        Self {
+            tube: f.tube,
+            sensor_saturation_strain: f.sensor_saturation_strain,
+            backbone_strain_limit: f
+                .backbone_strain_limit
+                .unwrap_or_else(|| f.tube.strain_limit()),
+        }
+    }
 }
 
 impl Default for Materials {
     fn default() -> Self {
-        Self {
-            sensor_saturation_strain: 0.02,
-            backbone_strain_limit: 0.03,
-        }
+        Self::from(MaterialsFile {
+            tube: TubeMaterial::default(),
+            sensor_saturation_strain: DEFAULT_SENSOR_SATURATION_STRAIN,
+            backbone_strain_limit: None,
+        })
+    }
+}
+
+impl Materials {
+    /// Young's modulus of the tube material (Pa).
+    pub fn youngs_modulus_pa(&self) -> f64 {
+        self.tube.youngs_modulus_pa()
     }
 }
 

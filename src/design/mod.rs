@@ -15,22 +15,37 @@
 //! notch_count = 10         # N (per side for BSN)
 //! joint_length_mm = 9.5    # L
 //! sensor_arc_mm = 0.4      # s_s: arc between the two arms of a sensor
+//! tendon_offset_mm = 0.735 # optional r_t (default r_i − 0.14 mm; docs/mechanics.md)
 //!
 //! [fabrication]            # optional; see `Fabrication` for every key
 //! kerf_mm = 0.03
+//!
+//! [materials]              # optional; see `Materials`
+//! tube = "polyimide"       # or "nitinol": Young's modulus and default backbone_strain_limit
 //! ```
 //!
 //! Unknown keys are refused, so a misspelt parameter never silently takes its default.
 
 mod count;
 mod fabrication;
+mod material;
 
 use std::path::{Path, PathBuf};
 
-use dlw_geometry::{CrossSection, GeometryError, Joint, NotchStyle};
+use dlw_geometry::{CrossSection, GeometryError, Joint, Mechanics, NotchStyle};
 use serde::{Deserialize, Serialize};
 
 pub use fabrication::{Fabrication, Materials, ProcessChoice};
+/// The tube materials and their sources.
+pub use material::{
+    TubeMaterial, NITINOL_STRAIN_LIMIT, NITINOL_YOUNGS_MODULUS_PA, POLYIMIDE_STRAIN_LIMIT,
+    POLYIMIDE_YOUNGS_MODULUS_PA,
+};
+
+/// Most notches (levels, per side for BSN) a design may have: far more than a tube on a rotary
+/// stage carries, and within what a DXF can number (16-bit XDATA integers). Defined here, with
+/// the design, so the layout and the rules depend on the design and not the other way round.
+pub const MAX_NOTCH_COUNT: u32 = 10_000;
 
 /// The longest design name (characters): it titles drawings, sheets and program headers.
 pub const MAX_NAME_CHARS: usize = 200;
@@ -61,6 +76,11 @@ pub struct DesignFile {
     pub joint_length_mm: f64,
     /// Arc between the two arms of a sensor, `s_s` (mm).
     pub sensor_arc_mm: f64,
+    /// Tendon offset `r_t` from the tube axis, on the notch side (mm). `None` means at the
+    /// inner wall less half the paper's 0.28 mm tendon, `r_i − 0.14 mm`. Not written when
+    /// absent, so existing designs keep their checksum.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tendon_offset_mm: Option<f64>,
     /// Trace, pad, margin and cutting parameters.
     #[serde(default)]
     pub fabrication: Fabrication,
@@ -73,6 +93,12 @@ pub struct DesignFile {
 }
 
 impl DesignFile {
+    /// The tendon offset in force (mm): the file's, or `r_i − 0.14 mm`.
+    pub fn tendon_offset_mm(&self) -> f64 {
+        self.tendon_offset_mm
+            .unwrap_or_else(|| Mechanics::default_tendon_offset_mm(self.inner_radius_mm))
+    }
+
     /// Reads a design file without validating its values (the design rules do that, listing
     /// every problem at once).
     ///
@@ -169,6 +195,8 @@ pub struct Design {
     pub file: DesignFile,
     /// The joint geometry shared with the estimator.
     pub joint: Joint,
+    /// The joint's tendon mechanics (`docs/mechanics.md`).
+    pub mechanics: Mechanics,
     /// A checksum of the design's canonical TOML (FNV-1a 64, hex), printed in program headers
     /// so an operator can tell which design a program was made from.
     pub checksum: String,
@@ -217,11 +245,13 @@ impl Design {
             file.joint_length_mm,
         )
         .map_err(geometry)?;
+        let mechanics = Mechanics::new(joint, file.tendon_offset_mm()).map_err(geometry)?;
         let canonical = toml::to_string(&file).unwrap_or_default();
         let checksum = format!("{:016x}", fnv1a64(canonical.as_bytes()));
         Ok(Self {
             file,
             joint,
+            mechanics,
             checksum,
         })
     }
@@ -278,6 +308,64 @@ sensor_arc_mm = 0.4
             err.contains("inner_radius_mm = 1.3") && err.contains("1.24"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn the_tube_material_sets_the_backbone_limit_unless_given() {
+        let d = Design::from_toml(JOINT_A).unwrap();
+        assert_eq!(d.file.materials.tube, TubeMaterial::Polyimide);
+        assert_eq!(
+            d.file.materials.backbone_strain_limit,
+            POLYIMIDE_STRAIN_LIMIT
+        );
+        let niti =
+            Design::from_toml(&format!("{JOINT_A}\n[materials]\ntube = \"nitinol\"\n")).unwrap();
+        assert_eq!(
+            niti.file.materials.backbone_strain_limit,
+            NITINOL_STRAIN_LIMIT
+        );
+        assert_eq!(
+            niti.file.materials.youngs_modulus_pa(),
+            NITINOL_YOUNGS_MODULUS_PA
+        );
+        let own =
+            format!("{JOINT_A}\n[materials]\ntube = \"nitinol\"\nbackbone_strain_limit = 0.05\n");
+        assert_eq!(
+            Design::from_toml(&own)
+                .unwrap()
+                .file
+                .materials
+                .backbone_strain_limit,
+            0.05
+        );
+        let err = Design::from_toml(&format!("{JOINT_A}\n[materials]\ntube = \"steel\"\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("steel") && err.contains("nitinol"), "{err}");
+        let err = Design::from_toml(&format!("{JOINT_A}\n[materials]\nbackbone = 0.1\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("backbone"), "{err}");
+    }
+
+    /// New optional keys left out keep a design's canonical TOML, so its checksum (printed in
+    /// every program header) does not change.
+    #[test]
+    fn defaults_keep_the_canonical_text() {
+        let d = Design::from_toml(JOINT_A).unwrap();
+        let text = toml::to_string(&d.file).unwrap();
+        assert!(
+            !text.contains("tendon_offset_mm") && !text.contains("tube"),
+            "{text}"
+        );
+        assert!(text.contains("backbone_strain_limit = 0.03"), "{text}");
+        let with = format!("{JOINT_A}tendon_offset_mm = 0.5\n");
+        let d2 = Design::from_toml(&with).unwrap();
+        assert_eq!(d2.mechanics.tendon_offset_mm(), 0.5);
+        assert_ne!(d2.checksum, d.checksum);
+        // Written designs read back the same.
+        let back = DesignFile::from_toml(&toml::to_string(&d2.file).unwrap()).unwrap();
+        assert_eq!(back, d2.file);
     }
 
     #[test]

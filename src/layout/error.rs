@@ -38,10 +38,6 @@ pub enum LayoutError {
     },
 }
 
-/// Most notch levels a layout holds: far more than a tube on a rotary stage carries, and
-/// within what a DXF can number (16-bit XDATA integers).
-pub const MAX_NOTCH_COUNT: u32 = 10_000;
-
 /// Checks that a fabrication length is finite and positive.
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, LayoutError> {
     if value.is_finite() && value > 0.0 {

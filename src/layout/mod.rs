@@ -32,8 +32,11 @@ mod stations;
 
 use geo::{LineString, Polygon};
 
+/// The notch-count limit, defined with the design ([`crate::design::MAX_NOTCH_COUNT`]) and
+/// re-exported here for the layout's callers.
+pub use crate::design::MAX_NOTCH_COUNT;
 /// Why a design could not be laid out.
-pub use error::{LayoutError, MAX_NOTCH_COUNT};
+pub use error::LayoutError;
 /// Where each feature sits along the tube: the layout's plan in `x`.
 pub use stations::Stations;
 

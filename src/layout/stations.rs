@@ -1,6 +1,7 @@
 use crate::design::Design;
 
-use super::error::{positive, LayoutError, MAX_NOTCH_COUNT};
+use super::error::{positive, LayoutError};
+use crate::design::MAX_NOTCH_COUNT;
 
 /// Where each feature sits along the tube (`x`, mm from the distal end), the layout's plan.
 ///

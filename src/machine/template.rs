@@ -112,13 +112,9 @@ impl Template {
 
 /// A number with at most 4 decimals and no trailing zeros: `160`, `0.16`, `2.5`.
 pub fn format_number(value: f64) -> String {
-    let s = format!("{value:.4}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.into()
-    }
+    // `fixed` never writes `-0.0000`, so no trimmed `-0` can appear.
+    let s = crate::fixed::fixed(value, 4);
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 #[cfg(test)]

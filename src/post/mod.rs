@@ -142,12 +142,5 @@ pub enum PostError {
     },
 }
 
-/// A number with `decimals` decimals, never `-0.000`.
-pub fn fixed(value: f64, decimals: usize) -> String {
-    let s = format!("{value:.decimals$}");
-    if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
-        s[1..].to_string()
-    } else {
-        s
-    }
-}
+/// A number with `decimals` decimals, never `-0.000` (the crate's one formatter).
+pub use crate::fixed::fixed;

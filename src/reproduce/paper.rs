@@ -64,3 +64,6 @@ pub const TABLE_IV: [[f64; 2]; 3] = [[2.76, 1.76], [3.51, 2.65], [5.25, 7.57]];
 pub const TABLE_V: [(f64, f64, f64); 2] = [(1.28, 74.0e3, 0.888), (0.680, 88.9e3, 0.892)];
 /// Section IV-B2: angle RMSE (°) of Joint C's tension sensor, compression sensor, both.
 pub const TWO_SENSOR_RMSE: [f64; 3] = [5.25, 3.84, 3.13];
+
+/// Joint D's measured tendon stroke-to-angle slope `m_t` (°/mm), Section IV-C.
+pub const M_T_DEG_PER_MM: f64 = 35.49;

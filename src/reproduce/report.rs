@@ -2,8 +2,8 @@
 //! `dlw`'s, a sentence on why they differ, and the figures.
 
 use super::paper::{
-    R0_STD_OHM, RATE_CORRELATION, RELAXATION_CORRELATION, TABLE_III, TABLE_IV, TABLE_V,
-    TWO_SENSOR_RMSE,
+    M_T_DEG_PER_MM, R0_STD_OHM, RATE_CORRELATION, RELAXATION_CORRELATION, TABLE_III, TABLE_IV,
+    TABLE_V, TWO_SENSOR_RMSE,
 };
 use super::patterns::max_rate_correlation;
 use super::{prose, Reproduction, CONTROL_ORDER};
@@ -497,6 +497,27 @@ fn table_v(page: &mut Page, r: &Reproduction) {
     );
 }
 
+/// The mechanics model's stroke per degree for Joint D against the paper's measured `m_t`
+/// (docs/mechanics.md says why they differ).
+fn stroke_model_text() -> String {
+    let d = crate::design::Design::from_toml(include_str!("../../designs/joint-d.toml"));
+    let Ok(d) = d else {
+        return String::new();
+    };
+    let model = 1.0 / d.mechanics.stroke_per_deg_mm();
+    format!(
+        "The tendon model of docs/mechanics.md (York et al., friction ignored, tendon at \
+         r_t = {:.2} mm) gives Joint D {model:.2} °/mm ({:.5} mm/°); the paper measured \
+         m_t = {M_T_DEG_PER_MM} °/mm, so the bench took {:.2} times the model's stroke per \
+         degree: the nylon tendon's stretch, friction, the actuator's slack and the polymer's \
+         hysteresis take stroke the joint's geometry does not. The simulator's plant uses the \
+         measured m_t.",
+        d.mechanics.tendon_offset_mm(),
+        d.mechanics.stroke_per_deg_mm(),
+        model / M_T_DEG_PER_MM
+    )
+}
+
 fn table_vi(page: &mut Page, r: &Reproduction) {
     page.heading("Closed-loop control, Joint D (Section IV-C, Table VI, Fig. 10)");
     let mut t = Table::new([
@@ -537,6 +558,7 @@ fn table_vi(page: &mut Page, r: &Reproduction) {
         super::CONTROL_RANGE_SHARE * 100.0
     ));
     page.text(prose::table_vi(mo, mc, po, pc));
+    page.text(stroke_model_text());
     let control_page = control_report::page(&r.control.control, &r.control.run);
     let from = control_page
         .blocks
@@ -565,5 +587,17 @@ fn placement<'a>(label: &'a str, figure_prefix: &'a str) -> Placement<'a> {
     Placement {
         label,
         figure_prefix,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// The m_t paragraph carries the model's number, the paper's and their ratio.
+    #[test]
+    fn stroke_model_text_compares_with_the_papers_m_t() {
+        let t = super::stroke_model_text();
+        assert!(t.contains("gives Joint D 53.10 °/mm (0.01883 mm/°)"), "{t}");
+        assert!(t.contains("m_t = 35.49 °/mm"), "{t}");
+        assert!(t.contains("took 1.50 times"), "{t}");
     }
 }

@@ -1,7 +1,7 @@
 //! Rules on plain dimensions: positive lengths, counts of at least one, cuts wider than the kerf.
 
 use crate::design::DesignFile;
-use crate::layout::MAX_NOTCH_COUNT;
+use crate::design::MAX_NOTCH_COUNT;
 
 use super::Violation;
 

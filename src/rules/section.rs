@@ -2,7 +2,7 @@
 
 use core::f64::consts::PI;
 
-use dlw_geometry::{CrossSection, Joint, NotchStyle};
+use dlw_geometry::{CrossSection, Joint, Mechanics, NotchStyle};
 
 use crate::design::DesignFile;
 
@@ -61,7 +61,8 @@ pub(crate) fn check(file: &DesignFile, out: &mut Vec<Violation>) {
     }
 }
 
-/// Whatever else the geometry crate refuses (a sensor on the neutral plane), once the rules
+/// Whatever else the geometry crate refuses (a sensor on the neutral plane, a tendon outside
+/// the lumen), once the rules
 /// above pass.
 pub(crate) fn check_geometry(file: &DesignFile, out: &mut Vec<Violation>) {
     let built = CrossSection::new(
@@ -79,7 +80,8 @@ pub(crate) fn check_geometry(file: &DesignFile, out: &mut Vec<Violation>) {
             file.notch_count,
             file.joint_length_mm,
         )
-    });
+    })
+    .and_then(|j| Mechanics::new(j, file.tendon_offset_mm()));
     if let Err(e) = built {
         out.push(Violation::Geometry(e));
     }

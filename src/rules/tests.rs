@@ -148,7 +148,14 @@ fn saturation_and_backbone_warnings_give_the_angle() {
             && w[0].ends_with(&format!("from {sat} on")),
         "{w:?}"
     );
-    let bb = format!("{:.1}°", j.angle_at_backbone_strain(0.01).to_degrees());
+    let bb = format!(
+        "{:.1}°",
+        checked
+            .design
+            .mechanics
+            .angle_at_material_strain_rad(0.01)
+            .to_degrees()
+    );
     assert!(
         w[1].contains("past backbone_strain_limit = 1.00 %")
             && w[1].ends_with(&format!("from {bb} on")),

@@ -259,11 +259,13 @@ pub enum Warning {
     },
     /// The backbone strains past its limit before the notches close.
     #[error(
-        "backbone strain reaches {strain_pct:.2} % at the notch-closing angle {closing_deg:.1}°, past backbone_strain_limit = {limit_pct:.2} %: the backbone passes its limit from {from_deg:.1}° on"
+        "backbone strain reaches {strain_pct:.2} % ({side}) at the notch-closing angle {closing_deg:.1}°, past backbone_strain_limit = {limit_pct:.2} %: the backbone passes its limit from {from_deg:.1}° on"
     )]
     BackboneStrain {
         /// Peak backbone strain at the closing angle (%).
         strain_pct: f64,
+        /// Where the farthest fibre is (`FibreSide::describe`).
+        side: &'static str,
         /// Notch-closing angle (°).
         closing_deg: f64,
         /// Backbone strain limit (%).

@@ -48,6 +48,13 @@ pub enum GeometryError {
         /// Δy = y_s − ȳ (mm).
         offset_mm: f64,
     },
+    /// The tendon does not run inside the tube's lumen.
+    TendonOutsideLumen {
+        /// r_t (mm).
+        tendon_offset_mm: f64,
+        /// r_i (mm).
+        inner_mm: f64,
+    },
     /// A divider reading at or beyond a rail has no finite resistance.
     VoltageAtRail {
         /// The reading (V).
@@ -78,6 +85,10 @@ impl fmt::Display for GeometryError {
             Self::ZeroOffset { offset_mm } => write!(
                 f,
                 "sensor plane is {offset_mm:.3e} mm from the neutral plane, so it senses no strain (must not be 0)"
+            ),
+            Self::TendonOutsideLumen { tendon_offset_mm, inner_mm } => write!(
+                f,
+                "tendon_offset_mm = {tendon_offset_mm} must be at most the inner radius inner_radius_mm = {inner_mm} (the tendon runs in the lumen)"
             ),
             Self::VoltageAtRail { volts, supply_v } => write!(
                 f,

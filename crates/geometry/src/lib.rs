@@ -9,6 +9,8 @@
 //!   offset `Δy`;
 //! - [`Joint`]: strain `ε = Δy·θ/L` (Eq. 3) and its inverse, the two-sensor angle (Eq. 7), the
 //!   angle at which the notches close;
+//! - [`Mechanics`]: tendon stroke per degree, the notch-closing limit, the farthest fibre's
+//!   strain, the second moment of area and the tendon force (`docs/mechanics.md`);
 //! - [`Divider`]: the voltage divider that reads the sensor (Eq. 4).
 //!
 //! The planner (`dlw`) and the runtime estimator (`dlw-estimator`) both use it, so a joint is
@@ -50,6 +52,7 @@
 mod divider;
 mod error;
 mod joint;
+mod mechanics;
 mod section;
 
 /// The voltage divider that reads a sensor (Eq. 4).
@@ -58,5 +61,7 @@ pub use divider::Divider;
 pub use error::GeometryError;
 /// Strain and angle along a whole joint (Eqs. 3 and 7, notch closing).
 pub use joint::Joint;
+/// Tendon stroke, material strain, bending stiffness and tendon force (York, Swaney et al.).
+pub use mechanics::{FibreSide, Mechanics, RangeLimit, DEFAULT_TENDON_HALF_DIAMETER_MM};
 /// The notched cross-section (Eqs. 1 and 2).
 pub use section::{CrossSection, NotchStyle};

@@ -574,9 +574,8 @@ pub(crate) fn num(v: f64) -> String {
 /// A value for a label with a fixed number of decimals, with a typographic minus (U+2212)
 /// and never `−0.00`.
 pub(crate) fn fixed(v: f64, decimals: usize) -> String {
-    let s = format!("{v:.decimals$}");
+    let s = crate::fixed::fixed(v, decimals);
     match s.strip_prefix('-') {
-        Some(abs) if abs.chars().all(|c| c == '0' || c == '.') => abs.to_string(),
         Some(abs) => format!("−{abs}"),
         None => s,
     }

@@ -1,0 +1,73 @@
+//! `dlw explore SPEC -o DIR [--json] [--top K] [--force]`: search a grid of joint designs for
+//! the Pareto front of the spec's objectives (`docs/explore.md`).
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use dlw::explore::{files, Exploration};
+
+/// Arguments of `dlw explore`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Exploration spec (TOML).
+    spec: PathBuf,
+    /// Folder to write: designs.csv, front.csv, best-K.toml, report.html.
+    #[arg(short, long, value_name = "DIR")]
+    output: PathBuf,
+    /// Print the Pareto front as JSON.
+    #[arg(long)]
+    json: bool,
+    /// How many of the best designs to write as design files.
+    #[arg(long, value_name = "K", default_value_t = 3)]
+    top: usize,
+    /// Replace an existing output folder and everything in it.
+    #[arg(long)]
+    force: bool,
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    dlw::output::claim(&args.output, [&args.spec], args.force)?;
+    let x = Exploration::load(&args.spec, &args.output.join("best-1.toml"))?;
+    let bar = progress(x.candidate_count(), "scoring");
+    let screen = x.screen(&|n| bar.inc(n));
+    bar.finish_and_clear();
+    let bar = progress(screen.survivors.len() as u64, "design rules");
+    let feasible = x.check_rules(&screen, &|n| bar.inc(n))?;
+    bar.finish_and_clear();
+    let front = x.front(&feasible);
+    let (out, summary) =
+        files(&x, &screen, &feasible, &front, args.top).context("drawing the report")?;
+    dlw::output::write_folder_atomic(&args.output, &out)?;
+    if args.json {
+        println!("{}", dlw::finite::to_json(&summary)?);
+    } else {
+        println!(
+            "{} candidates: {} feasible, {} on the Pareto front",
+            summary.candidates,
+            summary.feasible,
+            summary.front.len()
+        );
+        for (name, _) in &out {
+            if name.ends_with(".toml") || name.ends_with(".csv") || name.ends_with(".html") {
+                println!("wrote {}", args.output.join(name).display());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A progress bar on stderr, hidden when stderr is not a terminal (tests, pipes).
+fn progress(len: u64, what: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    bar.set_message(what.to_string());
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{msg:>12} [{bar:40}] {human_pos}/{human_len} ({per_sec}, {eta})",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
