@@ -9,6 +9,13 @@ use clap::Parser;
 mod cli;
 
 fn main() -> ExitCode {
+    // A closed pipe (`dlw inspect --json … | head`) ends dlw quietly, as it ends any Unix tool,
+    // instead of a panic in `println!` (Rust ignores SIGPIPE by default). A staging folder left
+    // by such an end is removed by the next run (docs/outputs.md).
+    // SAFETY: sets a signal's disposition to the default before any other thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let args = cli::Cli::parse();
     match cli::run(args) {
         Ok(()) => ExitCode::SUCCESS,
