@@ -136,6 +136,22 @@ impl DesignFile {
         Ok(file)
     }
 
+    /// The one check of the notch count against [`MAX_NOTCH_COUNT`]: [`Design::from_file`]
+    /// refuses a file that fails it, and the design rules list it with every other problem.
+    ///
+    /// # Errors
+    /// [`DesignError::TooManyNotches`].
+    pub fn check_notch_count(&self) -> Result<(), DesignError> {
+        if self.notch_count > MAX_NOTCH_COUNT {
+            return Err(DesignError::TooManyNotches {
+                name: self.name.clone(),
+                count: self.notch_count,
+                max: MAX_NOTCH_COUNT,
+            });
+        }
+        Ok(())
+    }
+
     /// The name must be printable text of at most [`MAX_NAME_CHARS`] characters: it is written
     /// into SVG (XML, where a control character makes the file unreadable), DXF and G-code
     /// comments.
@@ -177,6 +193,16 @@ pub enum DesignError {
         path: PathBuf,
         /// The TOML parser's message, which names the key and line.
         message: String,
+    },
+    /// More notches than a layout holds ([`MAX_NOTCH_COUNT`]).
+    #[error("design {name:?}: notch_count = {count} must be at most {max}")]
+    TooManyNotches {
+        /// The design's name.
+        name: String,
+        /// The count given.
+        count: u32,
+        /// The limit.
+        max: u32,
     },
     /// A Table I quantity is not physical.
     #[error("design {name:?}: {reason}")]
@@ -225,6 +251,9 @@ impl Design {
     /// # Errors
     /// [`DesignError::Geometry`] for unphysical Table I values.
     pub fn from_file(file: DesignFile) -> Result<Self, DesignError> {
+        // A `Design` never holds more notches than the limit, so the layout and everything
+        // after it can rely on it.
+        file.check_notch_count()?;
         let geometry = |reason| DesignError::Geometry {
             name: file.name.clone(),
             reason,

@@ -28,14 +28,6 @@ pub enum LayoutError {
         /// Circumference (mm).
         circumference_mm: f64,
     },
-    /// More notches than a layout holds.
-    #[error("notch_count = {count} is more than {max}")]
-    TooManyNotches {
-        /// N.
-        count: u32,
-        /// The limit.
-        max: u32,
-    },
 }
 
 /// Checks that a fabrication length is finite and positive.

@@ -1,7 +1,6 @@
 use crate::design::Design;
 
 use super::error::{positive, LayoutError};
-use crate::design::MAX_NOTCH_COUNT;
 
 /// Where each feature sits along the tube (`x`, mm from the distal end), the layout's plan.
 ///
@@ -40,7 +39,8 @@ impl Stations {
     ///
     /// # Errors
     /// [`LayoutError`] when a fabrication length is not positive, the pads have no turns or
-    /// are wider than the tube is round, or there are more than [`MAX_NOTCH_COUNT`] notches.
+    /// are wider than the tube is round. (A `Design` never has more than
+    /// [`crate::design::MAX_NOTCH_COUNT`] notches: `Design::from_file` checks it, once.)
     pub fn from_design(design: &Design) -> Result<Self, LayoutError> {
         let fab = &design.file.fabrication;
         let joint = &design.joint;
@@ -59,12 +59,6 @@ impl Stations {
                 pitch_mm,
                 size_mm: pad_size_mm,
                 circumference_mm,
-            });
-        }
-        if joint.notch_count() > MAX_NOTCH_COUNT {
-            return Err(LayoutError::TooManyNotches {
-                count: joint.notch_count(),
-                max: MAX_NOTCH_COUNT,
             });
         }
         let notched_end_x_mm = margin_mm + joint.notched_length_mm();

@@ -1,7 +1,6 @@
 //! Rules on plain dimensions: positive lengths, counts of at least one, cuts wider than the kerf.
 
 use crate::design::DesignFile;
-use crate::design::MAX_NOTCH_COUNT;
 
 use super::Violation;
 
@@ -39,11 +38,13 @@ pub(crate) fn check(file: &DesignFile, out: &mut Vec<Violation>) {
             name: "notch_count",
         });
     }
-    if file.notch_count > MAX_NOTCH_COUNT {
+    if let Err(crate::design::DesignError::TooManyNotches { count, max, .. }) =
+        file.check_notch_count()
+    {
         out.push(Violation::TooMany {
             name: "notch_count",
-            value: file.notch_count,
-            max: MAX_NOTCH_COUNT,
+            value: count,
+            max,
         });
     }
     if fab.pad_turns == 0 {

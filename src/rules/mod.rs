@@ -158,6 +158,13 @@ pub fn check_file(file: DesignFile) -> Result<Checked, RulesError> {
         crate::design::DesignError::Geometry { reason, .. } => {
             refuse(vec![Violation::Geometry(reason)])
         }
+        crate::design::DesignError::TooManyNotches { count, max, .. } => {
+            refuse(vec![Violation::TooMany {
+                name: "notch_count",
+                value: count,
+                max,
+            }])
+        }
         // from_file only fails on geometry; keep any other reason's text.
         other => refuse(vec![Violation::Other(other.to_string())]),
     })?;
