@@ -1,10 +1,11 @@
 //! `dlw import-recording` on files written the way a bench writes them: a DAQ's CSV export
-//! (time, two voltages, a stroke voltage) and an NDI Aurora log (CSV, NDI Track's columns with
-//! `ToolInfo`, `Port:1` handles and `Missing` frames), built by this test from a known truth
-//! with its own generator: a stroke pattern, an angle that follows it with a 30 ms lag, a
-//! linear sensor, a tracker at 40 Hz whose clock is 0.437 s late and runs 250 ppm fast, 1.5 %
-//! of its frames missing in bursts, a tracker frame turned against the joint's, and a reference
-//! tool on the base that moves.
+//! (time, a linear sensor's voltage, a noise channel, a stroke voltage, a PI sensor's voltage)
+//! and an NDI Aurora log (CSV, NDI Track's columns with `ToolInfo`, `Port:1` handles and
+//! `Missing` frames), built by this test from a known truth with its own generator: a stroke
+//! pattern, an angle that follows it with a 30 ms lag, a linear sensor and a hysteretic (PI)
+//! one, a tracker at 40 Hz whose clock is 0.437 s late and runs 250 ppm fast, 1.1 % of its
+//! frames missing in bursts, a tracker frame turned against the joint's, a 5-DOF tip tool
+//! (its roll is noise) and a 6-DOF reference tool on the base that moves.
 
 mod common;
 use common::{arg, dlw, shipped_design};
@@ -29,7 +30,58 @@ const SUPPLY_V: f64 = 5.0;
 const MM_PER_V: f64 = 0.5;
 const GAIN_DEG_PER_MM: f64 = 33.0;
 const LAG_S: f64 = 0.03;
+/// The PI sensor (channel AI3): its unstrained resistance (Ω), and the gauge factor that
+/// scales its hysteretic strain response.
+const PI_R0: f64 = 180e3;
+const PI_GF: f64 = 12.0;
+/// The PI sensor's response, in strain: `PI_LINEAR_WEIGHT·ε + Σ wᵢ·playᵢ(ε)` with the play
+/// radii as shares of [`PI_RADIUS_STRAIN`] and their weights.
+const PI_LINEAR_WEIGHT: f64 = 0.5;
+const PI_PLAYS: [(f64, f64); 3] = [(0.15, 0.25), (0.35, 0.15), (0.6, 0.1)];
+/// The strain the play radii are shares of (about a third of the bench's strain range).
+const PI_RADIUS_STRAIN: f64 = 0.004;
 
+/// The bench's tools: whether the tip is a 5-DOF sensor (its roll about z is arbitrary: here
+/// a random angle each frame) and whether the base, with the 6-DOF reference tool, sways.
+#[derive(Clone, Copy)]
+struct Tools {
+    tip_5dof: bool,
+    reference_moves: bool,
+}
+
+/// A 6-DOF tip on a still base.
+const STILL_6DOF: Tools = Tools {
+    tip_5dof: false,
+    reference_moves: false,
+};
+/// A 5-DOF tip on a still base.
+const STILL_5DOF: Tools = Tools {
+    tip_5dof: true,
+    reference_moves: false,
+};
+
+/// A hysteretic sensor: the strain through a linear term and play operators, each
+/// `y ← clamp(y, ε − r, ε + r)`.
+struct PiSensor {
+    plays: Vec<f64>,
+}
+impl PiSensor {
+    fn new() -> Self {
+        PiSensor {
+            plays: vec![0.0; PI_PLAYS.len()],
+        }
+    }
+    /// The resistance (Ω) at the next strain.
+    fn ohm(&mut self, strain: f64) -> f64 {
+        let mut response = PI_LINEAR_WEIGHT * strain;
+        for (y, (share, weight)) in self.plays.iter_mut().zip(PI_PLAYS) {
+            let r = share * PI_RADIUS_STRAIN;
+            *y = y.clamp(strain - r, strain + r);
+            response += weight * *y;
+        }
+        PI_R0 * (1.0 + PI_GF * response)
+    }
+}
 /// A small deterministic generator (xorshift), independent of the simulator's.
 struct Rng(u64);
 impl Rng {
@@ -97,7 +149,7 @@ fn mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
 }
 
 /// Writes `daq.csv` and `aurora.csv` into `dir`; returns the truth.
-fn write_bench(dir: &Path, reference_moves: bool) -> Truth {
+fn write_bench(dir: &Path, tools: Tools) -> Truth {
     let mut rng = Rng(0x5eed_1234_abcd_0001);
     let truth = Truth::new(&mut rng);
     let joint = Design::load(Path::new(&shipped_design("joint-a.toml")))
@@ -107,17 +159,19 @@ fn write_bench(dir: &Path, reference_moves: bool) -> Truth {
         fixed_ohm: DIVIDER,
         supply_v: SUPPLY_V,
     };
-    let mut daq = String::from("Time,AI0,AI1,AI2\n");
+    let mut daq = String::from("Time,AI0,AI1,AI2,AI3\n");
     let n = (DURATION_S * DAQ_HZ) as usize;
+    let mut pi = PiSensor::new();
     for i in 0..n {
         let t = i as f64 / DAQ_HZ;
         let strain = joint.strain(truth.angle_deg(t).to_radians());
         let v1 = divider.voltage(R0 * (1.0 + GF * strain)) + 0.0005 * rng.normal();
         let v_stroke = truth.stroke(t) / MM_PER_V + 0.0005 * rng.normal();
+        let v_pi = divider.voltage(pi.ohm(strain)) + 0.0005 * rng.normal();
         // A channel the import does not use, between the two it does.
         writeln!(
             daq,
-            "{t:.4},{v1:.6},{:.4},{v_stroke:.6}",
+            "{t:.4},{v1:.6},{:.4},{v_stroke:.6},{v_pi:.6}",
             0.1 * rng.normal()
         )
         .unwrap();
@@ -138,14 +192,18 @@ fn write_bench(dir: &Path, reference_moves: bool) -> Truth {
         if missing_left == 0 && k > 300 && rng.uniform() < 0.005 {
             missing_left = 1 + (rng.uniform() * 5.0) as usize;
         }
-        let sway = if reference_moves {
+        let sway = if tools.reference_moves {
             3f64.to_radians() * (2.0 * PI * t / 37.0).sin()
         } else {
             0.0
         };
         let base = mul(quat([1.0, 0.0, 0.0], sway), mount);
         let angle = (truth.angle_deg(t) + 0.05 * rng.normal()).to_radians();
-        let tip = mul(base, quat(bend_axis, angle));
+        let mut tip = mul(base, quat(bend_axis, angle));
+        if tools.tip_5dof {
+            // A 5-DOF sensor has no roll: what the log holds about z is arbitrary.
+            tip = mul(tip, quat([0.0, 0.0, 1.0], 2.0 * PI * rng.uniform()));
+        }
         let block = |q: [f64; 4], port: u32, missing: bool| {
             if missing {
                 format!("Port:{port},0,Missing,,,,,,,,")
@@ -210,7 +268,7 @@ fn import_daq(dir: &Path, daq: &str, extra: &[&str]) -> std::process::Output {
 #[test]
 fn a_bench_import_recovers_the_angle_the_clocks_and_the_gauge_factor() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_5DOF);
     let o = import(dir.path(), &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
@@ -257,6 +315,7 @@ fn a_bench_import_recovers_the_angle_the_clocks_and_the_gauge_factor() {
         .find_map(|l| l.trim().strip_prefix("gauge_factor = "))
         .and_then(|v| v.parse().ok())
         .expect("a gauge_factor line");
+    eprintln!("linear sensor: GF {gf} against {GF}");
     assert!((gf - GF).abs() < 0.01 * GF, "GF {gf} against {GF}");
 
     // Discovery reads an imported recording (no simulated scenario in it).
@@ -276,7 +335,13 @@ fn a_bench_import_recovers_the_angle_the_clocks_and_the_gauge_factor() {
 #[test]
 fn a_reference_tool_cancels_the_base_motion() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), true);
+    let truth = write_bench(
+        dir.path(),
+        Tools {
+            tip_5dof: true,
+            reference_moves: true,
+        },
+    );
     let o = import(dir.path(), &["--reference-tool", "2"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();
@@ -295,7 +360,7 @@ fn a_reference_tool_cancels_the_base_motion() {
 #[test]
 fn bad_input_is_refused_with_nothing_written() {
     let dir = tempfile::tempdir().unwrap();
-    write_bench(dir.path(), false);
+    write_bench(dir.path(), STILL_6DOF);
     let o = import(dir.path(), &["--voltage", "AI9"]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
@@ -349,7 +414,7 @@ fn angle_rmse(rec: &Path, truth: &Truth) -> f64 {
 #[test]
 fn a_tdms_bench_import_recovers_the_angle_and_the_clocks() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_6DOF);
     write_bench_tdms(dir.path());
     let o = import_daq(dir.path(), "daq.tdms", &["--stroke", "daq/AI2"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -376,7 +441,7 @@ fn a_tdms_bench_import_recovers_the_angle_and_the_clocks() {
 #[test]
 fn bad_tdms_is_refused_with_nothing_written() {
     let dir = tempfile::tempdir().unwrap();
-    write_bench(dir.path(), false);
+    write_bench(dir.path(), STILL_6DOF);
     write_bench_tdms(dir.path());
     let bytes = std::fs::read(dir.path().join("daq.tdms")).unwrap();
     let refused = |daq: &str, extra: &[&str], wanted: &[&str]| {
@@ -463,7 +528,7 @@ fn write_bench_lvm(
 #[test]
 fn lvm_bench_imports_recover_the_angle_and_the_clocks() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_6DOF);
     for (k, (sep, decimal, x, segments)) in [
         ("Tab", '.', true, 1),
         ("Comma", '.', true, 2),
@@ -568,7 +633,7 @@ fn add_sync_pulse(dir: &Path) {
 #[test]
 fn a_sync_pulse_aligns_the_clocks() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_6DOF);
     add_sync_pulse(dir.path());
     let o = import(
         dir.path(),
@@ -657,7 +722,7 @@ fn a_sync_pulse_aligns_the_clocks() {
 #[test]
 fn rate_hz_resamples_the_daq() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_6DOF);
     let o = import(dir.path(), &["--rate-hz", "100"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();
