@@ -240,8 +240,6 @@ fn import_daq(dir: &Path, daq: &str, extra: &[&str]) -> std::process::Output {
         "import-recording".to_owned(),
         "--daq".into(),
         arg(&dir.join(daq)),
-        "--divider-ohm".into(),
-        DIVIDER.to_string(),
         "--supply-v".into(),
         SUPPLY_V.to_string(),
         "--stroke-mm-per-v".into(),
@@ -255,6 +253,9 @@ fn import_daq(dir: &Path, daq: &str, extra: &[&str]) -> std::process::Output {
     }
     if !extra.contains(&"--voltage") {
         args.extend(["--voltage".to_owned(), "AI0".to_owned()]);
+    }
+    if !extra.contains(&"--divider-ohm") {
+        args.extend(["--divider-ohm".to_owned(), DIVIDER.to_string()]);
     }
     if !extra.contains(&"--stroke") {
         args.extend(["--stroke".to_owned(), "AI2".to_owned()]);
@@ -329,6 +330,70 @@ fn a_bench_import_recovers_the_angle_the_clocks_and_the_gauge_factor() {
         "--json",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// A field of the `dlw fit --compare --json` output: `key` of the entry of `list` whose
+/// `model` is `model`.
+fn model_figure(json: &serde_json::Value, model: &str, key: &str) -> f64 {
+    json.as_array()
+        .and_then(|l| l.iter().find(|m| m["model"] == model))
+        .and_then(|m| m[key].as_f64())
+        .unwrap_or_else(|| panic!("no {key} for {model} in {json}"))
+}
+
+/// The PI sensor (AI3) beside the linear one (AI0): imported as sensor 2, the clocks aligned on
+/// the linear sensor 1, then taken alone as a one-sensor recording (joint A has one sensor
+/// plane), `dlw fit --compare` finds the PI model explains its resistance far better than the
+/// line, and the runtime estimator with the fitted PI config follows the angle within 0.7°
+/// (measured 0.46° PI, 1.22° linear; 20 Ω against 960 Ω residual).
+#[test]
+fn a_pi_sensor_is_fitted_better_by_the_pi_model_than_by_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench(dir.path(), STILL_5DOF);
+    let divider = format!("{DIVIDER},{DIVIDER}");
+    let o = import(
+        dir.path(),
+        &["--voltage", "AI0,AI3", "--divider-ohm", &divider],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let offset = j["alignment"]["offset_s"].as_f64().unwrap();
+    assert!((offset - OFFSET_S).abs() < 0.002, "offset {offset} s");
+    let mut rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();
+    assert_eq!(rec.samples.volts.len(), 2);
+    rec.samples.volts.remove(0);
+    rec.rig.divider_ohm.remove(0);
+    let pi_rec = dir.path().join("rec_pi");
+    rec.write(&pi_rec, false).unwrap();
+    let o = dlw(&[
+        "fit",
+        "--design",
+        &shipped_design("joint-a.toml"),
+        &arg(&pi_rec),
+        "--compare",
+        "--model",
+        "pi",
+        "--validate",
+        &arg(&pi_rec),
+        "-o",
+        &arg(&dir.path().join("pi.toml")),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let models = &j["sensors"][0]["models"];
+    let (line_ohm, pi_ohm) = (
+        model_figure(models, "linear", "rmse_ohm"),
+        model_figure(models, "pi", "rmse_ohm"),
+    );
+    let (line_deg, pi_deg) = (
+        model_figure(&j["validation"], "linear", "rmse_deg"),
+        model_figure(&j["validation"], "pi", "rmse_deg"),
+    );
+    eprintln!("PI sensor: residual {pi_ohm} Ω (PI) against {line_ohm} Ω (line); angle RMSE {pi_deg}° (PI) against {line_deg}° (line)");
+    assert!(pi_ohm < 0.1 * line_ohm, "PI {pi_ohm} Ω, line {line_ohm} Ω");
+    assert!(pi_deg < 0.7, "PI config's angle RMSE {pi_deg}°");
+    assert!(pi_deg < 0.6 * line_deg, "PI {pi_deg}°, line {line_deg}°");
 }
 
 /// With a reference tool on a base that sways by 3°, the angle relative to it still matches.
