@@ -109,6 +109,12 @@ pub enum DiscoverError {
         /// Reading (V).
         volts: f64,
     },
+    /// No row with a tracker angle.
+    #[error("every one of the recording's {rows} rows is marked tracker_valid = 0: discovery needs the tracker's angle")]
+    NoAngle {
+        /// Rows marked.
+        rows: usize,
+    },
     /// No rest at the start.
     #[error("the recording starts with {rest_s:.1} s at rest; discovery freezes its noise model from a rest of at least {min_s} s at the start (the stroke constant)")]
     NoRest {
@@ -365,7 +371,7 @@ pub fn discover(
         let base = fit(&design, &ArNoise::white(1.0), &train)
             .ok_or(DiscoverError::Base { channel: ch.name() })?;
         let residual = base.residual(&design);
-        let noise = ArNoise::fit(&residual[..data.rest]);
+        let noise = ArNoise::fit(&residual[data.measured_rest()]);
         let base =
             fit(&design, &noise, &train).ok_or(DiscoverError::Base { channel: ch.name() })?;
         if ch == Channel::Plant {

@@ -85,6 +85,9 @@ impl std::str::FromStr for Prefilter {
 pub struct Observations {
     /// Sample times (s).
     pub time_s: Vec<f64>,
+    /// The recording's row of each kept sample (rows the tracker did not measure are left
+    /// out, so this is not always every `decimation`-th row).
+    pub rows: Vec<usize>,
     /// The sensor's own strain (fraction): `+ε` on `+y_s`, `−ε` on `−y_s` (Eq. 3).
     pub strain: Vec<f64>,
     /// The sensor's resistance (Ω, Eq. 4).
@@ -181,6 +184,7 @@ pub fn observe(
     let n = volts.len();
     let mut out = Observations {
         time_s: Vec::with_capacity(n / step + 1),
+        rows: Vec::with_capacity(n / step + 1),
         strain: Vec::with_capacity(n / step + 1),
         ohm: Vec::with_capacity(n / step + 1),
         ohm_range: (f64::INFINITY, f64::NEG_INFINITY),
@@ -208,6 +212,7 @@ pub fn observe(
         };
         if i % step == 0 && measured_run.is_none_or(|r| r >= window) {
             out.time_s.push(s.time_s[i]);
+            out.rows.push(i);
             out.strain.push(strain);
             out.ohm.push(ohm);
             out.falling.push(strain < previous);
