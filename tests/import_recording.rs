@@ -421,6 +421,59 @@ fn a_reference_tool_cancels_the_base_motion() {
     assert!(rmse < 0.3, "angle RMSE {rmse}°");
 }
 
+/// `--report DIR`: the page and its four figures (lag, before, after, angle), each SVG that
+/// parses, the page naming the alignment's figures; a failing import writes neither the
+/// report nor the recording, and an existing report folder is not replaced without --force.
+#[test]
+fn the_report_shows_the_clocks_and_the_gaps() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench(dir.path(), STILL_5DOF);
+    let report = dir.path().join("report");
+    let o = import(dir.path(), &["--report", &arg(&report)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let html = std::fs::read_to_string(report.join("report.html")).unwrap();
+    for name in ["lag", "before", "after", "angle"] {
+        let file = format!("{name}.svg");
+        assert!(
+            html.contains(&format!("src=\"{file}\"")),
+            "{file} not in the page"
+        );
+        let svg = std::fs::read_to_string(report.join(&file)).unwrap();
+        roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("{file}: {e}"));
+    }
+    let offset_ms = j["alignment"]["offset_s"].as_f64().unwrap() * 1e3;
+    assert!(
+        html.contains(&format!("{offset_ms:.2}")),
+        "the offset in the page"
+    );
+    let invalid = j["invalid_rows"].as_u64().unwrap();
+    assert!(
+        html.contains(&format!("the {invalid} rows without a tracker angle")),
+        "{html}"
+    );
+    assert!(!html.contains("NaN"));
+
+    // Failure: nothing written. An existing report folder: refused without --force.
+    let (rec2, report2) = (dir.path().join("rec2"), dir.path().join("report2"));
+    let o = import(
+        dir.path(),
+        &[
+            "--voltage",
+            "AI9",
+            "-o",
+            &arg(&rec2),
+            "--report",
+            &arg(&report2),
+        ],
+    );
+    assert!(!o.status.success());
+    assert!(!rec2.exists() && !report2.exists());
+    let o = import(dir.path(), &["-o", &arg(&rec2), "--report", &arg(&report)]);
+    assert!(!o.status.success(), "an existing report was replaced");
+    assert!(!rec2.exists());
+}
+
 /// Bad input: a missing channel, a still recording, an output that exists; nothing written.
 #[test]
 fn bad_input_is_refused_with_nothing_written() {

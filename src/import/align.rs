@@ -53,7 +53,7 @@ pub const REFINE_ROUNDS: usize = 3;
 pub const MIN_WINDOWS: usize = 3;
 
 /// The alignment found.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Alignment {
     /// `offset_s` (s).
     pub offset_s: f64,
@@ -67,6 +67,9 @@ pub struct Alignment {
     pub correlation: f64,
     /// Windows the line went through.
     pub windows: usize,
+    /// Each window's centre (s of tracker time `τ`) and lag `t_daq − τ` (s): the points the
+    /// line was fitted through.
+    pub lags: Vec<(f64, f64)>,
 }
 
 /// `signal` (uniformly sampled from `t = 0` at `dt_s`) at time `t`, linearly interpolated;
@@ -284,5 +287,6 @@ pub fn auto(
         drift_uncertainty_ppm: drift_se * 1e6,
         correlation: sign * r0,
         windows: points.len(),
+        lags: points,
     })
 }
