@@ -148,9 +148,18 @@ fn mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
     ]
 }
 
-/// Writes `daq.csv` and `aurora.csv` into `dir`; returns the truth.
+/// Writes `daq.csv` and `aurora.csv` of [`DURATION_S`] into `dir`; returns the truth.
 fn write_bench(dir: &Path, tools: Tools) -> Truth {
+    write_bench_for(dir, tools, DURATION_S)
+}
+
+/// Writes `daq.csv` and `aurora.csv` of `duration_s` (at most [`DURATION_S`]) into `dir`;
+/// returns the truth.
+fn write_bench_for(dir: &Path, tools: Tools, duration_s: f64) -> Truth {
     let mut rng = Rng(0x5eed_1234_abcd_0001);
+    // The PI sensor's noise and the 5-DOF roll draw from their own stream, so that the rest of
+    // the bench is the same realization with them as without.
+    let mut extra = Rng(0x5eed_5678_ef01_0002);
     let truth = Truth::new(&mut rng);
     let joint = Design::load(Path::new(&shipped_design("joint-a.toml")))
         .unwrap()
@@ -160,14 +169,14 @@ fn write_bench(dir: &Path, tools: Tools) -> Truth {
         supply_v: SUPPLY_V,
     };
     let mut daq = String::from("Time,AI0,AI1,AI2,AI3\n");
-    let n = (DURATION_S * DAQ_HZ) as usize;
+    let n = (duration_s * DAQ_HZ) as usize;
     let mut pi = PiSensor::new();
     for i in 0..n {
         let t = i as f64 / DAQ_HZ;
         let strain = joint.strain(truth.angle_deg(t).to_radians());
         let v1 = divider.voltage(R0 * (1.0 + GF * strain)) + 0.0005 * rng.normal();
         let v_stroke = truth.stroke(t) / MM_PER_V + 0.0005 * rng.normal();
-        let v_pi = divider.voltage(pi.ohm(strain)) + 0.0005 * rng.normal();
+        let v_pi = divider.voltage(pi.ohm(strain)) + 0.0005 * extra.normal();
         // A channel the import does not use, between the two it does.
         writeln!(
             daq,
@@ -184,7 +193,7 @@ fn write_bench(dir: &Path, tools: Tools) -> Truth {
         "#Tools,ToolInfo,Frame#,PortHandle,Face#,TransformStatus,Q0,Qx,Qy,Qz,Tx,Ty,Tz,Error,\
          #Markers,PortHandle,Face#,TransformStatus,Q0,Qx,Qy,Qz,Tx,Ty,Tz,Error\n",
     );
-    let frames = ((DURATION_S - OFFSET_S - 1.0) * TRACKER_HZ) as usize;
+    let frames = ((duration_s - OFFSET_S - 1.0) * TRACKER_HZ) as usize;
     let mut missing_left = 0usize;
     for k in 0..frames {
         let tau = k as f64 / TRACKER_HZ;
@@ -202,7 +211,7 @@ fn write_bench(dir: &Path, tools: Tools) -> Truth {
         let mut tip = mul(base, quat(bend_axis, angle));
         if tools.tip_5dof {
             // A 5-DOF sensor has no roll: what the log holds about z is arbitrary.
-            tip = mul(tip, quat([0.0, 0.0, 1.0], 2.0 * PI * rng.uniform()));
+            tip = mul(tip, quat([0.0, 0.0, 1.0], 2.0 * PI * extra.uniform()));
         }
         let block = |q: [f64; 4], port: u32, missing: bool| {
             if missing {
@@ -473,6 +482,32 @@ fn the_report_shows_the_clocks_and_the_gaps() {
     assert!(!o.status.success(), "an existing report was replaced");
     assert!(!rec2.exists());
 }
+
+/// The README tour's example bench (`examples/bench/`): the first 60 s of this test's bench
+/// (5-DOF tip, still base). Run by hand to regenerate it:
+/// `DLW_WRITE_EXAMPLE_BENCH=1 cargo test --test import_recording -- --ignored example_bench`.
+/// Without the variable it checks that the shipped files are what the generator writes.
+#[test]
+#[ignore = "writes examples/bench/ when asked; see its doc"]
+fn example_bench() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench_for(dir.path(), STILL_5DOF, EXAMPLE_BENCH_S);
+    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/bench");
+    for name in ["daq.csv", "aurora.csv"] {
+        let made = std::fs::read(dir.path().join(name)).unwrap();
+        if std::env::var_os("DLW_WRITE_EXAMPLE_BENCH").is_some() {
+            std::fs::write(shipped.join(name), &made).unwrap();
+        } else {
+            assert!(
+                std::fs::read(shipped.join(name)).ok() == Some(made),
+                "examples/bench/{name} is not what the generator writes"
+            );
+        }
+    }
+}
+
+/// The example bench's length (s).
+const EXAMPLE_BENCH_S: f64 = 60.0;
 
 /// Bad input: a missing channel, a still recording, an output that exists; nothing written.
 #[test]
