@@ -210,7 +210,7 @@ pub fn observe(
         } else {
             Some(0)
         };
-        if i % step == 0 && measured_run.is_none_or(|r| r >= window) {
+        if i % step == 0 && measured_run.map_or(true, |r| r >= window) {
             out.time_s.push(s.time_s[i]);
             out.rows.push(i);
             out.strain.push(strain);
