@@ -1,10 +1,11 @@
 //! `dlw import-recording` on files written the way a bench writes them: a DAQ's CSV export
-//! (time, two voltages, a stroke voltage) and an NDI Aurora log (CSV, NDI Track's columns with
-//! `ToolInfo`, `Port:1` handles and `Missing` frames), built by this test from a known truth
-//! with its own generator: a stroke pattern, an angle that follows it with a 30 ms lag, a
-//! linear sensor, a tracker at 40 Hz whose clock is 0.437 s late and runs 250 ppm fast, 1.5 %
-//! of its frames missing in bursts, a tracker frame turned against the joint's, and a reference
-//! tool on the base that moves.
+//! (time, a linear sensor's voltage, a noise channel, a stroke voltage, a PI sensor's voltage)
+//! and an NDI Aurora log (CSV, NDI Track's columns with `ToolInfo`, `Port:1` handles and
+//! `Missing` frames), built by this test from a known truth with its own generator: a stroke
+//! pattern, an angle that follows it with a 30 ms lag, a linear sensor and a hysteretic (PI)
+//! one, a tracker at 40 Hz whose clock is 0.437 s late and runs 250 ppm fast, 1.1 % of its
+//! frames missing in bursts, a tracker frame turned against the joint's, a 5-DOF tip tool
+//! (its roll is noise) and a 6-DOF reference tool on the base that moves.
 
 mod common;
 use common::{arg, dlw, shipped_design};
@@ -29,7 +30,58 @@ const SUPPLY_V: f64 = 5.0;
 const MM_PER_V: f64 = 0.5;
 const GAIN_DEG_PER_MM: f64 = 33.0;
 const LAG_S: f64 = 0.03;
+/// The PI sensor (channel AI3): its unstrained resistance (Ω), and the gauge factor that
+/// scales its hysteretic strain response.
+const PI_R0: f64 = 180e3;
+const PI_GF: f64 = 12.0;
+/// The PI sensor's response, in strain: `PI_LINEAR_WEIGHT·ε + Σ wᵢ·playᵢ(ε)` with the play
+/// radii as shares of [`PI_RADIUS_STRAIN`] and their weights.
+const PI_LINEAR_WEIGHT: f64 = 0.5;
+const PI_PLAYS: [(f64, f64); 3] = [(0.15, 0.25), (0.35, 0.15), (0.6, 0.1)];
+/// The strain the play radii are shares of (about a third of the bench's strain range).
+const PI_RADIUS_STRAIN: f64 = 0.004;
 
+/// The bench's tools: whether the tip is a 5-DOF sensor (its roll about z is arbitrary: here
+/// a random angle each frame) and whether the base, with the 6-DOF reference tool, sways.
+#[derive(Clone, Copy)]
+struct Tools {
+    tip_5dof: bool,
+    reference_moves: bool,
+}
+
+/// A 6-DOF tip on a still base.
+const STILL_6DOF: Tools = Tools {
+    tip_5dof: false,
+    reference_moves: false,
+};
+/// A 5-DOF tip on a still base.
+const STILL_5DOF: Tools = Tools {
+    tip_5dof: true,
+    reference_moves: false,
+};
+
+/// A hysteretic sensor: the strain through a linear term and play operators, each
+/// `y ← clamp(y, ε − r, ε + r)`.
+struct PiSensor {
+    plays: Vec<f64>,
+}
+impl PiSensor {
+    fn new() -> Self {
+        PiSensor {
+            plays: vec![0.0; PI_PLAYS.len()],
+        }
+    }
+    /// The resistance (Ω) at the next strain.
+    fn ohm(&mut self, strain: f64) -> f64 {
+        let mut response = PI_LINEAR_WEIGHT * strain;
+        for (y, (share, weight)) in self.plays.iter_mut().zip(PI_PLAYS) {
+            let r = share * PI_RADIUS_STRAIN;
+            *y = y.clamp(strain - r, strain + r);
+            response += weight * *y;
+        }
+        PI_R0 * (1.0 + PI_GF * response)
+    }
+}
 /// A small deterministic generator (xorshift), independent of the simulator's.
 struct Rng(u64);
 impl Rng {
@@ -96,9 +148,18 @@ fn mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
     ]
 }
 
-/// Writes `daq.csv` and `aurora.csv` into `dir`; returns the truth.
-fn write_bench(dir: &Path, reference_moves: bool) -> Truth {
+/// Writes `daq.csv` and `aurora.csv` of [`DURATION_S`] into `dir`; returns the truth.
+fn write_bench(dir: &Path, tools: Tools) -> Truth {
+    write_bench_for(dir, tools, DURATION_S)
+}
+
+/// Writes `daq.csv` and `aurora.csv` of `duration_s` (at most [`DURATION_S`]) into `dir`;
+/// returns the truth.
+fn write_bench_for(dir: &Path, tools: Tools, duration_s: f64) -> Truth {
     let mut rng = Rng(0x5eed_1234_abcd_0001);
+    // The PI sensor's noise and the 5-DOF roll draw from their own stream, so that the rest of
+    // the bench is the same realization with them as without.
+    let mut extra = Rng(0x5eed_5678_ef01_0002);
     let truth = Truth::new(&mut rng);
     let joint = Design::load(Path::new(&shipped_design("joint-a.toml")))
         .unwrap()
@@ -107,17 +168,19 @@ fn write_bench(dir: &Path, reference_moves: bool) -> Truth {
         fixed_ohm: DIVIDER,
         supply_v: SUPPLY_V,
     };
-    let mut daq = String::from("Time,AI0,AI1,AI2\n");
-    let n = (DURATION_S * DAQ_HZ) as usize;
+    let mut daq = String::from("Time,AI0,AI1,AI2,AI3\n");
+    let n = (duration_s * DAQ_HZ) as usize;
+    let mut pi = PiSensor::new();
     for i in 0..n {
         let t = i as f64 / DAQ_HZ;
         let strain = joint.strain(truth.angle_deg(t).to_radians());
         let v1 = divider.voltage(R0 * (1.0 + GF * strain)) + 0.0005 * rng.normal();
         let v_stroke = truth.stroke(t) / MM_PER_V + 0.0005 * rng.normal();
+        let v_pi = divider.voltage(pi.ohm(strain)) + 0.0005 * extra.normal();
         // A channel the import does not use, between the two it does.
         writeln!(
             daq,
-            "{t:.4},{v1:.6},{:.4},{v_stroke:.6}",
+            "{t:.4},{v1:.6},{:.4},{v_stroke:.6},{v_pi:.6}",
             0.1 * rng.normal()
         )
         .unwrap();
@@ -130,7 +193,7 @@ fn write_bench(dir: &Path, reference_moves: bool) -> Truth {
         "#Tools,ToolInfo,Frame#,PortHandle,Face#,TransformStatus,Q0,Qx,Qy,Qz,Tx,Ty,Tz,Error,\
          #Markers,PortHandle,Face#,TransformStatus,Q0,Qx,Qy,Qz,Tx,Ty,Tz,Error\n",
     );
-    let frames = ((DURATION_S - OFFSET_S - 1.0) * TRACKER_HZ) as usize;
+    let frames = ((duration_s - OFFSET_S - 1.0) * TRACKER_HZ) as usize;
     let mut missing_left = 0usize;
     for k in 0..frames {
         let tau = k as f64 / TRACKER_HZ;
@@ -138,14 +201,18 @@ fn write_bench(dir: &Path, reference_moves: bool) -> Truth {
         if missing_left == 0 && k > 300 && rng.uniform() < 0.005 {
             missing_left = 1 + (rng.uniform() * 5.0) as usize;
         }
-        let sway = if reference_moves {
+        let sway = if tools.reference_moves {
             3f64.to_radians() * (2.0 * PI * t / 37.0).sin()
         } else {
             0.0
         };
         let base = mul(quat([1.0, 0.0, 0.0], sway), mount);
         let angle = (truth.angle_deg(t) + 0.05 * rng.normal()).to_radians();
-        let tip = mul(base, quat(bend_axis, angle));
+        let mut tip = mul(base, quat(bend_axis, angle));
+        if tools.tip_5dof {
+            // A 5-DOF sensor has no roll: what the log holds about z is arbitrary.
+            tip = mul(tip, quat([0.0, 0.0, 1.0], 2.0 * PI * extra.uniform()));
+        }
         let block = |q: [f64; 4], port: u32, missing: bool| {
             if missing {
                 format!("Port:{port},0,Missing,,,,,,,,")
@@ -182,8 +249,6 @@ fn import_daq(dir: &Path, daq: &str, extra: &[&str]) -> std::process::Output {
         "import-recording".to_owned(),
         "--daq".into(),
         arg(&dir.join(daq)),
-        "--divider-ohm".into(),
-        DIVIDER.to_string(),
         "--supply-v".into(),
         SUPPLY_V.to_string(),
         "--stroke-mm-per-v".into(),
@@ -198,6 +263,9 @@ fn import_daq(dir: &Path, daq: &str, extra: &[&str]) -> std::process::Output {
     if !extra.contains(&"--voltage") {
         args.extend(["--voltage".to_owned(), "AI0".to_owned()]);
     }
+    if !extra.contains(&"--divider-ohm") {
+        args.extend(["--divider-ohm".to_owned(), DIVIDER.to_string()]);
+    }
     if !extra.contains(&"--stroke") {
         args.extend(["--stroke".to_owned(), "AI2".to_owned()]);
     }
@@ -210,7 +278,7 @@ fn import_daq(dir: &Path, daq: &str, extra: &[&str]) -> std::process::Output {
 #[test]
 fn a_bench_import_recovers_the_angle_the_clocks_and_the_gauge_factor() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_5DOF);
     let o = import(dir.path(), &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
@@ -257,6 +325,7 @@ fn a_bench_import_recovers_the_angle_the_clocks_and_the_gauge_factor() {
         .find_map(|l| l.trim().strip_prefix("gauge_factor = "))
         .and_then(|v| v.parse().ok())
         .expect("a gauge_factor line");
+    eprintln!("linear sensor: GF {gf} against {GF}");
     assert!((gf - GF).abs() < 0.01 * GF, "GF {gf} against {GF}");
 
     // Discovery reads an imported recording (no simulated scenario in it).
@@ -272,11 +341,81 @@ fn a_bench_import_recovers_the_angle_the_clocks_and_the_gauge_factor() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
+/// A field of the `dlw fit --compare --json` output: `key` of the entry of `list` whose
+/// `model` is `model`.
+fn model_figure(json: &serde_json::Value, model: &str, key: &str) -> f64 {
+    json.as_array()
+        .and_then(|l| l.iter().find(|m| m["model"] == model))
+        .and_then(|m| m[key].as_f64())
+        .unwrap_or_else(|| panic!("no {key} for {model} in {json}"))
+}
+
+/// The PI sensor (AI3) beside the linear one (AI0): imported as sensor 2, the clocks aligned on
+/// the linear sensor 1, then taken alone as a one-sensor recording (joint A has one sensor
+/// plane), `dlw fit --compare` finds the PI model explains its resistance far better than the
+/// line, and the runtime estimator with the fitted PI config follows the angle within 0.7°
+/// (measured 0.46° PI, 1.22° linear; 20 Ω against 960 Ω residual).
+#[test]
+fn a_pi_sensor_is_fitted_better_by_the_pi_model_than_by_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench(dir.path(), STILL_5DOF);
+    let divider = format!("{DIVIDER},{DIVIDER}");
+    let o = import(
+        dir.path(),
+        &["--voltage", "AI0,AI3", "--divider-ohm", &divider],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let offset = j["alignment"]["offset_s"].as_f64().unwrap();
+    assert!((offset - OFFSET_S).abs() < 0.002, "offset {offset} s");
+    let mut rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();
+    assert_eq!(rec.samples.volts.len(), 2);
+    rec.samples.volts.remove(0);
+    rec.rig.divider_ohm.remove(0);
+    let pi_rec = dir.path().join("rec_pi");
+    rec.write(&pi_rec, false).unwrap();
+    let o = dlw(&[
+        "fit",
+        "--design",
+        &shipped_design("joint-a.toml"),
+        &arg(&pi_rec),
+        "--compare",
+        "--model",
+        "pi",
+        "--validate",
+        &arg(&pi_rec),
+        "-o",
+        &arg(&dir.path().join("pi.toml")),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let models = &j["sensors"][0]["models"];
+    let (line_ohm, pi_ohm) = (
+        model_figure(models, "linear", "rmse_ohm"),
+        model_figure(models, "pi", "rmse_ohm"),
+    );
+    let (line_deg, pi_deg) = (
+        model_figure(&j["validation"], "linear", "rmse_deg"),
+        model_figure(&j["validation"], "pi", "rmse_deg"),
+    );
+    eprintln!("PI sensor: residual {pi_ohm} Ω (PI) against {line_ohm} Ω (line); angle RMSE {pi_deg}° (PI) against {line_deg}° (line)");
+    assert!(pi_ohm < 0.1 * line_ohm, "PI {pi_ohm} Ω, line {line_ohm} Ω");
+    assert!(pi_deg < 0.7, "PI config's angle RMSE {pi_deg}°");
+    assert!(pi_deg < 0.6 * line_deg, "PI {pi_deg}°, line {line_deg}°");
+}
+
 /// With a reference tool on a base that sways by 3°, the angle relative to it still matches.
 #[test]
 fn a_reference_tool_cancels_the_base_motion() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), true);
+    let truth = write_bench(
+        dir.path(),
+        Tools {
+            tip_5dof: true,
+            reference_moves: true,
+        },
+    );
     let o = import(dir.path(), &["--reference-tool", "2"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();
@@ -291,11 +430,90 @@ fn a_reference_tool_cancels_the_base_motion() {
     assert!(rmse < 0.3, "angle RMSE {rmse}°");
 }
 
+/// `--report DIR`: the page and its four figures (lag, before, after, angle), each SVG that
+/// parses, the page naming the alignment's figures; a failing import writes neither the
+/// report nor the recording, and an existing report folder is not replaced without --force.
+#[test]
+fn the_report_shows_the_clocks_and_the_gaps() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench(dir.path(), STILL_5DOF);
+    let report = dir.path().join("report");
+    let o = import(dir.path(), &["--report", &arg(&report)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let html = std::fs::read_to_string(report.join("report.html")).unwrap();
+    for name in ["lag", "before", "after", "angle"] {
+        let file = format!("{name}.svg");
+        assert!(
+            html.contains(&format!("src=\"{file}\"")),
+            "{file} not in the page"
+        );
+        let svg = std::fs::read_to_string(report.join(&file)).unwrap();
+        roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("{file}: {e}"));
+    }
+    let offset_ms = j["alignment"]["offset_s"].as_f64().unwrap() * 1e3;
+    assert!(
+        html.contains(&format!("{offset_ms:.2}")),
+        "the offset in the page"
+    );
+    let invalid = j["invalid_rows"].as_u64().unwrap();
+    assert!(
+        html.contains(&format!("the {invalid} rows without a tracker angle")),
+        "{html}"
+    );
+    assert!(!html.contains("NaN"));
+
+    // Failure: nothing written. An existing report folder: refused without --force.
+    let (rec2, report2) = (dir.path().join("rec2"), dir.path().join("report2"));
+    let o = import(
+        dir.path(),
+        &[
+            "--voltage",
+            "AI9",
+            "-o",
+            &arg(&rec2),
+            "--report",
+            &arg(&report2),
+        ],
+    );
+    assert!(!o.status.success());
+    assert!(!rec2.exists() && !report2.exists());
+    let o = import(dir.path(), &["-o", &arg(&rec2), "--report", &arg(&report)]);
+    assert!(!o.status.success(), "an existing report was replaced");
+    assert!(!rec2.exists());
+}
+
+/// The README tour's example bench (`examples/bench/`): the first 60 s of this test's bench
+/// (5-DOF tip, still base). Run by hand to regenerate it:
+/// `DLW_WRITE_EXAMPLE_BENCH=1 cargo test --test import_recording -- --ignored example_bench`.
+/// Without the variable it checks that the shipped files are what the generator writes.
+#[test]
+#[ignore = "writes examples/bench/ when asked; see its doc"]
+fn example_bench() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench_for(dir.path(), STILL_5DOF, EXAMPLE_BENCH_S);
+    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/bench");
+    for name in ["daq.csv", "aurora.csv"] {
+        let made = std::fs::read(dir.path().join(name)).unwrap();
+        if std::env::var_os("DLW_WRITE_EXAMPLE_BENCH").is_some() {
+            std::fs::write(shipped.join(name), &made).unwrap();
+        } else {
+            assert!(
+                std::fs::read(shipped.join(name)).ok() == Some(made),
+                "examples/bench/{name} is not what the generator writes"
+            );
+        }
+    }
+}
+
+/// The example bench's length (s).
+const EXAMPLE_BENCH_S: f64 = 60.0;
+
 /// Bad input: a missing channel, a still recording, an output that exists; nothing written.
 #[test]
 fn bad_input_is_refused_with_nothing_written() {
     let dir = tempfile::tempdir().unwrap();
-    write_bench(dir.path(), false);
+    write_bench(dir.path(), STILL_6DOF);
     let o = import(dir.path(), &["--voltage", "AI9"]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
@@ -349,7 +567,7 @@ fn angle_rmse(rec: &Path, truth: &Truth) -> f64 {
 #[test]
 fn a_tdms_bench_import_recovers_the_angle_and_the_clocks() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_6DOF);
     write_bench_tdms(dir.path());
     let o = import_daq(dir.path(), "daq.tdms", &["--stroke", "daq/AI2"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -376,7 +594,7 @@ fn a_tdms_bench_import_recovers_the_angle_and_the_clocks() {
 #[test]
 fn bad_tdms_is_refused_with_nothing_written() {
     let dir = tempfile::tempdir().unwrap();
-    write_bench(dir.path(), false);
+    write_bench(dir.path(), STILL_6DOF);
     write_bench_tdms(dir.path());
     let bytes = std::fs::read(dir.path().join("daq.tdms")).unwrap();
     let refused = |daq: &str, extra: &[&str], wanted: &[&str]| {
@@ -463,7 +681,7 @@ fn write_bench_lvm(
 #[test]
 fn lvm_bench_imports_recover_the_angle_and_the_clocks() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_6DOF);
     for (k, (sep, decimal, x, segments)) in [
         ("Tab", '.', true, 1),
         ("Comma", '.', true, 2),
@@ -568,7 +786,7 @@ fn add_sync_pulse(dir: &Path) {
 #[test]
 fn a_sync_pulse_aligns_the_clocks() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_6DOF);
     add_sync_pulse(dir.path());
     let o = import(
         dir.path(),
@@ -657,7 +875,7 @@ fn a_sync_pulse_aligns_the_clocks() {
 #[test]
 fn rate_hz_resamples_the_daq() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = write_bench(dir.path(), false);
+    let truth = write_bench(dir.path(), STILL_6DOF);
     let o = import(dir.path(), &["--rate-hz", "100"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let rec = dlw::recording::Recording::read(&dir.path().join("rec")).unwrap();

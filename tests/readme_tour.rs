@@ -95,6 +95,8 @@ fn every_tour_line_runs_and_writes_its_outputs() {
     let full = std::env::var_os("DLW_TOUR_SHORT").is_none();
     let dir = tempfile::tempdir().unwrap();
     std::os::unix::fs::symlink(root.join("designs"), dir.path().join("designs")).unwrap();
+    // The example bench's DAQ file and tracker log (`examples/bench/`), read by the tour.
+    std::os::unix::fs::symlink(root.join("examples"), dir.path().join("examples")).unwrap();
     let mut failures = Vec::new();
     for line in tour_lines(&readme) {
         let mut run = line.clone();

@@ -92,13 +92,13 @@ pub fn loops(
     let mut sensors = Vec::new();
     for (fit, &plane) in fits.into_iter().zip(planes) {
         let fit = fit?;
-        let step = fit.observations.decimation;
-        let stroke_mm: Vec<f64> = recording
-            .samples
-            .stroke_mm
+        // By row, not by `step_by(decimation)`: rows the tracker did not measure are not
+        // observations.
+        let stroke_mm: Vec<f64> = fit
+            .observations
+            .rows
             .iter()
-            .step_by(step)
-            .copied()
+            .map(|&i| recording.samples.stroke_mm[i])
             .collect();
         let (pi_rmse_ohm, pi_error) = match &fit.pi {
             Ok(p) => (Some(p.rmse_ohm), None),

@@ -204,12 +204,15 @@ pub fn relaxation(
     for &plane in planes {
         let obs = observe(recording, joint, plane, options.prefilter, None)?;
         let linear = fit_linear(&obs.strain, &obs.ohm)?;
-        let step = obs.decimation;
         let mut out = Vec::new();
         let mut traces = Vec::new();
         for &(i0, i1) in &found {
-            let j0 = (i0 + window).div_ceil(step);
-            let j1 = (i1 / step).min(obs.len().saturating_sub(1));
+            // The hold's observations by their rows (rows the tracker did not measure are not
+            // observations, so a row is not always `j·decimation`).
+            let j0 = obs.rows.partition_point(|&i| i < i0 + window);
+            let Some(j1) = obs.rows.partition_point(|&i| i <= i1).checked_sub(1) else {
+                continue;
+            };
             if j1 < j0 + 4 {
                 continue;
             }

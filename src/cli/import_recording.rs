@@ -1,11 +1,12 @@
 //! `dlw import-recording --daq FILE --voltage CH[,CH2] --divider-ohm R[,R2] --supply-v V
 //! --stroke CH --stroke-mm-per-v K --tracker FILE [--tool N] [--reference-tool M]
-//! [--tracker-hz 40] -o REC [--force] [--json]`: a DAQ's CSV export, TDMS or LVM file and an
+//! [--tracker-hz 40] -o REC [--force] [--json] [--report DIR]`: a DAQ's CSV export, TDMS or LVM file and an
 //! NDI Aurora log become one recording folder (`docs/import.md`).
 
 use std::path::PathBuf;
 
 use anyhow::Context;
+use dlw::import::report::report_page;
 use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod};
 
 /// Arguments of `dlw import-recording`.
@@ -76,10 +77,18 @@ pub struct Args {
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
+    /// Write an HTML report with SVG plots into this folder: the lag between the clocks, the
+    /// stroke and the angle before and after the alignment, the angle with its gaps marked.
+    #[arg(long)]
+    report: Option<PathBuf>,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.daq, &args.tracker], args.force)?;
+    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
+        .chain(&args.report)
+        .map(|p| p.as_path())
+        .collect();
+    dlw::output::claim_all(&outputs, [&args.daq, &args.tracker], args.force)?;
     let daq_format = match &args.daq_format {
         Some(name) => DaqFormat::from_name(name)?,
         None => DaqFormat::from_path(&args.daq),
@@ -124,6 +133,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     let (recording, summary) = import(&request)?;
     dlw::finite::check(&summary)?;
+    let report = args
+        .report
+        .as_ref()
+        .map(|_| report_page(&recording, &summary).files())
+        .transpose()
+        .context("drawing the report")?;
+    // Everything is computed: now write, the recording last so a failed report leaves none.
+    if let (Some(dir), Some(files)) = (&args.report, report) {
+        dlw::output::write_folder_atomic(dir, &files)?;
+    }
     recording
         .write(&args.output, args.force)
         .with_context(|| format!("writing recording {}", args.output.display()))?;

@@ -1,5 +1,11 @@
 //! The recording as discovery sees it: block-averaged to about [`TARGET_HZ`], the rest at the
 //! start found, and the samples after it split into interleaved training and held-out blocks.
+//!
+//! A block holding a row the tracker did not measure (`tracker_valid = 0`) is no observation:
+//! it is left out of the training and held-out masks and of the rest the noise is frozen from,
+//! and its angle is interpolated between the measured blocks around it (held at the ends), so
+//! that the models' inputs and the noise model's whitening over the whole series never see the
+//! number a recording writes on such rows.
 
 use dlw_geometry::{Divider, Joint};
 
@@ -31,6 +37,8 @@ pub struct Data {
     pub ohm: Vec<Vec<f64>>,
     /// Samples `0..rest` are the rest at the start.
     pub rest: usize,
+    /// Whether every row of each sample's block has a tracker angle (`tracker_valid`).
+    pub measured: Vec<bool>,
     /// Sample spacing (s).
     pub dt_s: f64,
 }
@@ -69,7 +77,16 @@ impl Data {
         }
         let time_s: Vec<f64> = (0..n).map(|k| mean(&s.time_s, k)).collect();
         let stroke_mm: Vec<f64> = (0..n).map(|k| mean(&s.stroke_mm, k)).collect();
-        let angle_deg: Vec<f64> = (0..n).map(|k| mean(&s.angle_deg, k)).collect();
+        let measured: Vec<bool> = (0..n)
+            .map(|k| (k * step..(k + 1) * step).all(|i| s.angle_valid(i)))
+            .collect();
+        if !measured.contains(&true) {
+            return Err(DiscoverError::NoAngle {
+                rows: s.invalid_angle_rows(),
+            });
+        }
+        let mut angle_deg: Vec<f64> = (0..n).map(|k| mean(&s.angle_deg, k)).collect();
+        fill_unmeasured(&mut angle_deg, &measured);
         let strain = angle_deg
             .iter()
             .map(|a| joint.strain(a.to_radians()))
@@ -98,6 +115,7 @@ impl Data {
             strain,
             ohm,
             rest: moved,
+            measured,
             dt_s,
         })
     }
@@ -128,7 +146,7 @@ impl Data {
         }
         let mut train = vec![false; n];
         let mut test = vec![false; n];
-        for i in self.rest..n {
+        for i in (self.rest..n).filter(|&i| self.measured[i]) {
             let b = ((i - self.rest) / block).min(BLOCKS - 1);
             if b % 2 == 0 {
                 train[i] = true;
@@ -139,8 +157,59 @@ impl Data {
         Ok((train, test))
     }
 
-    /// Every sample after the rest (a holdout recording is held out whole).
+    /// Every measured sample after the rest (a holdout recording is held out whole).
     pub fn moving(&self) -> Vec<bool> {
-        (0..self.len()).map(|i| i >= self.rest).collect()
+        (0..self.len())
+            .map(|i| i >= self.rest && self.measured[i])
+            .collect()
+    }
+
+    /// The rest's samples the noise model is frozen from: from the first measured sample to
+    /// the end of the rest (a recording imported from a tracker starting after the DAQ begins
+    /// unmeasured).
+    pub fn measured_rest(&self) -> std::ops::Range<usize> {
+        let first = self.measured.iter().position(|&m| m).unwrap_or(0);
+        first.min(self.rest)..self.rest
+    }
+}
+
+/// Replaces the values of the samples not `measured` by linear interpolation between the
+/// measured ones around them, held at the ends. At least one sample must be measured.
+fn fill_unmeasured(values: &mut [f64], measured: &[bool]) {
+    let mut last: Option<usize> = None;
+    let n = values.len();
+    let mut i = 0;
+    while i < n {
+        if measured[i] {
+            last = Some(i);
+            i += 1;
+            continue;
+        }
+        let next = (i..n).find(|&j| measured[j]);
+        for k in i..next.unwrap_or(n) {
+            values[k] = match (last, next) {
+                (Some(a), Some(b)) => {
+                    let f = (k - a) as f64 / (b - a) as f64;
+                    values[a] + (values[b] - values[a]) * f
+                }
+                (Some(a), None) => values[a],
+                (None, Some(b)) => values[b],
+                (None, None) => values[k],
+            };
+        }
+        i = next.unwrap_or(n);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unmeasured_samples_are_interpolated_and_held_at_the_ends() {
+        let mut v = [9.0, 1.0, 9.0, 9.0, 4.0, 9.0];
+        let m = [false, true, false, false, true, false];
+        fill_unmeasured(&mut v, &m);
+        assert_eq!(v, [1.0, 1.0, 2.0, 3.0, 4.0, 4.0]);
     }
 }

@@ -109,6 +109,12 @@ pub enum DiscoverError {
         /// Reading (V).
         volts: f64,
     },
+    /// No row with a tracker angle.
+    #[error("every one of the recording's {rows} rows is marked tracker_valid = 0: discovery needs the tracker's angle")]
+    NoAngle {
+        /// Rows marked.
+        rows: usize,
+    },
     /// No rest at the start.
     #[error("the recording starts with {rest_s:.1} s at rest; discovery freezes its noise model from a rest of at least {min_s} s at the start (the stroke constant)")]
     NoRest {

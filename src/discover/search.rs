@@ -177,7 +177,7 @@ impl<'a> Search<'a> {
             let base = fit(&design, &ArNoise::white(1.0), &self.train)
                 .ok_or(DiscoverError::Base { channel: ch.name() })?;
             let residual = base.residual(&design);
-            let noise = ArNoise::fit(&residual[..self.data.rest]);
+            let noise = ArNoise::fit(&residual[self.data.measured_rest()]);
             let base = fit(&design, &noise, &self.train)
                 .ok_or(DiscoverError::Base { channel: ch.name() })?;
             if ch == Channel::Plant {

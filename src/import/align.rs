@@ -51,9 +51,16 @@ pub const REFINE_STEPS: i32 = 6;
 pub const REFINE_ROUNDS: usize = 3;
 /// The fewest windows the line is fitted through.
 pub const MIN_WINDOWS: usize = 3;
+/// The most frames the whole-recording coarse search correlates (every k-th frame beyond):
+/// it only has to land within [`WINDOW_SEARCH_S`] of the lag, and on all 120 k frames of a
+/// 3000 s log its 2001 lags took most of the import's 9.7 s (`benches/import.rs`).
+pub const COARSE_FRAMES: usize = 4000;
+/// The windows' first pass steps by this (s), then the DAQ's sample grid within one step of
+/// its best: the same peak as the sample grid throughout, for a fifth of the lags.
+pub const WINDOW_COARSE_STEP_S: f64 = 0.01;
 
 /// The alignment found.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Alignment {
     /// `offset_s` (s).
     pub offset_s: f64,
@@ -67,6 +74,9 @@ pub struct Alignment {
     pub correlation: f64,
     /// Windows the line went through.
     pub windows: usize,
+    /// Each window's centre (s of tracker time `τ`) and lag `t_daq − τ` (s): the points the
+    /// line was fitted through.
+    pub lags: Vec<(f64, f64)>,
 }
 
 /// `signal` (uniformly sampled from `t = 0` at `dt_s`) at time `t`, linearly interpolated;
@@ -157,7 +167,23 @@ fn solve3(m: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
 
 /// The best lag on `grid` by `sign·r`, refined by a parabola through the peak; with its r.
 fn best_lag(grid: &[f64], r_of: &dyn Fn(f64) -> f64, sign: f64) -> (f64, f64) {
-    let rs: Vec<f64> = grid.iter().map(|&l| sign * r_of(l)).collect();
+    let rs: Vec<f64> = grid.iter().map(|&l| r_of(l)).collect();
+    peak(grid, &rs, sign)
+}
+
+/// Every k-th frame's time and angle, k the least that keeps at most `most` frames.
+fn every_kth(tau_s: &[f64], angle: &[Option<f64>], most: usize) -> (Vec<f64>, Vec<Option<f64>>) {
+    let k = tau_s.len().div_ceil(most.max(1)).max(1);
+    (
+        tau_s.iter().step_by(k).copied().collect(),
+        angle.iter().step_by(k).copied().collect(),
+    )
+}
+
+/// The peak of `sign·r` over `grid` (`r` per grid point), refined by a parabola; with its
+/// `sign·r`.
+fn peak(grid: &[f64], r: &[f64], sign: f64) -> (f64, f64) {
+    let rs: Vec<f64> = r.iter().map(|v| sign * v).collect();
     let (i, &r) = rs
         .iter()
         .enumerate()
@@ -192,10 +218,17 @@ pub fn auto(
         let steps = (MAX_OFFSET_S / COARSE_STEP_S).round() as i64;
         (-steps..=steps).map(|k| k as f64 * COARSE_STEP_S).collect()
     };
-    let r_all = |lag: f64| correlation(tau_s, angle, all.clone(), signal, dt_s, &|_| lag);
+    let (sparse_tau, sparse_angle) = every_kth(tau_s, angle, COARSE_FRAMES);
+    let coarse_r: Vec<f64> = coarse
+        .iter()
+        .map(|&lag| {
+            let frames = 0..sparse_tau.len();
+            correlation(&sparse_tau, &sparse_angle, frames, signal, dt_s, &|_| lag)
+        })
+        .collect();
     // The sign of the sensor's response (a sensor on −y_s reads less when the joint bends).
-    let (up, r_up) = best_lag(&coarse, &r_all, 1.0);
-    let (down, r_down) = best_lag(&coarse, &r_all, -1.0);
+    let (up, r_up) = peak(&coarse, &coarse_r, 1.0);
+    let (down, r_down) = peak(&coarse, &coarse_r, -1.0);
     let (lag0, r0, sign) = if r_up >= r_down {
         (up, r_up, 1.0)
     } else {
@@ -208,8 +241,10 @@ pub fn auto(
             min: MIN_CORRELATION,
         });
     }
-    let steps = (WINDOW_SEARCH_S / dt_s).ceil() as i64;
-    let fine: Vec<f64> = (-steps..=steps).map(|k| lag0 + k as f64 * dt_s).collect();
+    let step = WINDOW_COARSE_STEP_S.max(dt_s);
+    let steps = (WINDOW_SEARCH_S / step).ceil() as i64;
+    let first: Vec<f64> = (-steps..=steps).map(|k| lag0 + k as f64 * step).collect();
+    let near = (step / dt_s).ceil() as i64;
     let per = tau_s.len() / WINDOWS;
     let mut points = Vec::new();
     for w in 0..WINDOWS {
@@ -219,6 +254,8 @@ pub fn auto(
             (w + 1) * per
         };
         let r_w = |lag: f64| correlation(tau_s, angle, frames.clone(), signal, dt_s, &|_| lag);
+        let (rough, _) = best_lag(&first, &r_w, sign);
+        let fine: Vec<f64> = (-near..=near).map(|k| rough + k as f64 * dt_s).collect();
         let (lag, r) = best_lag(&fine, &r_w, sign);
         if r >= MIN_CORRELATION {
             let centre = frames.clone().map(|k| tau_s[k]).sum::<f64>() / frames.len() as f64;
@@ -284,5 +321,6 @@ pub fn auto(
         drift_uncertainty_ppm: drift_se * 1e6,
         correlation: sign * r0,
         windows: points.len(),
+        lags: points,
     })
 }

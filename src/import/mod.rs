@@ -10,6 +10,7 @@ pub mod angle;
 pub mod daq_csv;
 pub mod lvm;
 pub mod ndi;
+pub mod report;
 pub mod resample;
 pub mod sync;
 pub mod tdms;
@@ -170,6 +171,18 @@ pub struct ImportSummary {
     pub invalid_rows: usize,
     /// Warnings.
     pub warnings: Vec<String>,
+    /// What the report draws (not in the JSON).
+    #[serde(skip)]
+    pub trace: ImportTrace,
+}
+
+/// The tracker's side of an import, for the report ([`report`]).
+#[derive(Debug, Clone, Default)]
+pub struct ImportTrace {
+    /// Each frame's tracker time `τ` (s from its first frame).
+    pub tau_s: Vec<f64>,
+    /// Each frame's bending angle (°, signed as in the recording; `None`: the tool missing).
+    pub angle_deg: Vec<Option<f64>>,
 }
 
 /// `alignment` in the JSON.
@@ -191,6 +204,10 @@ pub struct AlignmentJson {
     /// `pulse`: the sync edges paired.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sync_edges: Option<usize>,
+    /// The measured lags `t_daq − τ` (s) against `τ` (s) the line was fitted through: the
+    /// windows (`auto`) or the edge pairs (`pulse`). For the report, not in the JSON.
+    #[serde(skip)]
+    pub lags: Vec<(f64, f64)>,
 }
 
 /// How the clocks are aligned.
@@ -270,9 +287,12 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         .iter()
         .map(|v| v * req.stroke.1)
         .collect();
-    if !pulls_positive(&angle_deg, &valid, &stroke_mm) {
-        angle_deg.iter_mut().for_each(|a| *a = -*a);
-    }
+    let sign = if pulls_positive(&angle_deg, &valid, &stroke_mm) {
+        1.0
+    } else {
+        -1.0
+    };
+    angle_deg.iter_mut().for_each(|a| *a *= sign);
     let frames = log.tau_s.len();
     let missing = angles.angle_deg.iter().filter(|a| a.is_none()).count();
     let invalid_rows = valid.iter().filter(|v| !**v).count();
@@ -289,6 +309,14 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         },
         invalid_rows,
         warnings: out_of_plane_warning(&angles).into_iter().collect(),
+        trace: ImportTrace {
+            tau_s: log.tau_s.clone(),
+            angle_deg: angles
+                .angle_deg
+                .iter()
+                .map(|a| a.map(|a| a * sign))
+                .collect(),
+        },
     };
     let rig = Rig {
         sample_hz: rate_hz,
@@ -469,6 +497,7 @@ fn clocks(
                 method: "auto",
                 correlation: Some(a.correlation),
                 sync_edges: None,
+                lags: a.lags,
             })
         }
         SyncMethod::Pulse { tracker_column, .. } => {
@@ -485,6 +514,7 @@ fn clocks(
                 method: "pulse",
                 correlation: None,
                 sync_edges: Some(a.edges),
+                lags: a.lags,
             })
         }
     }

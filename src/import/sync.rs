@@ -76,7 +76,7 @@ pub enum SyncError {
 }
 
 /// The clocks found on the pulse.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct PulseAlignment {
     /// `offset_s` (s).
     pub offset_s: f64,
@@ -88,6 +88,8 @@ pub struct PulseAlignment {
     pub drift_uncertainty_ppm: f64,
     /// Edges paired.
     pub edges: usize,
+    /// Each edge pair's tracker time `τ` (s) and lag `t_daq − τ` (s).
+    pub lags: Vec<(f64, f64)>,
 }
 
 /// The sync column `column` of the tracker log `text`, one value per data row.
@@ -207,6 +209,7 @@ pub fn align(daq_s: &[f64], tracker_s: &[f64], frame_s: f64) -> Result<PulseAlig
     };
     let sigma = scatter.max(floor);
     Ok(PulseAlignment {
+        lags: x.iter().zip(y).map(|(t, d)| (*t, d - t)).collect(),
         offset_s: intercept,
         drift_ppm,
         offset_uncertainty_s: sigma * (1.0 / n as f64 + mx * mx / sxx).sqrt(),
