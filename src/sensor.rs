@@ -55,6 +55,14 @@ impl Sensor {
         }
     }
 
+    /// The sensor that reads `plane`: sensor 1 on `+y_s`, sensor 2 on `−y_s`.
+    pub fn on_plane(plane: SensorPlane) -> Sensor {
+        match plane {
+            SensorPlane::PlusYs => Sensor::One,
+            SensorPlane::MinusYs => Sensor::Two,
+        }
+    }
+
     /// The plane the sensor sits in, as the estimator config states it.
     pub fn plane(self) -> SensorPlane {
         match self {

@@ -119,6 +119,28 @@ pub fn median_abs_deviation(v: &[f64]) -> Option<f64> {
     median(&dev)
 }
 
+/// Pearson's correlation coefficient of `x` and `y`, or `None` with fewer than 3 pairs or a
+/// constant series.
+pub fn pearson(x: &[f64], y: &[f64]) -> Option<f64> {
+    let m = moments(x, y);
+    if m.n < 3 {
+        return None;
+    }
+    let r = m.sxy / (m.sxx * m.syy).sqrt();
+    r.is_finite().then_some(r)
+}
+
+/// Sample standard deviation (`n − 1`), or `None` under 2 values.
+pub fn std_dev(v: &[f64]) -> Option<f64> {
+    let n = v.len();
+    if n < 2 {
+        return None;
+    }
+    let mean = v.iter().sum::<f64>() / n as f64;
+    let ss: f64 = v.iter().map(|x| (x - mean) * (x - mean)).sum();
+    Some((ss / (n - 1) as f64).sqrt())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -157,5 +179,17 @@ mod tests {
             median_abs_deviation(&[1.0, 2.0, 3.0, 4.0, 100.0]),
             Some(1.0)
         );
+    }
+
+    #[test]
+    fn pearson_std_dev_and_slope_known_values() {
+        use approx::assert_relative_eq;
+        let x = [1.0, 2.0, 3.0, 4.0];
+        assert_relative_eq!(pearson(&x, &[2.0, 4.0, 6.0, 8.0]).unwrap(), 1.0);
+        assert_relative_eq!(pearson(&x, &[8.0, 6.0, 4.0, 2.0]).unwrap(), -1.0);
+        assert_relative_eq!(pearson(&x, &[1.0, -1.0, -1.0, 1.0]).unwrap(), 0.0);
+        assert!(pearson(&x, &[1.0; 4]).is_none());
+        assert_relative_eq!(std_dev(&x).unwrap(), (5.0f64 / 3.0).sqrt());
+        assert_relative_eq!(slope(&x, &[1.0, 3.0, 5.0, 7.0]).unwrap(), 2.0);
     }
 }

@@ -324,11 +324,13 @@ fn estimation_matches_dlw_estimate_and_splits_a_two_sensor_config() {
         &["--config", &s(&two), "--paper-processing"],
     );
     let runs = j["runs"].as_array().unwrap();
-    let kinds: Vec<&str> = runs
+    let kinds: Vec<&str> = runs.iter().map(|r| r["role"].as_str().unwrap()).collect();
+    assert_eq!(kinds, ["tension", "compression", "both"]);
+    let sensors: Vec<&str> = runs
         .iter()
         .map(|r| r["sensors"].as_str().unwrap())
         .collect();
-    assert_eq!(kinds, ["tension", "compression", "both"]);
+    assert_eq!(sensors, ["sensor1", "sensor2", "both"]);
     let rmse: Vec<f64> = runs.iter().map(|r| f(&r["rmse_deg"])).collect();
     assert!(rmse.iter().all(|r| r.is_finite() && *r < 4.0), "{rmse:?}");
     assert!(rmse[2] <= rmse[0].max(rmse[1]), "{rmse:?}");

@@ -103,11 +103,22 @@ fn short_reproduction_writes_all_four_tables_and_the_figures() {
         .as_array()
         .unwrap()
         .iter()
-        .map(|r| r["sensors"].as_str().unwrap())
+        .map(|r| r["role"].as_str().unwrap())
         .collect();
     assert_eq!(
         c,
         ["one sensor", "one sensor", "tension", "compression", "both"]
+    );
+    // The sensors each reads, by the one sensor identity.
+    let sensors: Vec<&str> = joints[2]["estimation"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["sensors"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        sensors,
+        ["sensor1", "sensor1", "sensor1", "sensor2", "both"]
     );
     // No PI config runs far from its linear one. At these short durations this holds with or
     // without the PI inverse's strain clamp; `half_size_pi_estimates_stay_near_linear` below
@@ -357,7 +368,7 @@ fn headline(j: &serde_json::Value) -> String {
             out += &format!(
                 "Joint {name} {} ({}): RMSE {:.2} deg\n",
                 e["config"].as_str().unwrap(),
-                e["sensors"].as_str().unwrap(),
+                e["role"].as_str().unwrap(),
                 e["rmse_deg"].as_f64().unwrap()
             );
         }

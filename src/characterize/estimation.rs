@@ -17,6 +17,8 @@
 use dlw_estimator::{EstimatorConfig, FilterConfig, SensorPlane};
 use serde::Serialize;
 
+use crate::sensor::{Sensor, Sensors};
+
 use super::{figure_name, titled, CharacterizeError, Options};
 use crate::replay::{replay, Metrics};
 use crate::report::{Chart, Page, Series, Table, PALETTE};
@@ -42,8 +44,14 @@ pub struct NamedConfig {
 pub struct EstimationRun {
     /// The config's name.
     pub config: String,
-    /// `one sensor`, `tension`, `compression` or `both`.
-    pub sensors: &'static str,
+    /// Which sensors the estimate reads: `sensor1`, `sensor2` or `both` (the one sensor
+    /// identity, [`Sensors`]).
+    pub sensors: Sensors,
+    /// Whether it is one part of a two-sensor config (Table V's tension, compression, both).
+    pub split: bool,
+    /// The reading as the paper names it, for people: `one sensor`, or a two-sensor config's
+    /// `tension`, `compression` or `both` ([`EstimationRun::role_of`]).
+    pub role: &'static str,
     /// RMSE and the rest, as `dlw estimate --json` prints them.
     #[serde(flatten)]
     pub metrics: Metrics,
@@ -88,8 +96,11 @@ pub fn estimate(
                 samples: PAPER_MOVING_AVERAGE,
             };
         }
-        let variants: Vec<(&'static str, EstimatorConfig)> = match config.second_sensor {
-            None => vec![("one sensor", config)],
+        let variants: Vec<(Sensors, EstimatorConfig)> = match config.second_sensor {
+            None => vec![(
+                Sensors::Single(Sensor::on_plane(config.first_plane())),
+                config,
+            )],
             Some(second) => {
                 let tension = EstimatorConfig {
                     second_sensor: None,
@@ -101,12 +112,13 @@ pub fn estimate(
                     ..config
                 };
                 vec![
-                    ("tension", tension),
-                    ("compression", compression),
-                    ("both", config),
+                    (Sensors::Single(Sensor::One), tension),
+                    (Sensors::Single(Sensor::Two), compression),
+                    (Sensors::Both, config),
                 ]
             }
         };
+        let split = config.second_sensor.is_some();
         for (sensors, c) in variants {
             let mut r = replay(&c, recording)?;
             if options.paper_processing {
@@ -116,6 +128,8 @@ pub fn estimate(
             runs.push(EstimationRun {
                 config: named.name.clone(),
                 sensors,
+                split,
+                role: EstimationRun::role_of(sensors, split),
                 metrics: r.metrics,
                 estimate_deg: r.estimate_deg,
             });
@@ -130,12 +144,24 @@ pub fn estimate(
 }
 
 impl EstimationRun {
+    /// How the paper names a reading: `one sensor` for a one-sensor config; a two-sensor
+    /// config's sensor 1 is the one in `tension` (stretched by a positive angle), sensor 2 the
+    /// one in `compression`, and `both` is Eq. 7.
+    pub fn role_of(sensors: Sensors, split: bool) -> &'static str {
+        match (split, sensors) {
+            (false, _) => "one sensor",
+            (true, Sensors::Single(Sensor::One)) => "tension",
+            (true, Sensors::Single(Sensor::Two)) => "compression",
+            (true, Sensors::Both) => "both",
+        }
+    }
+
     /// `config` or `config, tension`.
     pub fn name(&self) -> String {
-        if self.sensors == "one sensor" {
-            self.config.clone()
+        if self.split {
+            format!("{}, {}", self.config, self.role)
         } else {
-            format!("{}, {}", self.config, self.sensors)
+            self.config.clone()
         }
     }
 }
@@ -156,7 +182,7 @@ impl EstimationResult {
             let m = &r.metrics;
             t.row([
                 r.config.clone(),
-                r.sensors.to_owned(),
+                r.role.to_owned(),
                 format!("{:.3}", m.rmse_deg),
                 format!("{:.2}", m.max_abs_error_deg),
                 format!("{:.3}", m.filter_delay_s),

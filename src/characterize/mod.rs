@@ -20,7 +20,6 @@ pub mod estimation;
 pub mod loops;
 pub mod rate;
 pub mod relaxation;
-mod stats;
 
 use dlw_estimator::SensorPlane;
 use dlw_geometry::{Joint, NotchStyle};
@@ -30,6 +29,9 @@ use crate::fit::{FitError, Prefilter};
 use crate::replay::ReplayError;
 use crate::sim::{ProtocolKind, Recording};
 
+/// Pearson correlation, standard deviation, least-squares slope.
+/// The statistics the analyses report, from the one `stats` module.
+pub use crate::stats::{pearson, slope, std_dev};
 /// Estimates of each config against the tracker angle (Table IV, Table V, Figs. 7-8).
 pub use estimation::{estimate, EstimationResult, EstimationRun, NamedConfig};
 /// Loading/unloading loops and the fits (Fig. 4, Table III).
@@ -38,8 +40,6 @@ pub use loops::{loops, LoopsResult, LoopsSensor, LoopsSummary};
 pub use rate::{rate, RateCycle, RateResult, RateSensor};
 /// Holds, strain decay and ΔR against Δε (Fig. 6).
 pub use relaxation::{relaxation, Hold, RelaxationResult, RelaxationSensor};
-/// Pearson correlation, standard deviation, least-squares slope.
-pub use stats::{pearson, slope, std_dev};
 
 /// The default shortest hold (s) the relaxation analysis accepts.
 pub const DEFAULT_MIN_HOLD_S: f64 = 5.0;

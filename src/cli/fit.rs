@@ -10,7 +10,7 @@ use dlw::design::Design;
 use dlw::fit::{fit, FitRequest, ModelKind, Prefilter, MAX_ORDER, MIN_ORDER};
 use dlw::output::write_atomic;
 use dlw::replay::ConfigFormat;
-use dlw::sensor::{Sensor, Sensors};
+use dlw::sensor::Sensors;
 use dlw::sim::Recording;
 
 /// Arguments of `dlw fit`.
@@ -36,8 +36,8 @@ pub struct Args {
     compare: bool,
     /// Which sensor: 1 (plane +y_s, v1_V), 2 (a BSN joint's compression sensor, v2_V) or both
     /// (BSN: a two-sensor config, Eq. 7). Default: both for a BSN recording with two columns.
-    #[arg(long)]
-    sensor: Option<SensorArg>,
+    #[arg(long, value_parser = sensors_parser())]
+    sensor: Option<Sensors>,
     /// A second recording of the same sensor: each fitted model is run over it through the
     /// runtime estimator and its angle RMSE reported.
     #[arg(long)]
@@ -57,23 +57,10 @@ pub struct Args {
     report: Option<PathBuf>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum SensorArg {
-    #[value(name = "1")]
-    One,
-    #[value(name = "2")]
-    Two,
-    Both,
-}
-
-impl From<SensorArg> for Sensors {
-    fn from(s: SensorArg) -> Sensors {
-        match s {
-            SensorArg::One => Sensors::Single(Sensor::One),
-            SensorArg::Two => Sensors::Single(Sensor::Two),
-            SensorArg::Both => Sensors::Both,
-        }
-    }
+/// `--sensor`: `1`, `2` or `both`, parsed into the one sensor identity ([`Sensors`]).
+fn sensors_parser() -> impl clap::builder::TypedValueParser<Value = Sensors> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(["1", "2", "both"]).try_map(|s| s.parse::<Sensors>())
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -112,7 +99,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         model: args.model,
         order: args.order,
         prefilter: args.prefilter,
-        sensors: args.sensor.map(Sensors::from),
+        sensors: args.sensor,
         compare: args.compare,
         validate: validate.as_ref(),
     };

@@ -122,7 +122,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             j.estimation
                 .runs
                 .iter()
-                .find(|x| x.config == name && x.sensors == "one sensor")
+                .find(|x| x.config == name && !x.split)
                 .map_or(f64::NAN, |x| x.metrics.rmse_deg)
         };
         println!(

@@ -7,6 +7,7 @@ use serde::Serialize;
 use super::data::Data;
 use super::noise::ArNoise;
 use super::terms::{hats, low_pass, play, rate, Term, LOG_REFERENCE_RATE};
+use crate::sensor::Sensor;
 
 /// Which channel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -14,7 +15,7 @@ pub enum Channel {
     /// Stroke → tracker angle.
     Plant,
     /// Tracker angle → resistance of sensor 1 or 2.
-    Sensor(usize),
+    Sensor(Sensor),
 }
 
 impl Channel {
@@ -22,7 +23,7 @@ impl Channel {
     pub fn name(self) -> String {
         match self {
             Channel::Plant => "plant".to_owned(),
-            Channel::Sensor(k) => format!("sensor{k}"),
+            Channel::Sensor(sensor) => sensor.key().to_owned(),
         }
     }
 
@@ -80,7 +81,7 @@ impl ChannelModel {
 
     /// The felt strain of a sensor channel (sensor 2 of a BSN joint reads `−ε`).
     pub fn felt(&self, data: &Data) -> Vec<f64> {
-        let sign = if self.channel == Channel::Sensor(2) {
+        let sign = if self.channel == Channel::Sensor(Sensor::Two) {
             -1.0
         } else {
             1.0
@@ -105,8 +106,8 @@ impl ChannelModel {
                 }
                 (data.angle_deg.clone(), u.clone(), u)
             }
-            Channel::Sensor(k) => {
-                let sign = if k == 2 { -1.0 } else { 1.0 };
+            Channel::Sensor(sensor) => {
+                let sign = sensor.plane().sign();
                 let mut x = self.felt(data);
                 let mut xp: Vec<f64> = proxy.iter().map(|e| sign * e).collect();
                 for t in &self.terms {
@@ -116,7 +117,7 @@ impl ChannelModel {
                         xp = xp.iter().map(sat).collect();
                     }
                 }
-                (data.ohm[k - 1].clone(), x, xp)
+                (data.ohm[sensor.index()].clone(), x, xp)
             }
         };
         for t in &self.terms {

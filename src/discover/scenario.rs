@@ -4,13 +4,14 @@
 
 use std::collections::BTreeMap;
 
-use dlw_estimator::{ModelConfig, PiConfig, SensorPlane};
+use dlw_estimator::{ModelConfig, PiConfig};
 use dlw_geometry::Joint;
 
 use super::model::{Channel, Fitted};
 use super::terms::{Effect, Term, LOG_REFERENCE_RATE};
 use super::{ChannelReport, Known, Outcome};
 use crate::fit::{fit_sensor, FitOptions, ModelKind, Prefilter};
+use crate::sensor::Sensor;
 use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams};
 
 /// The named effect's parameters in the scenario's units, from the fitted coefficients.
@@ -104,8 +105,8 @@ pub fn known(scenario: &Scenario) -> Known {
             },
         ));
     }
-    for (i, s) in scenario.sensors().enumerate() {
-        let ch = Channel::Sensor(i + 1);
+    for (s, &sensor) in scenario.sensors().zip(&Sensor::ALL) {
+        let ch = Channel::Sensor(sensor);
         if s.model != SensorModelKind::Linear {
             k.push((
                 ch,
@@ -198,16 +199,15 @@ pub fn scenario(
                     }
                 }
             }
-            Channel::Sensor(k) => {
-                let sensor = if k == 1 {
-                    &mut s.sensor1
-                } else {
-                    s.sensor2.get_or_insert_with(SensorParams::default)
+            Channel::Sensor(which) => {
+                let sensor = match which {
+                    Sensor::One => &mut s.sensor1,
+                    Sensor::Two => s.sensor2.get_or_insert_with(SensorParams::default),
                 };
-                sensor.divider_ohm = rig.divider_ohm.get(k - 1).copied();
+                sensor.divider_ohm = rig.divider_ohm.get(which.index()).copied();
                 write_sensor(sensor, ch)?;
                 if sensor.model == SensorModelKind::Pi {
-                    sensor.pi = Some(fit_pi(recording, joint, k)?);
+                    sensor.pi = Some(fit_pi(recording, joint, which)?);
                     // The PI model's tanh input curve carries the saturation.
                     sensor.saturation.enabled = false;
                 }
@@ -278,12 +278,8 @@ fn write_sensor(sensor: &mut SensorParams, ch: &ChannelReport) -> Result<(), Str
 
 /// The paper's generalized PI model (Eqs. 8-11) of sensor `k`, fitted to the whole recording
 /// by `dlw fit`'s machinery: the form the simulator's `model = "pi"` runs.
-fn fit_pi(recording: &Recording, joint: &Joint, k: usize) -> Result<PiConfig, String> {
-    let plane = if k == 2 {
-        SensorPlane::MinusYs
-    } else {
-        SensorPlane::PlusYs
-    };
+fn fit_pi(recording: &Recording, joint: &Joint, sensor: Sensor) -> Result<PiConfig, String> {
+    let plane = sensor.plane();
     let options = FitOptions {
         model: ModelKind::Pi,
         order: 10,
@@ -291,10 +287,10 @@ fn fit_pi(recording: &Recording, joint: &Joint, k: usize) -> Result<PiConfig, St
         decimation: None,
     };
     let fit = fit_sensor(recording, joint, plane, &options, &|_| {})
-        .map_err(|e| format!("fitting the PI model of sensor {k}: {e}"))?;
+        .map_err(|e| format!("fitting the PI model of {sensor}: {e}"))?;
     match fit.config(ModelKind::Pi).map(|c| &c.model) {
         Some(ModelConfig::Pi(pi)) => Ok(*pi),
-        _ => Err(format!("the PI model of sensor {k} could not be fitted")),
+        _ => Err(format!("the PI model of {sensor} could not be fitted")),
     }
 }
 

@@ -22,6 +22,7 @@ use super::{
     evidence, prefer_simpler, proxy, refine, same_rig, Ambiguity, Candidate, ChannelReport,
     DiscoverError, FormFit, Gap, Known, CLEAR_RATIO, CORRELATION_WINDOW_S, THRESHOLD_NATS,
 };
+use crate::sensor::Sensor;
 use crate::sim::Recording;
 use crate::stats::min_max;
 
@@ -34,6 +35,9 @@ pub(super) enum Pick {
     /// Contenders too close to tell apart: the channel is closed.
     Ambiguous(Ambiguity),
 }
+
+/// Per channel: the held-out gaps, what is left unexplained, and the report's view.
+type Measured = (Vec<Gap>, Vec<Unexplained>, Vec<ChannelReport>);
 
 /// A model's held-out fit: the fitted coefficients, the whitened held-out sum of squares, the
 /// held-out RMSE (channel unit) and the held-out sample count.
@@ -120,7 +124,7 @@ impl<'a> Search<'a> {
                 "held-out blocks"
             },
             channels: std::iter::once(Channel::Plant)
-                .chain((1..=sensors).map(Channel::Sensor))
+                .chain(Sensor::ALL[..sensors].iter().map(|&s| Channel::Sensor(s)))
                 .collect(),
             models: BTreeMap::new(),
             noises: BTreeMap::new(),
@@ -431,7 +435,7 @@ impl<'a> Search<'a> {
         &self,
         steps: &BTreeMap<Channel, Vec<(Effect, f64)>>,
         ambiguous: &[Ambiguity],
-    ) -> Result<(Vec<Gap>, Vec<Unexplained>, Vec<ChannelReport>), DiscoverError> {
+    ) -> Result<Measured, DiscoverError> {
         let mut gaps = Vec::new();
         let mut unexplained = Vec::new();
         let mut reports = Vec::new();

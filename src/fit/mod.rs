@@ -47,7 +47,6 @@ pub use cycles::{cycles, phases, Cycle, Phase};
 pub use data::{
     observe, Observations, Prefilter, MAX_FIT_SAMPLES, MIN_ANGLE_SPAN_DEG, RAIL_FRACTION,
 };
-pub(crate) use linear::moments;
 /// The linear model by least squares.
 pub use linear::{fit_linear, slope, LinearFit, MIN_R2};
 /// Non-negative least squares on the normal equations.

@@ -7,6 +7,13 @@ use serde::Serialize;
 use super::paper::{RATE_CORRELATION, TABLE_IV, TWO_SENSOR_RMSE};
 use super::{joints, Reproduction};
 use crate::control::PAPER_TABLE_VI;
+use crate::sensor::{Sensor, Sensors};
+
+/// A one-sensor config's reading (sensor 1), and a two-sensor config's tension (sensor 1) and
+/// compression (sensor 2) sensors alone.
+pub(super) const ONE: Sensors = Sensors::Single(Sensor::One);
+pub(super) const TENSION: Sensors = Sensors::Single(Sensor::One);
+pub(super) const COMPRESSION: Sensors = Sensors::Single(Sensor::Two);
 
 /// The normal quantile of a two-sided 5 % test: a correlation of `n` cycles is significant
 /// above `tanh(1.96/√(n − 3))` (Fisher's z).
@@ -106,7 +113,7 @@ pub const HYSTERETIC_RESIDUAL_RATIO: f64 = 2.0;
 pub const TWO_SENSOR_ERROR_RATIO: f64 = 1.732_050_8;
 
 /// The RMSE (°) of `config` estimated from `sensors` on the joint `letter`, if it ran.
-fn rmse(r: &Reproduction, letter: char, config: &str, sensors: &str) -> Option<f64> {
+fn rmse(r: &Reproduction, letter: char, config: &str, sensors: Sensors) -> Option<f64> {
     r.joints
         .iter()
         .find(|j| j.letter == letter)?
@@ -132,14 +139,11 @@ fn fit_residuals(r: &Reproduction, letter: char) -> String {
 
 /// The resistance RMSE (Ω) of the PI and the linear fit to joint `letter`'s characterization.
 fn characterization_rmse(r: &Reproduction, letter: char) -> Option<(f64, f64)> {
-    let Some(sensor) = r
+    let sensor = r
         .joints
         .iter()
         .find(|j| j.letter == letter)
-        .and_then(|j| j.loops.sensors.first())
-    else {
-        return None;
-    };
+        .and_then(|j| j.loops.sensors.first())?;
     let rmse = |model| {
         sensor
             .fit
@@ -192,10 +196,7 @@ pub fn patterns(r: &Reproduction) -> Vec<Pattern> {
         } else {
             format!("linear beats PI for Joint {letter} (Table IV)")
         };
-        let (lin, pi) = (
-            rmse(r, letter, "linear", "one sensor"),
-            rmse(r, letter, "PI", "one sensor"),
-        );
+        let (lin, pi) = (rmse(r, letter, "linear", ONE), rmse(r, letter, "PI", ONE));
         out.push(match (lin, pi) {
             (Some(lin), Some(pi)) => {
                 let mut p = pattern(
@@ -222,9 +223,9 @@ pub fn patterns(r: &Reproduction) -> Vec<Pattern> {
     let paper = &format!("both {b:.2}°, tension {t:.2}°, compression {c:.2}°");
     out.push(
         match (
-            rmse(r, 'C', cfg, "both"),
-            rmse(r, 'C', cfg, "tension"),
-            rmse(r, 'C', cfg, "compression"),
+            rmse(r, 'C', cfg, Sensors::Both),
+            rmse(r, 'C', cfg, TENSION),
+            rmse(r, 'C', cfg, COMPRESSION),
         ) {
             (Some(both), Some(t), Some(c)) => {
                 let mut p = pattern(

@@ -5,12 +5,13 @@ use super::paper::{
     M_T_DEG_PER_MM, R0_STD_OHM, RATE_CORRELATION, RELAXATION_CORRELATION, TABLE_III, TABLE_IV,
     TABLE_V, TWO_SENSOR_RMSE,
 };
-use super::patterns::max_rate_correlation;
+use super::patterns::{max_rate_correlation, COMPRESSION, ONE, TENSION};
 use super::{prose, Reproduction, CONTROL_ORDER};
 use crate::analysis::{Analysis, Placement};
 use crate::characterize::{EstimationResult, LoopsSensor};
 use crate::control::{report as control_report, PAPER_TABLE_VI};
 use crate::report::{Block, Page, Table};
+use crate::sensor::Sensors;
 
 fn k(ohm: f64) -> String {
     format!("{:.1}", ohm / 1e3)
@@ -332,17 +333,12 @@ fn relaxation(page: &mut Page, r: &Reproduction) {
 /// The runs of `e` whose config is (or is not) the two-sensor one.
 fn runs(e: &EstimationResult, two: bool) -> EstimationResult {
     EstimationResult {
-        runs: e
-            .runs
-            .iter()
-            .filter(|r| (r.sensors != "one sensor") == two)
-            .cloned()
-            .collect(),
+        runs: e.runs.iter().filter(|r| r.split == two).cloned().collect(),
         ..e.clone()
     }
 }
 
-fn rmse(e: &EstimationResult, config: &str, sensors: &str) -> Option<f64> {
+fn rmse(e: &EstimationResult, config: &str, sensors: Sensors) -> Option<f64> {
     e.runs
         .iter()
         .find(|r| r.config == config && r.sensors == sensors)
@@ -365,7 +361,7 @@ fn table_iv(page: &mut Page, r: &Reproduction) {
         let mut row = vec![name.to_owned()];
         for (i, j) in r.joints.iter().enumerate() {
             row.push(format!("{:.2}", TABLE_IV[i][m]));
-            row.push(fmt(rmse(&j.estimation, name, "one sensor")));
+            row.push(fmt(rmse(&j.estimation, name, ONE)));
         }
         t.row(row);
     }
@@ -382,8 +378,8 @@ fn table_iv(page: &mut Page, r: &Reproduction) {
         .iter()
         .enumerate()
         .filter_map(|(i, j)| {
-            let linear = rmse(&j.estimation, "linear", "one sensor")?;
-            let pi = rmse(&j.estimation, "PI", "one sensor")?;
+            let linear = rmse(&j.estimation, "linear", ONE)?;
+            let pi = rmse(&j.estimation, "PI", ONE)?;
             Some(prose::table_iv(j.letter, linear, pi, TABLE_IV[i]))
         })
         .collect();
@@ -433,7 +429,7 @@ fn table_v(page: &mut Page, r: &Reproduction) {
         "dlw",
     ]);
     let config = "linear, two-sensor config";
-    for (i, (name, sensors)) in [("tension", "tension"), ("compression", "compression")]
+    for (i, (name, sensors)) in [("tension", TENSION), ("compression", COMPRESSION)]
         .iter()
         .enumerate()
     {
@@ -448,7 +444,7 @@ fn table_v(page: &mut Page, r: &Reproduction) {
             format!("{r2}"),
             format!("{:.3}", s.r2),
             format!("{:.2}", TWO_SENSOR_RMSE[i]),
-            fmt(rmse(&c.estimation, config, sensors)),
+            fmt(rmse(&c.estimation, config, *sensors)),
         ]);
     }
     t.row([
@@ -460,7 +456,7 @@ fn table_v(page: &mut Page, r: &Reproduction) {
         "".into(),
         "".into(),
         format!("{:.2}", TWO_SENSOR_RMSE[2]),
-        fmt(rmse(&c.estimation, config, "both")),
+        fmt(rmse(&c.estimation, config, Sensors::Both)),
     ]);
     page.table(t);
     page.text(
@@ -468,9 +464,9 @@ fn table_v(page: &mut Page, r: &Reproduction) {
          alone and together (Eq. 7), with the paper's processing.",
     );
     if let (Some(tension), Some(compression), Some(both)) = (
-        rmse(&c.estimation, config, "tension"),
-        rmse(&c.estimation, config, "compression"),
-        rmse(&c.estimation, config, "both"),
+        rmse(&c.estimation, config, TENSION),
+        rmse(&c.estimation, config, COMPRESSION),
+        rmse(&c.estimation, config, Sensors::Both),
     ) {
         page.text(prose::table_v(tension, compression, both, TWO_SENSOR_RMSE));
     }
