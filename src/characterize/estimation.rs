@@ -20,9 +20,9 @@ use serde::Serialize;
 use crate::sensor::{Sensor, Sensors};
 
 use super::{figure_name, titled, CharacterizeError, Options};
+use crate::recording::Recording;
 use crate::replay::{replay, Metrics};
 use crate::report::{Chart, Page, Series, Table, PALETTE};
-use crate::sim::Recording;
 
 /// The paper's moving average on the estimated angle (samples).
 pub const PAPER_MOVING_AVERAGE: u32 = 1000;

@@ -8,8 +8,8 @@ use serde::Serialize;
 
 use super::{figure_name, sensor_label, titled, CharacterizeError, Options};
 use crate::fit::{fit_sensor, Characteristic, FitError, FitOptions, ModelKind, SensorFit};
+use crate::recording::Recording;
 use crate::report::{Chart, Page, Series, Table, PALETTE};
-use crate::sim::Recording;
 
 /// One sensor's numbers (`--json`).
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -26,8 +26,9 @@ use dlw_geometry::{Joint, NotchStyle};
 use serde::Serialize;
 
 use crate::fit::{FitError, Prefilter};
+use crate::recording::Recording;
 use crate::replay::ReplayError;
-use crate::sim::{ProtocolKind, Recording};
+use crate::sim::ProtocolKind;
 
 /// Pearson correlation, standard deviation, least-squares slope.
 /// The statistics the analyses report, from the one `stats` module.

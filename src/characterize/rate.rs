@@ -31,8 +31,8 @@ use serde::Serialize;
 use super::{figure_name, min_max, pearson, sensor_label, slope, std_dev, titled};
 use super::{CharacterizeError, Options};
 use crate::fit::{cycles, fit_linear, observe, phases, TURN_THRESHOLD};
+use crate::recording::Recording;
 use crate::report::{Chart, Page, Series, SeriesStyle, Table, PALETTE};
-use crate::sim::Recording;
 
 /// A cycle counts when its rise reaches this share of the largest rise.
 pub const EQUAL_AMPLITUDE: f64 = 0.75;

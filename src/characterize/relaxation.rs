@@ -22,8 +22,8 @@ use serde::Serialize;
 use super::{figure_name, min_max, pearson, sensor_label, titled};
 use super::{CharacterizeError, Options};
 use crate::fit::{fit_linear, observe, Prefilter};
+use crate::recording::Recording;
 use crate::report::{Chart, Legend, Page, Series, SeriesStyle, Table, PALETTE};
-use crate::sim::Recording;
 
 /// A hold's stroke stays within this share of the stroke's span.
 pub const HOLD_TOLERANCE: f64 = 1e-3;

@@ -10,9 +10,9 @@ use dlw::characterize::{
 };
 use dlw::design::Design;
 use dlw::fit::Prefilter;
+use dlw::recording::Recording;
 use dlw::replay::load_config;
 use dlw::report::Page;
-use dlw::sim::Recording;
 use dlw_estimator::MAX_PLAYS;
 use serde::Serialize;
 

@@ -6,7 +6,8 @@ use anyhow::Context;
 use dlw::design::Design;
 use dlw::discover::{self, scenario, Outcome};
 use dlw::output::write_folder_atomic;
-use dlw::sim::{Recording, Scenario};
+use dlw::recording::Recording;
+use dlw::sim::Scenario;
 use serde::Serialize;
 
 /// Arguments of `dlw discover`.

@@ -9,9 +9,9 @@ use dlw::analysis::Analysis;
 use dlw::design::Design;
 use dlw::fit::{fit, FitRequest, ModelKind, Prefilter, MAX_ORDER, MIN_ORDER};
 use dlw::output::write_atomic;
+use dlw::recording::Recording;
 use dlw::replay::ConfigFormat;
 use dlw::sensor::Sensors;
-use dlw::sim::Recording;
 
 /// Arguments of `dlw fit`.
 #[derive(Debug, clap::Args)]

@@ -10,7 +10,7 @@
 use dlw_geometry::{Divider, Joint};
 
 use super::DiscoverError;
-use crate::sim::Recording;
+use crate::recording::Recording;
 
 /// Rate discovery works at (Hz): each sample is the mean of `sample_hz/TARGET_HZ` recorded
 /// samples. The effects live at seconds; averaging cuts the white noise and the work.

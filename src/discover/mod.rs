@@ -27,7 +27,7 @@ use std::collections::BTreeMap;
 use dlw_geometry::Joint;
 use serde::Serialize;
 
-use crate::sim::Recording;
+use crate::recording::Recording;
 use data::Data;
 use locate::Place;
 use model::{Channel, ChannelModel, Fitted};

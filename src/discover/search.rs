@@ -22,8 +22,8 @@ use super::{
     evidence, prefer_simpler, proxy, refine, same_rig, Ambiguity, Candidate, ChannelReport,
     DiscoverError, FormFit, Gap, Known, CLEAR_RATIO, CORRELATION_WINDOW_S, THRESHOLD_NATS,
 };
+use crate::recording::Recording;
 use crate::sensor::Sensor;
-use crate::sim::Recording;
 use crate::stats::min_max;
 
 /// What one round found on one channel.

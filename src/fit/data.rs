@@ -5,7 +5,7 @@ use dlw_estimator::{Filter, FilterConfig, SensorPlane};
 use dlw_geometry::{Divider, Joint};
 
 use super::FitError;
-use crate::sim::Recording;
+use crate::recording::Recording;
 
 /// Smallest span of the recorded angle a fit accepts (°): below it the strain is noise.
 pub const MIN_ANGLE_SPAN_DEG: f64 = 1.0;

@@ -67,7 +67,7 @@ pub use request::{
     fit, FitRequest, FitResult, PlayReport, Restart, SensorReport, Timings, MAX_ORDER, MIN_ORDER,
 };
 
-use crate::sim::Recording;
+use crate::recording::Recording;
 
 /// Fewest cycles the PI procedure needs: the first cycle's loading and the last cycle's
 /// unloading place `ε_c`, and a second cycle shows the loop repeating.

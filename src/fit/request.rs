@@ -17,10 +17,10 @@ use super::{
     FitOptions, ModelKind, ModelSummary, PlayFit, Prefilter, SensorFit, Validation,
 };
 use crate::analysis::{Analysis, Placement};
+use crate::recording::Recording;
 use crate::replay::{config_text, replay, ConfigFileError, ConfigFormat};
 use crate::report::Page;
 use crate::sensor::{Sensor, Sensors};
-use crate::sim::Recording;
 
 /// Fewest play operators a PI model is fitted with.
 pub const MIN_ORDER: usize = 2;

@@ -23,7 +23,7 @@ use dlw_estimator::{Estimator, EstimatorConfig, EstimatorError, Flags};
 use serde::Serialize;
 
 use crate::fixed::push_fixed;
-use crate::sim::Recording;
+use crate::recording::Recording;
 
 /// Estimator config files in TOML or JSON.
 pub use config_file::{config_text, load_config, ConfigFileError, ConfigFormat};

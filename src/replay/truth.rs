@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use super::{estimates_csv, run_estimator, tracker_metrics, Metrics, ReplayError};
 use crate::fluoro::TruthAngles;
-use crate::sim::Recording;
+use crate::recording::Recording;
 
 /// `values` (at increasing `time_s`) interpolated linearly at `t`; `None` outside
 /// `[time_s[0], time_s[last]]`.
