@@ -26,6 +26,37 @@ fn refused(args: &[&str], says: &[&str], not_written: &Path) -> String {
     err
 }
 
+/// A 5 s random recording of a shipped design at `rec`.
+fn simulate_random(design: &str, rec: &Path) {
+    dlw_ok(&[
+        "simulate",
+        "--design",
+        &shipped_design(design),
+        "--protocol",
+        "random",
+        "--duration-s",
+        "5",
+        "-o",
+        &arg(rec),
+    ]);
+}
+
+/// A linear Joint A estimator config (the paper's GF and R₀) in `dir`.
+fn joint_a_config(dir: &Path) -> std::path::PathBuf {
+    let config = dir.join("a.toml");
+    dlw_ok(&[
+        "estimator-config",
+        &shipped_design("joint-a.toml"),
+        "--gauge-factor",
+        "15.3",
+        "--r0-ohm",
+        "215e3",
+        "-o",
+        &arg(&config),
+    ]);
+    config
+}
+
 fn edited(shipped: &str, from: &str, to: &str, dest: &Path) -> String {
     let text = std::fs::read_to_string(shipped).unwrap();
     assert!(text.contains(from), "{shipped} has no {from:?}");
@@ -54,32 +85,12 @@ fn endless_and_oversized_inputs_are_refused_naming_the_limit() {
 
     // A recording whose data.csv header is one 1 MB line.
     let rec = dir.path().join("rec");
-    dlw_ok(&[
-        "simulate",
-        "--design",
-        &shipped_design("joint-a.toml"),
-        "--protocol",
-        "random",
-        "--duration-s",
-        "5",
-        "-o",
-        &arg(&rec),
-    ]);
+    simulate_random("joint-a.toml", &rec);
     let data = rec.join("data.csv");
     let text = std::fs::read_to_string(&data).unwrap();
     let body = text.split_once('\n').unwrap().1;
     std::fs::write(&data, format!("{}\n{body}", "h".repeat(1 << 20))).unwrap();
-    let config = dir.path().join("a.toml");
-    dlw_ok(&[
-        "estimator-config",
-        &shipped_design("joint-a.toml"),
-        "--gauge-factor",
-        "15.3",
-        "--r0-ohm",
-        "215e3",
-        "-o",
-        &arg(&config),
-    ]);
+    let config = joint_a_config(dir.path());
     let est = dir.path().join("est.csv");
     let err = refused(
         &[
@@ -107,31 +118,11 @@ fn endless_and_oversized_inputs_are_refused_naming_the_limit() {
 fn a_sample_rate_the_time_column_contradicts_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let rec = dir.path().join("rec");
-    dlw_ok(&[
-        "simulate",
-        "--design",
-        &shipped_design("joint-a.toml"),
-        "--protocol",
-        "random",
-        "--duration-s",
-        "5",
-        "-o",
-        &arg(&rec),
-    ]);
+    simulate_random("joint-a.toml", &rec);
     let rig = rec.join("rig.toml");
     let text = std::fs::read_to_string(&rig).unwrap();
     assert!(text.contains("sample_hz = 500.0"), "{text}");
-    let config = dir.path().join("a.toml");
-    dlw_ok(&[
-        "estimator-config",
-        &shipped_design("joint-a.toml"),
-        "--gauge-factor",
-        "15.3",
-        "--r0-ohm",
-        "215e3",
-        "-o",
-        &arg(&config),
-    ]);
+    let config = joint_a_config(dir.path());
     let est = dir.path().join("est.csv");
     let estimate = [
         "estimate",
@@ -278,17 +269,7 @@ fn design_names_are_printable_and_escaped() {
 fn a_config_for_another_design_draws_a_warning_naming_both() {
     let dir = tempfile::tempdir().unwrap();
     let rec = dir.path().join("rec");
-    dlw_ok(&[
-        "simulate",
-        "--design",
-        &shipped_design("joint-c.toml"),
-        "--protocol",
-        "random",
-        "--duration-s",
-        "5",
-        "-o",
-        &arg(&rec),
-    ]);
+    simulate_random("joint-c.toml", &rec);
     let config = |design: &str, name: &str| {
         let path = dir.path().join(name);
         dlw_ok(&[
