@@ -125,7 +125,17 @@ fn moving_part(c: &crate::fit::Cycle, strain: &[f64], time_s: &[f64], amp: f64) 
     };
     let (t10, t90) = (cross(0.1)?, cross(0.9)?);
     let floor = base + REST_BAND * amp;
-    let first = load.clone().find(|&i| strain[i] >= floor)?;
+    // The rise leaves the rest where the strain last crossed the floor before it reached a
+    // tenth of the rise. Searching forward from the turning point instead would start in the
+    // rest whenever the turning point lies below the rest (a relaxed joint undershoots after
+    // unloading and recovers while it rests): the rest's noise then crosses the floor, and its
+    // samples, many more for a fast cycle than its rise, pull the line towards the sensor's
+    // steeper start (at --short, Joint A's GF fell 7 % from the fastest cycle to the slowest).
+    let ten = load.clone().find(|&i| strain[i] >= base + 0.1 * amp)?;
+    let first = (c.loading.start..=ten)
+        .rev()
+        .find(|&i| strain[i] < floor)
+        .map_or(c.loading.start, |i| i + 1);
     let last = (c.unloading.start..=c.unloading.end)
         .rev()
         .find(|&i| strain[i] >= floor)?;
@@ -161,7 +171,7 @@ pub fn rate(
     let two = planes.len() > 1;
     let mut sensors = Vec::new();
     for &plane in planes {
-        let obs = observe(recording, joint, plane, options.prefilter, None)?;
+        let obs = observe(recording, joint, plane, options.prefilter, Some(1))?;
         // The joint's strain drives the cycles, for both sensors (sensor 2 reads −ε).
         let joint_strain: Vec<f64> = obs.strain.iter().map(|e| plane.sign() * e).collect();
         let (lo, hi) = min_max(&joint_strain);
