@@ -11,7 +11,12 @@
 //!     amplitudes (`CYCLE_AMPLITUDES` × the peak angle), each a raised-cosine ramp
 //!     `θ = a·(1 − cos(π·u))/2` up over `RAMP_S` and the same back down;
 //!   - [`Path::Random`]: a sum of three slow sinusoids (periods 77 s, 32 s, 143 s, phases from the
-//!     seed), `θ = θ_peak·(0.5 + 0.25·sin … + 0.15·sin … + 0.1·sin …)`, inside `[0, θ_peak]`.
+//!     seed), `θ = θ_peak·(0.5 + 0.25·sin … + 0.15·sin … + 0.1·sin …)`, inside `[0, θ_peak]`;
+//!   - [`Path::RateCycles`]: a rate-dependence protocol of its own: `RATE_REPEATS` times, one
+//!     raised-cosine cycle to 90 % of the peak at each rise time of `RATE_RISES_S` (up and down
+//!     in that time), each followed by `RATE_REST_S` at rest. The joint relaxes: the angle
+//!     lags the path by a first-order creep of `RATE_RELAXATION` (fraction, τ), so it
+//!     undershoots zero after each unloading and recovers while it rests.
 //! - **Strain** `ε = Joint::strain(θ)` (Eq. 3, the geometry crate).
 //! - **Hysteresis**: a Bouc-Wen (Duhem-type) internal state `z` (strain units) driven by the
 //!   strain, `dz = (A − (β + γ·sign(dε·z))·|z|ⁿ)·dε` with `A = 1`, `n = 1`, `β = 300`,
@@ -48,6 +53,15 @@ pub const REST_S: f64 = 10.0;
 pub const RAMP_S: f64 = 20.0;
 /// Amplitudes of the cycles, as fractions of the peak.
 pub const CYCLE_AMPLITUDES: [f64; 6] = [1.0, 0.6, 0.85, 0.4, 1.0, 0.7];
+/// Rise times of the rate cycles (s): not the simulator's 10-50 s.
+pub const RATE_RISES_S: [f64; 5] = [3.0, 5.0, 7.0, 11.0, 16.0];
+/// Repetitions of the rate cycles.
+pub const RATE_REPEATS: usize = 5;
+/// Rest after each rate cycle (s).
+pub const RATE_REST_S: f64 = 6.0;
+/// The joint's relaxation on the rate path: the fraction of the angle it gives up and its time
+/// constant (s).
+pub const RATE_RELAXATION: (f64, f64) = (0.05, 3.0);
 /// Sensor constants.
 pub const R0_OHM: f64 = 215_000.0;
 /// Gain on the saturated strain.
@@ -84,6 +98,34 @@ pub enum Path {
     Cycles,
     /// Slow sinusoids, for validation, lasting this many seconds.
     Random(f64),
+    /// Equal-amplitude cycles at several rise times, on a relaxing joint.
+    RateCycles,
+}
+
+/// The rate path's noise-free angle (°) before relaxation at `t`; `None` past the end.
+fn rate_cycle_angle(peak_deg: f64, t: f64) -> Option<f64> {
+    if t < REST_S {
+        return Some(0.0);
+    }
+    let mut start = REST_S;
+    for _ in 0..RATE_REPEATS {
+        for rise in RATE_RISES_S {
+            let u = (t - start) / rise;
+            if u < 2.0 {
+                let a = 0.9 * peak_deg;
+                return Some(if u < 1.0 {
+                    a * raised_cosine(u)
+                } else {
+                    a * (1.0 - raised_cosine(u - 1.0))
+                });
+            }
+            start += 2.0 * rise + RATE_REST_S;
+            if t < start {
+                return Some(0.0);
+            }
+        }
+    }
+    None
 }
 
 fn raised_cosine(u: f64) -> f64 {
@@ -106,6 +148,7 @@ fn angle(path: Path, peak_deg: f64, phases: [f64; 3], t: f64) -> Option<f64> {
                 a * (1.0 - raised_cosine(u - 1.0))
             })
         }
+        Path::RateCycles => rate_cycle_angle(peak_deg, t),
         Path::Random(duration) => {
             if t > duration {
                 return None;
@@ -148,12 +191,33 @@ pub fn write_recording(design: &FsPath, path: Path, seed: u64, out: &FsPath) {
     let mut a_noise = Noise::new(WHITE_DEG, AR_DEG, TAU_S, SAMPLE_HZ, &mut rng);
     let mut csv = String::from("time_s,stroke_mm,angle_deg,v1_V\n");
     let (mut z, mut last_strain) = (0.0_f64, 0.0_f64);
+    let mut relaxed = 0.0_f64;
+    if path == Path::RateCycles {
+        // The sensor was cycled before the recording: one cycle to the rate path's amplitude
+        // and back, so that its first recorded cycle does not start from the virgin state.
+        let top = joint.strain((0.9 * peak_deg).to_radians());
+        let steps = 2000;
+        for k in 1..=2 * steps {
+            let u = k as f64 / steps as f64;
+            let strain = top * if u <= 1.0 { u } else { 2.0 - u };
+            let de = strain - last_strain;
+            let sign = (de * z).signum();
+            z += (BW_A - (BW_BETA + BW_GAMMA * sign) * z.abs().powf(BW_N)) * de;
+            last_strain = strain;
+        }
+    }
     let mut i = 0usize;
     loop {
         let t = i as f64 / SAMPLE_HZ;
-        let Some(theta) = angle(path, peak_deg, phases, t) else {
+        let Some(mut theta) = angle(path, peak_deg, phases, t) else {
             break;
         };
+        let commanded = theta;
+        if path == Path::RateCycles {
+            let (fraction, tau) = RATE_RELAXATION;
+            relaxed += (fraction * theta - relaxed) * (1.0 - (-1.0 / (SAMPLE_HZ * tau)).exp());
+            theta -= relaxed;
+        }
         let strain = joint.strain(theta.to_radians());
         let de = strain - last_strain;
         let sign = (de * z).signum();
@@ -162,7 +226,12 @@ pub fn write_recording(design: &FsPath, path: Path, seed: u64, out: &FsPath) {
         let volts = (divider.voltage(resistance(strain, z)) + v_noise.next(&mut rng))
             .clamp(1e-3, SUPPLY_V - 1e-3);
         let recorded = theta + a_noise.next(&mut rng);
-        writeln!(csv, "{t:.6},{:.6},{recorded:.4},{volts:.6}", theta * 0.01).unwrap();
+        writeln!(
+            csv,
+            "{t:.6},{:.6},{recorded:.4},{volts:.6}",
+            commanded * 0.01
+        )
+        .unwrap();
         i += 1;
     }
     std::fs::create_dir_all(out).unwrap();
