@@ -27,6 +27,25 @@ impl<'a> Placement<'a> {
         label: "",
         figure_prefix: "",
     };
+
+    /// `title` with the label in front (`Joint D: Setup`), or `title` alone.
+    pub fn titled(&self, title: &str) -> String {
+        if self.label.is_empty() {
+            title.to_owned()
+        } else {
+            format!("{}: {title}", self.label)
+        }
+    }
+
+    /// The figure file stem `name` with the prefix in front (`d-control-stroke`), or `name`
+    /// alone.
+    pub fn figure_name(&self, name: &str) -> String {
+        if self.figure_prefix.is_empty() {
+            name.to_owned()
+        } else {
+            format!("{}-{name}", self.figure_prefix)
+        }
+    }
 }
 
 /// A result of an analysis: its JSON, its summary, its report section.

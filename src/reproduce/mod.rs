@@ -31,7 +31,7 @@ use crate::characterize::{
     estimate, loops, planes, rate, relaxation, CharacterizeError, EstimationResult, LoopsResult,
     NamedConfig, Options, RateResult, RelaxationResult, DEFAULT_MIN_HOLD_S,
 };
-use crate::control::{Control, ControlError, ControlRun, DesiredSource, PAPER_GAINS};
+use crate::control::{Control, ControlError, ControlResult, DesiredSource, PAPER_GAINS};
 use crate::fit::{estimator_config, FitError, ModelKind, Prefilter};
 use crate::sim::{plan, ProtocolKind, Recording, SimError};
 
@@ -128,15 +128,6 @@ pub struct JointResult {
     /// The random pattern estimated with the fitted linear and PI configs (Table IV) and, for
     /// Joint C, the linear two-sensor config (Table V).
     pub estimation: EstimationResult,
-}
-
-/// Joint D in closed loop.
-#[derive(Debug, Clone)]
-pub struct ControlResult {
-    /// The control simulation.
-    pub control: Control,
-    /// Both schemes.
-    pub run: ControlRun,
 }
 
 /// Everything the report shows.
@@ -400,5 +391,5 @@ fn run_control(
     )?;
     let run = control.run()?;
     progress("Joint D: open and closed loop");
-    Ok(ControlResult { control, run })
+    Ok(ControlResult::new(control, run))
 }

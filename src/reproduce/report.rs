@@ -10,7 +10,7 @@ use super::{prose, Reproduction, CONTROL_ORDER};
 use crate::analysis::{Analysis, Placement};
 use crate::characterize::{EstimationResult, LoopsSensor};
 use crate::control::{report as control_report, PAPER_TABLE_VI};
-use crate::report::{Block, Page, Table};
+use crate::report::{Page, Table};
 use crate::sensor::Sensors;
 
 fn k(ohm: f64) -> String {
@@ -555,27 +555,12 @@ fn table_vi(page: &mut Page, r: &Reproduction) {
     ));
     page.text(prose::table_vi(mo, mc, po, pc));
     page.text(stroke_model_text());
-    let control_page = control_report::page(&r.control.control, &r.control.run);
-    let from = control_page
-        .blocks
-        .iter()
-        .position(|b| matches!(b, Block::Heading(h) if h == "Setup"))
-        .unwrap_or(0);
-    for block in control_page.blocks.into_iter().skip(from) {
-        page.blocks.push(match block {
-            Block::Figure {
-                name,
-                chart,
-                caption,
-            } => Block::Figure {
-                name: format!("d-control-{name}"),
-                chart,
-                caption,
-            },
-            Block::Heading(h) => Block::Heading(format!("Joint D: {h}")),
-            other => other,
-        });
-    }
+    control_report::add_details(
+        page,
+        &r.control.control,
+        &r.control.run,
+        placement("Joint D", "d-control"),
+    );
 }
 
 /// Where a joint's analysis lands on the shared page.
