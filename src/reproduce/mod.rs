@@ -22,8 +22,11 @@ pub mod paper;
 pub mod patterns;
 mod prose;
 mod report;
+mod result;
 
+use std::path::PathBuf;
 use std::sync::Mutex;
+use std::time::Instant;
 
 use dlw_estimator::{FilterConfig, ModelConfig};
 
@@ -139,6 +142,10 @@ pub struct Reproduction {
     pub joints: Vec<JointResult>,
     /// Joint D.
     pub control: ControlResult,
+    /// Seconds the run took: [`reproduce`] sets its own time, a caller may add the report's.
+    pub seconds: f64,
+    /// `report.html`, once the caller has written it ([`Reproduction::written_to`]).
+    pub report: Option<PathBuf>,
 }
 
 /// The experiments per joint, for a progress bar.
@@ -153,6 +160,7 @@ pub fn reproduce(
     settings: Settings,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Reproduction, ReproduceError> {
+    let start = Instant::now();
     let scale = settings.duration_scale;
     if !(scale > 0.0 && scale <= 1.0) {
         return Err(ReproduceError::Scale { value: scale });
@@ -188,6 +196,8 @@ pub fn reproduce(
         settings,
         joints,
         control,
+        seconds: start.elapsed().as_secs_f64(),
+        report: None,
     })
 }
 
