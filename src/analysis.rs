@@ -6,6 +6,12 @@
 //! - writes a few lines for the terminal with [`Analysis::summary`], every number in them taken
 //!   from the result;
 //! - adds its section to an HTML report with [`Analysis::add_to_page`].
+//!
+//! Implemented by [`crate::fit::FitResult`]; the characterize kinds'
+//! [`crate::characterize::LoopsResult`], [`crate::characterize::RateResult`],
+//! [`crate::characterize::RelaxationResult`] and [`crate::characterize::EstimationResult`];
+//! [`crate::control::ControlResult`]; and [`crate::reproduce::Reproduction`], whose section is
+//! the whole report, composed from the others' sections.
 
 use serde::Serialize;
 
