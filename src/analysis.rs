@@ -6,6 +6,12 @@
 //! - writes a few lines for the terminal with [`Analysis::summary`], every number in them taken
 //!   from the result;
 //! - adds its section to an HTML report with [`Analysis::add_to_page`].
+//!
+//! Implemented by [`crate::fit::FitResult`]; the characterize kinds'
+//! [`crate::characterize::LoopsResult`], [`crate::characterize::RateResult`],
+//! [`crate::characterize::RelaxationResult`] and [`crate::characterize::EstimationResult`];
+//! [`crate::control::ControlResult`]; and [`crate::reproduce::Reproduction`], whose section is
+//! the whole report, composed from the others' sections.
 
 use serde::Serialize;
 
@@ -27,6 +33,25 @@ impl<'a> Placement<'a> {
         label: "",
         figure_prefix: "",
     };
+
+    /// `title` with the label in front (`Joint D: Setup`), or `title` alone.
+    pub fn titled(&self, title: &str) -> String {
+        if self.label.is_empty() {
+            title.to_owned()
+        } else {
+            format!("{}: {title}", self.label)
+        }
+    }
+
+    /// The figure file stem `name` with the prefix in front (`d-control-stroke`), or `name`
+    /// alone.
+    pub fn figure_name(&self, name: &str) -> String {
+        if self.figure_prefix.is_empty() {
+            name.to_owned()
+        } else {
+            format!("{}-{name}", self.figure_prefix)
+        }
+    }
 }
 
 /// A result of an analysis: its JSON, its summary, its report section.

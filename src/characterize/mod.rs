@@ -240,20 +240,20 @@ pub fn sensor_label(plane: SensorPlane, two: bool) -> String {
 
 /// A figure name on a shared page: `prefix-name`, or `name` without a prefix.
 pub(crate) fn figure_name(prefix: &str, name: &str) -> String {
-    if prefix.is_empty() {
-        name.to_owned()
-    } else {
-        format!("{prefix}-{name}")
+    crate::analysis::Placement {
+        label: "",
+        figure_prefix: prefix,
     }
+    .figure_name(name)
 }
 
 /// `title` with `label` in front, e.g. `Joint A: loops`.
 pub(crate) fn titled(label: &str, title: &str) -> String {
-    if label.is_empty() {
-        title.to_owned()
-    } else {
-        format!("{label}: {title}")
+    crate::analysis::Placement {
+        label,
+        figure_prefix: "",
     }
+    .titled(title)
 }
 
 /// Moved to [`crate::stats`] (one NaN policy); re-exported here this round.

@@ -63,35 +63,27 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (program_file, job.program.into_bytes()),
         (format!("{stem}-setup.md"), job.sheet.into_bytes()),
     ];
-    write_folder(&args.output, &files, args.force)?;
+    write_folder(&args.output, &files)?;
     for (name, _) in &files {
         println!("wrote {}", args.output.join(name).display());
     }
     Ok(())
 }
 
-/// Writes `files` into a fresh temporary folder next to `dir`, then puts it in `dir`'s place.
-/// An existing non-empty `dir` is replaced only with `force`; a file in its place never is.
-fn write_folder(dir: &Path, files: &[(String, Vec<u8>)], force: bool) -> anyhow::Result<()> {
+/// Writes `files` into a fresh temporary folder next to `dir`, then puts it in `dir`'s place,
+/// making `dir`'s parent folders first. An existing non-empty `dir` is replaced only if it was
+/// claimed with `--force` (`output::claim` and `write_folder_atomic` check that); a file in its
+/// place never is.
+fn write_folder(dir: &Path, files: &[(String, Vec<u8>)]) -> anyhow::Result<()> {
     let parent = match dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    if std::fs::symlink_metadata(dir).is_ok() {
-        if !dir.is_dir() {
-            bail!(
-                "output {} exists and is not a folder; give a folder",
-                dir.display()
-            );
-        }
-        let mut entries =
-            std::fs::read_dir(dir).with_context(|| format!("cannot list {}", dir.display()))?;
-        if entries.next().is_some() && !force {
-            bail!(
-                "output folder {} already exists and is not empty (pass --force to replace it)",
-                dir.display()
-            );
-        }
+    if std::fs::symlink_metadata(dir).is_ok() && !dir.is_dir() {
+        bail!(
+            "output {} exists and is not a folder; give a folder",
+            dir.display()
+        );
     }
     std::fs::create_dir_all(&parent)
         .with_context(|| format!("cannot create {}", parent.display()))?;

@@ -9,7 +9,7 @@ use dlw::characterize::{
     estimate, loops, planes, rate, relaxation, Kind, NamedConfig, Options, DEFAULT_MIN_HOLD_S,
 };
 use dlw::design::Design;
-use dlw::fit::Prefilter;
+use dlw::fit::{prefilter_name, Prefilter};
 use dlw::recording::Recording;
 use dlw::replay::load_config;
 use dlw::report::Page;
@@ -198,12 +198,5 @@ impl<T: Analysis> Section for T {
         };
         println!("{}", dlw::finite::to_json(&r)?);
         Ok(())
-    }
-}
-
-fn prefilter_name(p: Prefilter) -> String {
-    match p {
-        Prefilter::None => "none".into(),
-        Prefilter::MovingAverage(n) => format!("ma:{n}"),
     }
 }

@@ -3,13 +3,13 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Context};
-use dlw::control::{report, Control, DesiredSource, Gains, Scheme, PAPER_GAINS};
+use anyhow::Context;
+use dlw::analysis::Analysis;
+use dlw::control::{Control, ControlResult, DesiredSource, Gains, PAPER_GAINS};
 use dlw::design::Design;
 use dlw::output::write_folder_atomic;
 use dlw::replay::load_config;
 use dlw_estimator::FilterConfig;
-use serde::Serialize;
 
 use super::estimate::parse_filter;
 use super::scenario_args::ScenarioArgs;
@@ -68,51 +68,6 @@ fn parse_gains(s: &str) -> Result<Gains, String> {
     })
 }
 
-/// What `control --json` prints; the keys are part of the interface.
-#[derive(Debug, Serialize)]
-struct Report<'a> {
-    design: &'a str,
-    samples: usize,
-    duration_s: f64,
-    sample_hz: f64,
-    seed: u64,
-    desired: &'a str,
-    mt_deg_per_mm: f64,
-    mt_source: dlw::control::MtSource,
-    gains: Gains,
-    correction_limit_mm: f64,
-    open_loop: dlw::control::SchemeMetrics,
-    closed_loop: dlw::control::SchemeMetrics,
-    paper: Paper,
-    report: PathBuf,
-    csv: PathBuf,
-    warnings: Vec<String>,
-}
-
-/// The paper's Table VI.
-#[derive(Debug, Serialize)]
-struct Paper {
-    open_loop: PaperRow,
-    closed_loop: PaperRow,
-}
-
-#[derive(Debug, Serialize)]
-struct PaperRow {
-    sensed_vs_actual_rmse_deg: f64,
-    actual_vs_desired_rmse_deg: f64,
-    sensed_vs_desired_rmse_deg: f64,
-}
-
-impl From<(f64, f64, f64)> for PaperRow {
-    fn from((a, b, c): (f64, f64, f64)) -> Self {
-        Self {
-            sensed_vs_actual_rmse_deg: a,
-            actual_vs_desired_rmse_deg: b,
-            sensed_vs_desired_rmse_deg: c,
-        }
-    }
-}
-
 pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim(
         &args.output,
@@ -122,17 +77,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .chain(&args.profile),
         args.force,
     )?;
-    let occupied = match std::fs::read_dir(&args.output) {
-        Ok(mut entries) => entries.next().is_some(),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
-        Err(_) => true,
-    };
-    if occupied && !args.force {
-        bail!(
-            "output folder {} already exists and is not empty (pass --force to replace it)",
-            args.output.display()
-        );
-    }
     let design = Design::load(&args.design)?;
     let mut config = load_config(&args.config)?;
     if let Some(filter) = args.filter {
@@ -154,78 +98,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let run = control
         .run()
         .with_context(|| format!("simulating control of {}", design.file.name))?;
-    let files = report::files(&control, &run).context("drawing the report")?;
+    let mut result = ControlResult::new(control, run);
+    let files = result.files().context("drawing the report")?;
     write_folder_atomic(&args.output, &files)
         .with_context(|| format!("writing {}", args.output.display()))?;
-    let sc = &control.desired.scenario;
-    let n = control.desired.angle_deg.len();
-    let report_path = args.output.join("report.html");
-    let csv_path = args.output.join(report::CSV_FILE);
+    result.written_to(&args.output);
     if args.json {
-        let r = Report {
-            design: &design.file.name,
-            samples: n,
-            duration_s: n as f64 / sc.sample_hz,
-            sample_hz: sc.sample_hz,
-            seed: sc.seed,
-            desired: &control.desired.description,
-            mt_deg_per_mm: control.mt_deg_per_mm,
-            mt_source: control.mt_source,
-            gains: control.gains,
-            correction_limit_mm: control.pid.output_max,
-            open_loop: run.metrics[0],
-            closed_loop: run.metrics[1],
-            paper: Paper {
-                open_loop: dlw::control::PAPER_TABLE_VI[0].into(),
-                closed_loop: dlw::control::PAPER_TABLE_VI[1].into(),
-            },
-            report: report_path,
-            csv: csv_path,
-            warnings: control
-                .warnings
-                .iter()
-                .chain(&run.warnings)
-                .cloned()
-                .collect(),
-        };
-        println!("{}", dlw::finite::to_json(&r)?);
+        println!("{}", dlw::finite::to_json(&result)?);
     } else {
-        for w in control.warnings.iter().chain(&run.warnings) {
+        for w in &result.warnings {
             eprintln!("warning: {w}");
         }
-        println!(
-            "{}: {} samples ({} s at {} Hz), seed {}, m_t {} °/mm, gains kp {} mm/°, ki {} mm/(°·s), kd {} mm·s/°",
-            design.file.name,
-            n,
-            n as f64 / sc.sample_hz,
-            sc.sample_hz,
-            sc.seed,
-            control.mt_deg_per_mm,
-            control.gains.kp_mm_per_deg,
-            control.gains.ki_mm_per_deg_s,
-            control.gains.kd_mm_s_per_deg
-        );
-        println!("  RMSE (°)             open loop   closed loop   (paper: open, closed)");
-        let names = [
-            "sensed vs actual ",
-            "actual vs desired",
-            "sensed vs desired",
-        ];
-        let (open, closed) = (run.metrics[0].table_vi(), run.metrics[1].table_vi());
-        let paper = dlw::control::PAPER_TABLE_VI.map(|(a, b, c)| [a, b, c]);
-        for (k, name) in names.iter().enumerate() {
-            println!(
-                "  {name}    {:>9.2}   {:>11.2}   ({:.2}, {:.2})",
-                open[k], closed[k], paper[0][k], paper[1][k]
-            );
-        }
-        for (scheme, m) in Scheme::BOTH.iter().zip(&run.metrics) {
-            if m.held_samples > 0 {
-                println!("  {}: {} held samples", scheme.title(), m.held_samples);
-            }
-        }
-        println!("  report               {}", report_path.display());
-        println!("  samples              {}", csv_path.display());
+        print!("{}", result.summary());
     }
     Ok(())
 }

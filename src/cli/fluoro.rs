@@ -6,10 +6,9 @@ use std::path::PathBuf;
 use anyhow::Context;
 use dlw::fluoro::{
     analyze_folder, angles_csv_bytes, BaselineRule, Crop, Series, SeriesSettings, Settings,
-    StagedFolder, Threshold,
+    StagedFolder, Summary, Threshold,
 };
 use dlw::output::write_atomic;
-use serde::Serialize;
 
 /// Arguments of `dlw fluoro`.
 #[derive(Debug, clap::Args)]
@@ -71,31 +70,6 @@ fn parse_crop(s: &str) -> Result<Crop, String> {
 }
 
 /// A skipped frame in the JSON summary.
-#[derive(Debug, Serialize)]
-struct Skipped {
-    frame: String,
-    time_s: f64,
-    flags: String,
-}
-
-/// What `fluoro --json` prints; the keys are part of the interface.
-#[derive(Debug, Serialize)]
-struct Summary {
-    frames: usize,
-    fitted: usize,
-    skipped: Vec<Skipped>,
-    width_px: u32,
-    height_px: u32,
-    bits: u32,
-    baseline_deg: f64,
-    baseline_frames: usize,
-    baseline_end_s: Option<f64>,
-    angle_min_deg: f64,
-    angle_max_deg: f64,
-    output: PathBuf,
-    overlay: Option<PathBuf>,
-}
-
 pub fn run(args: Args) -> anyhow::Result<()> {
     let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
         .chain(&args.overlay)
@@ -179,37 +153,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     write_atomic(&args.output, &angles_csv_bytes(&series))?;
 
-    let skipped: Vec<Skipped> = series
-        .rows
-        .iter()
-        .zip(&folder.names)
-        .filter(|(r, _)| r.raw_deg.is_none())
-        .map(|(r, name)| Skipped {
-            frame: name.clone(),
-            time_s: r.time_s,
-            flags: r.flags.join("|"),
-        })
-        .collect();
-    let angles = series.rows.iter().filter_map(|r| r.angle_deg);
-    let (lo, hi) = angles.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), a| {
-        (lo.min(a), hi.max(a))
-    });
+    let summary = Summary::of(&folder, &series, args.output.clone(), args.overlay.clone());
     let b = series.baseline;
-    let summary = Summary {
-        frames: series.rows.len(),
-        fitted: series.rows.len() - skipped.len(),
-        skipped,
-        width_px: folder.dimensions.0,
-        height_px: folder.dimensions.1,
-        bits: folder.bits,
-        baseline_deg: b.mean_deg,
-        baseline_frames: b.frames,
-        baseline_end_s: b.end_s,
-        angle_min_deg: lo,
-        angle_max_deg: hi,
-        output: args.output.clone(),
-        overlay: args.overlay.clone(),
-    };
+    let (lo, hi) = (summary.angle_min_deg, summary.angle_max_deg);
     if args.json {
         println!("{}", dlw::finite::to_json(&summary)?);
         return Ok(());

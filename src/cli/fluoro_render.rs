@@ -5,9 +5,8 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use dlw::fluoro::render::{png_bytes, PinScene};
-use dlw::fluoro::{render_frame, StagedFolder};
-use dlw::replay::interpolate_at;
+use dlw::fluoro::render::{png_bytes, PinScene, RecordedAngle};
+use dlw::fluoro::StagedFolder;
 use dlw::sim::Recording;
 
 /// The most frames one run writes.
@@ -68,9 +67,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         anyhow::bail!("--offset-deg {} is not a finite angle", args.offset_deg);
     }
     let rec = Recording::read(&args.recording)?;
-    let s = &rec.samples;
-    let (t0, t1) = (s.time_s[0], s.time_s[s.len() - 1]);
-    let frames = ((t1 - t0) * args.fps).floor() as usize + 1;
+    let film = RecordedAngle {
+        time_s: &rec.samples.time_s,
+        angle_deg: &rec.samples.angle_deg,
+        fps: args.fps,
+        offset_deg: args.offset_deg,
+        seed: args.seed,
+    };
+    let (t0, t1) = film.span_s();
+    let frames = film.frames();
     if frames > MAX_FRAMES {
         anyhow::bail!(
             "{frames} frames ({} s at {} fps) is more than {MAX_FRAMES}; lower --fps or shorten the recording",
@@ -87,17 +92,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let folder = StagedFolder::create(&args.output, args.force)?;
     for k in 0..frames {
-        let t = t0 + k as f64 / args.fps;
-        let angle = interpolate_at(&s.time_s, &s.angle_deg, t.min(t1)).unwrap_or(s.angle_deg[0]);
-        let frame = render_frame(
-            &scene,
-            args.offset_deg + angle,
-            args.seed.wrapping_add(k as u64),
-        );
-        let name = format!("frame_{k:05}.png");
-        let bytes = png_bytes(&frame).map_err(|message| dlw::fluoro::FluoroError::Encode {
-            name: name.clone(),
-            message,
+        let name = RecordedAngle::name(k);
+        let bytes = png_bytes(&film.render(&scene, k)).map_err(|message| {
+            dlw::fluoro::FluoroError::Encode {
+                name: name.clone(),
+                message,
+            }
         })?;
         folder.add_bytes(&name, &bytes)?;
     }

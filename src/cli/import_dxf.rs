@@ -7,11 +7,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context};
 use dlw::design::DesignFile;
 use dlw::drawing::{
-    read_dxf, DrawingUnits, ImportOptions, ImportedDxf, LayoutNumbers, Provenance,
-    DEFAULT_JOIN_TOLERANCE_MM,
+    read_dxf, DrawingUnits, ImportOptions, ImportedDxf, LayoutNumbers, DEFAULT_JOIN_TOLERANCE_MM,
 };
-use dlw::layout::Layout;
-use dlw::rules::{self, Checked, RulesError, Warning};
+use dlw::rules::{self, Checked, CheckedDrawing, RulesError};
 
 /// How to read a drawing that does not say everything itself (shared with `dlw program`).
 #[derive(Debug, Clone, clap::Args)]
@@ -30,18 +28,6 @@ fn parse_units(s: &str) -> Result<DrawingUnits, String> {
 }
 
 /// A drawing read, checked against its design.
-pub(crate) struct Drawing {
-    /// The layout to cut: the drawing's geometry with the design's kerf and trace width.
-    pub layout: Layout,
-    /// Where it came from, what it derives and how it differs from the design's layout.
-    pub provenance: Provenance,
-    /// Warnings for the joint as drawn.
-    pub warnings: Vec<Warning>,
-    /// What the reader found.
-    pub imported: ImportedDxf,
-}
-
-/// Reads `path` with `options`; prints a warning per layer whose entities were ignored.
 fn read(
     path: &Path,
     options: &DrawingOptions,
@@ -78,37 +64,17 @@ pub(crate) fn read_for_design(
     path: &Path,
     options: &DrawingOptions,
     checked: &Checked,
-) -> anyhow::Result<Drawing> {
-    let design = &checked.design;
-    let clearance_mm = design.file.fabrication.clearance_mm();
+) -> anyhow::Result<(ImportedDxf, CheckedDrawing)> {
+    let clearance_mm = checked.design.file.fabrication.clearance_mm();
     let numbers = LayoutNumbers::of(&checked.layout, clearance_mm);
     let (imported, bytes) = read(path, options, Some(numbers))?;
     let file_name = path.file_name().map_or_else(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let provenance = Provenance::new(&file_name, &bytes, &imported, &checked.layout);
-    let mut layout = imported.layout.clone();
-    layout.kerf_mm = checked.layout.kerf_mm;
-    layout.trace_width_mm = checked.layout.trace_width_mm;
-    let report = rules::check_drawing(design, &layout, clearance_mm);
-    if !report.errors.is_empty() {
-        return Err(RulesError {
-            name: design.file.name.clone(),
-            violations: report.errors,
-        })
-        .with_context(|| format!("drawing {} checked against the design", path.display()));
-    }
-    let provenance = match &report.derived {
-        Some(d) => provenance.with_derived(d.summary(design)),
-        None => provenance,
-    };
-    Ok(Drawing {
-        layout,
-        provenance,
-        warnings: report.warnings,
-        imported,
-    })
+    let drawing = rules::check_imported(checked, &imported, &file_name, &bytes)
+        .with_context(|| format!("drawing {} checked against the design", path.display()))?;
+    Ok((imported, drawing))
 }
 
 /// Arguments of `dlw import-dxf`.
@@ -128,9 +94,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let (imported, layout, clearance_mm, drawing) = match &args.design {
         Some(design) => {
             let checked = rules::check_file(DesignFile::read(design)?)?;
-            let d = read_for_design(&args.dxf, &args.drawing, &checked)?;
+            let (imported, d) = read_for_design(&args.dxf, &args.drawing, &checked)?;
             let clearance = checked.design.file.fabrication.clearance_mm();
-            (d.imported.clone(), d.layout.clone(), clearance, Some(d))
+            (imported, d.layout.clone(), clearance, Some(d))
         }
         None => {
             let (imported, _) = read(&args.dxf, &args.drawing, None)?;

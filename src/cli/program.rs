@@ -75,7 +75,7 @@ pub(crate) fn resolve_inputs(
     let (layout, warnings, provenance) = match from_dxf {
         None => (checked.layout, checked.warnings, None),
         Some((dxf, options)) => {
-            let drawing = read_for_design(dxf, options, &checked)?;
+            let (_, drawing) = read_for_design(dxf, options, &checked)?;
             (drawing.layout, drawing.warnings, Some(drawing.provenance))
         }
     };

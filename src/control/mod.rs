@@ -35,12 +35,14 @@
 //! [`Control::run`] about a correction that sat at its limit.
 //!
 //! [`Control::new`] validates everything; [`Control::run`] simulates both schemes and computes
-//! Table VI ([`SchemeMetrics`]); [`report`] turns the result into `report.html`, its figures and
-//! `control.csv`.
+//! Table VI ([`SchemeMetrics`]); [`ControlResult`] gathers both into the analysis `dlw control`
+//! prints ([`crate::analysis::Analysis`]: its `--json`, its summary, its report section);
+//! [`report`] draws `report.html`, its figures and `control.csv`.
 
 mod desired;
 mod metrics;
 pub mod report;
+mod result;
 mod scheme;
 
 use std::path::PathBuf;
@@ -55,6 +57,8 @@ use crate::sim::{Scenario, SimError};
 pub use desired::{Desired, DesiredSource};
 /// Table VI's RMSEs per scheme, and the paper's values.
 pub use metrics::{rmse, SchemeMetrics, PAPER_TABLE_VI};
+/// A control simulation's result: JSON, summary and report section.
+pub use result::{ControlResult, PaperRow, PaperTableVi};
 /// The two schemes and what each did per sample.
 pub use scheme::{Loop, Scheme, Trace};
 

@@ -1,6 +1,7 @@
 //! The control report: `report.html` with Fig. 10 for both schemes and Table VI, and
 //! `control.csv` with every sample.
 
+use crate::analysis::Placement;
 use crate::fixed::push_fixed;
 use crate::report::{Chart, ChartError, Page, Series, Table, PALETTE};
 use crate::sim::Scenario;
@@ -46,27 +47,33 @@ closed_actual_deg,closed_sensed_deg,closed_stroke_mm\n",
     out
 }
 
-/// The report page.
+/// The report on a page of its own.
 pub fn page(control: &Control, run: &ControlRun) -> Page {
-    let sc = &control.desired.scenario;
-    let hz = sc.sample_hz;
-    let n = control.desired.angle_deg.len();
-    let duration_s = n as f64 / hz;
     let mut page = Page::new(format!(
         "Closed-loop control of {} (Section IV-C)",
         control.design.file.name
     ));
+    add_section(&mut page, control, run, Placement::ALONE);
+    page
+}
+
+/// The whole section: what ran, the warnings, Table VI against the paper, then
+/// [`add_details`].
+pub fn add_section(page: &mut Page, control: &Control, run: &ControlRun, at: Placement<'_>) {
+    let sc = &control.desired.scenario;
+    let n = control.desired.angle_deg.len();
+    let duration_s = n as f64 / sc.sample_hz;
     page.text(format!(
         "The desired angle is {}. Open loop commands the stroke θ_d/m_t; closed loop adds the \
          runtime PID's correction on θ_d − θ_sensed, where θ_sensed is the runtime estimator \
          reading the simulated sensor voltage. Both schemes run on the same simulated bench \
          with the same seed, so they see the same noise. {} samples, {} s at {} Hz, seed {}.",
-        control.desired.description, n, duration_s, hz, sc.seed
+        control.desired.description, n, duration_s, sc.sample_hz, sc.seed
     ));
     for w in control.warnings.iter().chain(&run.warnings) {
         page.text(format!("Warning: {w}."));
     }
-    page.heading("Table VI: RMSE of each scheme");
+    page.heading(at.titled("Table VI: RMSE of each scheme"));
     let mut t = Table::new([
         "RMSE (°)",
         "open loop",
@@ -123,11 +130,20 @@ pub fn page(control: &Control, run: &ControlRun) -> Page {
          unless the scenario sets measured ones, so only the pattern is comparable: closed loop \
          moves the actual angle towards the sensed one and the sensed one towards the desired.",
     );
-    page.heading("Setup");
+    add_details(page, control, run, at);
+}
+
+/// The setup, Fig. 10 for both schemes, the tracking error and the stroke: the part of the
+/// section that a page with its own Table VI (the reproduction's) shows too.
+pub fn add_details(page: &mut Page, control: &Control, run: &ControlRun, at: Placement<'_>) {
+    let hz = control.desired.scenario.sample_hz;
+    let n = control.desired.angle_deg.len();
+    let duration_s = n as f64 / hz;
+    page.heading(at.titled("Setup"));
     for line in setup_lines(control, run) {
         page.text(line);
     }
-    page.heading("Fig. 10: desired, actual and sensed angle");
+    page.heading(at.titled("Fig. 10: desired, actual and sensed angle"));
     let window_s = duration_s.min(WINDOW_S);
     let window = ((window_s * hz).round() as usize).clamp(1, n.max(1));
     let detail = if window < n {
@@ -138,7 +154,10 @@ pub fn page(control: &Control, run: &ControlRun) -> Page {
     for (letter, trace) in ["a", "b"].iter().zip(&run.traces) {
         let chart = angle_chart(control, trace, window);
         page.figure(
-            format!("fig10{letter}-{}", trace.scheme.key().replace('_', "-")),
+            at.figure_name(&format!(
+                "fig10{letter}-{}",
+                trace.scheme.key().replace('_', "-")
+            )),
             chart,
             format!(
                 "({letter}) {}: desired, actual (EM tracker) and sensed (estimator) angle, {detail}.",
@@ -146,20 +165,19 @@ pub fn page(control: &Control, run: &ControlRun) -> Page {
             ),
         );
     }
-    page.heading("Tracking error and stroke over the whole run");
+    page.heading(at.titled("Tracking error and stroke over the whole run"));
     page.figure(
-        "tracking-error",
+        at.figure_name("tracking-error"),
         error_chart(control, run),
         "True angle − desired angle of both schemes over the whole run (the simulator's true \
          angle, without the tracker's noise, so that the drift is visible): open loop drifts with \
          the plant's relaxation and backlash, which the closed loop's integral removes.",
     );
     page.figure(
-        "stroke",
+        at.figure_name("stroke"),
         stroke_chart(control, run, window),
         format!("Commanded tendon stroke of both schemes, {detail}."),
     );
-    page
 }
 
 /// The page's files plus `control.csv`, names relative to the output folder.

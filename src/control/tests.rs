@@ -134,3 +134,102 @@ fn refuses_bad_inputs_before_running() {
         "{e}"
     );
 }
+
+/// The result's JSON has `dlw control --json`'s keys in its order, the output paths only once
+/// written, and its summary and report section carry the run's numbers.
+#[test]
+fn result_serializes_summarizes_and_places_its_section() {
+    use crate::analysis::{Analysis, Placement};
+    let design = joint_d();
+    let control = Control::new(
+        &design,
+        scenario(5.0),
+        &DesiredSource::Protocol,
+        config(&design, 15.3),
+        PAPER_GAINS,
+        None,
+    )
+    .unwrap();
+    let run = control.run().unwrap();
+    let mut result = ControlResult::new(control, run);
+    let keys = |r: &ControlResult| -> Vec<String> {
+        let text = crate::finite::to_json(r).unwrap();
+        let json: serde_json::Map<String, serde_json::Value> = serde_json::from_str(&text).unwrap();
+        // serde_json's map is sorted: read the order from the text.
+        let mut keys: Vec<(usize, String)> = json
+            .keys()
+            .map(|k| (text.find(&format!("\n  \"{k}\"")).unwrap(), k.clone()))
+            .collect();
+        keys.sort();
+        keys.into_iter().map(|(_, k)| k).collect()
+    };
+    let base = [
+        "design",
+        "samples",
+        "duration_s",
+        "sample_hz",
+        "seed",
+        "desired",
+        "mt_deg_per_mm",
+        "mt_source",
+        "gains",
+        "correction_limit_mm",
+        "open_loop",
+        "closed_loop",
+        "paper",
+    ];
+    let mut expected: Vec<&str> = base.to_vec();
+    expected.push("warnings");
+    assert_eq!(keys(&result), expected);
+    assert!(!result.summary().contains("report"));
+    result.written_to(std::path::Path::new("out"));
+    let mut expected: Vec<&str> = base.to_vec();
+    expected.extend(["report", "csv", "warnings"]);
+    assert_eq!(keys(&result), expected);
+    let json = result.to_json().unwrap();
+    assert_eq!(json["samples"], 2500);
+    assert_eq!(
+        json["paper"]["open_loop"]["actual_vs_desired_rmse_deg"],
+        8.14
+    );
+    assert_eq!(json["report"], "out/report.html");
+
+    let summary = result.summary();
+    let open = result.run.metrics[0].actual_vs_desired_rmse_deg;
+    assert!(
+        summary.contains(&format!("actual vs desired    {open:>9.2}")),
+        "{summary}"
+    );
+    assert!(summary.contains("  samples              out/control.csv"));
+
+    let mut page = crate::report::Page::new("shared");
+    result.add_to_page(
+        &mut page,
+        Placement {
+            label: "Joint D",
+            figure_prefix: "d",
+        },
+    );
+    let alone = report::page(&result.control, &result.run);
+    assert_eq!(page.blocks.len(), alone.blocks.len());
+    let figures: Vec<&str> = page
+        .blocks
+        .iter()
+        .filter_map(|b| match b {
+            crate::report::Block::Figure { name, .. } => Some(name.as_str()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        figures,
+        [
+            "d-fig10a-open-loop",
+            "d-fig10b-closed-loop",
+            "d-tracking-error",
+            "d-stroke"
+        ]
+    );
+    assert!(page
+        .blocks
+        .contains(&crate::report::Block::Heading("Joint D: Setup".into())));
+}

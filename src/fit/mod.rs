@@ -64,7 +64,8 @@ pub use plays::{
 pub use report::{report_page, Validation};
 /// `dlw fit` as a library call.
 pub use request::{
-    fit, FitRequest, FitResult, PlayReport, Restart, SensorReport, Timings, MAX_ORDER, MIN_ORDER,
+    fit, prefilter_name, FitRequest, FitResult, PlayReport, Restart, SensorReport, Timings,
+    MAX_ORDER, MIN_ORDER,
 };
 
 use crate::recording::Recording;

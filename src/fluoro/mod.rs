@@ -17,6 +17,7 @@
 //! - [`unwrap`], [`smooth`], [`baseline`]: the series across frames;
 //! - [`series`]: all of it over a sequence of frames;
 //! - [`csv`]: `angles.csv`, written and read back (by `dlw estimate --truth`);
+//! - [`summary`]: the series in numbers, as `dlw fluoro` prints them;
 //! - [`overlay`]: frames with the fitted ellipse and axis drawn on them, for a person to check;
 //! - [`staged`]: output folders written whole or not at all;
 //! - [`render`]: synthetic frames of a pin at known angles (tests, benchmarks, `dlw
@@ -39,6 +40,7 @@ pub mod render;
 pub mod series;
 pub mod smooth;
 pub mod staged;
+pub mod summary;
 pub mod threshold;
 pub mod unwrap;
 
@@ -70,6 +72,8 @@ pub use series::{Row, Series, SeriesSettings};
 pub use smooth::moving_average;
 /// A folder written whole or not at all.
 pub use staged::StagedFolder;
+/// The series in numbers: frames fitted and skipped, baseline, angle range.
+pub use summary::{Skipped, Summary};
 /// Otsu or a fixed threshold.
 pub use threshold::{pin_mask, Threshold};
 /// Unwrapping axis angles across frames.

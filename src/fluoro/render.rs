@@ -83,6 +83,54 @@ impl PinScene {
     }
 }
 
+/// A recorded angle filmed at `fps` from the recording's first sample (`dlw fluoro-render`):
+/// frame `k`, at `t0 + k/fps`, shows the pin at the recorded angle there (linear between
+/// samples, the last one after the end) plus `offset_deg`, with the noise of seed `seed + k`.
+#[derive(Debug, Clone, Copy)]
+pub struct RecordedAngle<'a> {
+    /// Sample times (s), increasing, at least one.
+    pub time_s: &'a [f64],
+    /// The angle at each (°).
+    pub angle_deg: &'a [f64],
+    /// Frames per second.
+    pub fps: f64,
+    /// Added to every angle (°).
+    pub offset_deg: f64,
+    /// The first frame's noise seed.
+    pub seed: u64,
+}
+
+impl RecordedAngle<'_> {
+    /// The first and last sample times (s).
+    pub fn span_s(&self) -> (f64, f64) {
+        (self.time_s[0], self.time_s[self.time_s.len() - 1])
+    }
+
+    /// Frames from the first sample to the last, both included where they fall on a frame.
+    pub fn frames(&self) -> usize {
+        let (t0, t1) = self.span_s();
+        ((t1 - t0) * self.fps).floor() as usize + 1
+    }
+
+    /// Frame `k`'s file name, `frame_00012.png`.
+    pub fn name(k: usize) -> String {
+        format!("frame_{k:05}.png")
+    }
+
+    /// Frame `k` of `scene`.
+    pub fn render(&self, scene: &PinScene, k: usize) -> Frame {
+        let (t0, t1) = self.span_s();
+        let t = t0 + k as f64 / self.fps;
+        let angle = crate::replay::interpolate_at(self.time_s, self.angle_deg, t.min(t1))
+            .unwrap_or(self.angle_deg[0]);
+        render_frame(
+            scene,
+            self.offset_deg + angle,
+            self.seed.wrapping_add(k as u64),
+        )
+    }
+}
+
 /// Renders `scene` with the pin at `angle_deg`; `seed` picks the noise.
 pub fn render_frame(scene: &PinScene, angle_deg: f64, seed: u64) -> Frame {
     let (w, h) = (scene.width, scene.height);
@@ -170,6 +218,29 @@ pub fn png_bytes(frame: &Frame) -> Result<Vec<u8>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Frame `k` shows the angle interpolated at `t0 + k/fps` plus the offset, with seed
+    /// `seed + k`; the last frame stays within the recording.
+    #[test]
+    fn recorded_angle_frames_follow_the_recording() {
+        let film = RecordedAngle {
+            time_s: &[1.0, 2.0, 3.0],
+            angle_deg: &[0.0, 10.0, 30.0],
+            fps: 2.0,
+            offset_deg: 5.0,
+            seed: 7,
+        };
+        assert_eq!(film.frames(), 5);
+        assert_eq!(RecordedAngle::name(12), "frame_00012.png");
+        let scene = PinScene::standard(64);
+        for (k, angle) in [(0, 5.0), (1, 10.0), (3, 25.0), (4, 35.0)] {
+            let (got, want) = (
+                film.render(&scene, k),
+                render_frame(&scene, angle, 7 + k as u64),
+            );
+            assert!(got.image.as_raw() == want.image.as_raw(), "frame {k}");
+        }
+    }
 
     #[test]
     fn the_pin_is_dark_and_where_the_angle_puts_it() {

@@ -17,4 +17,4 @@ pub use chart::{
     thin, Chart, ChartError, Legend, Series, SeriesStyle, MAX_POINTS_PER_SERIES, PALETTE,
 };
 /// HTML pages of headings, text, tables and figures.
-pub use page::{Block, Page, ReportError, Table};
+pub use page::{Block, Page, ReportError, Table, PAGE_FILE};

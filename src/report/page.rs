@@ -6,6 +6,9 @@ use std::path::Path;
 use super::chart::{Chart, ChartError};
 use crate::output::{write_folder_atomic, OutputError};
 
+/// The page's file name inside its folder.
+pub const PAGE_FILE: &str = "report.html";
+
 /// A table: a header row and rows of cells (already formatted, with units in the header).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Table {
@@ -135,7 +138,7 @@ impl Page {
             }
         }
         html.push_str("</body></html>\n");
-        files.insert(0, ("report.html".to_owned(), html.into_bytes()));
+        files.insert(0, (PAGE_FILE.to_owned(), html.into_bytes()));
         Ok(files)
     }
 

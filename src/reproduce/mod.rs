@@ -22,8 +22,11 @@ pub mod paper;
 pub mod patterns;
 mod prose;
 mod report;
+mod result;
 
+use std::path::PathBuf;
 use std::sync::Mutex;
+use std::time::Instant;
 
 use dlw_estimator::{FilterConfig, ModelConfig};
 
@@ -31,7 +34,7 @@ use crate::characterize::{
     estimate, loops, planes, rate, relaxation, CharacterizeError, EstimationResult, LoopsResult,
     NamedConfig, Options, RateResult, RelaxationResult, DEFAULT_MIN_HOLD_S,
 };
-use crate::control::{Control, ControlError, ControlRun, DesiredSource, PAPER_GAINS};
+use crate::control::{Control, ControlError, ControlResult, DesiredSource, PAPER_GAINS};
 use crate::fit::{estimator_config, FitError, ModelKind, Prefilter};
 use crate::sim::{plan, ProtocolKind, Recording, SimError};
 
@@ -130,15 +133,6 @@ pub struct JointResult {
     pub estimation: EstimationResult,
 }
 
-/// Joint D in closed loop.
-#[derive(Debug, Clone)]
-pub struct ControlResult {
-    /// The control simulation.
-    pub control: Control,
-    /// Both schemes.
-    pub run: ControlRun,
-}
-
 /// Everything the report shows.
 #[derive(Debug, Clone)]
 pub struct Reproduction {
@@ -148,6 +142,10 @@ pub struct Reproduction {
     pub joints: Vec<JointResult>,
     /// Joint D.
     pub control: ControlResult,
+    /// Seconds the run took: [`reproduce`] sets its own time, a caller may add the report's.
+    pub seconds: f64,
+    /// `report.html`, once the caller has written it ([`Reproduction::written_to`]).
+    pub report: Option<PathBuf>,
 }
 
 /// The experiments per joint, for a progress bar.
@@ -162,6 +160,7 @@ pub fn reproduce(
     settings: Settings,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Reproduction, ReproduceError> {
+    let start = Instant::now();
     let scale = settings.duration_scale;
     if !(scale > 0.0 && scale <= 1.0) {
         return Err(ReproduceError::Scale { value: scale });
@@ -197,6 +196,8 @@ pub fn reproduce(
         settings,
         joints,
         control,
+        seconds: start.elapsed().as_secs_f64(),
+        report: None,
     })
 }
 
@@ -400,5 +401,5 @@ fn run_control(
     )?;
     let run = control.run()?;
     progress("Joint D: open and closed loop");
-    Ok(ControlResult { control, run })
+    Ok(ControlResult::new(control, run))
 }

@@ -10,18 +10,17 @@ use super::{prose, Reproduction, CONTROL_ORDER};
 use crate::analysis::{Analysis, Placement};
 use crate::characterize::{EstimationResult, LoopsSensor};
 use crate::control::{report as control_report, PAPER_TABLE_VI};
-use crate::report::{Block, Page, Table};
+use crate::report::{Page, Table};
 use crate::sensor::Sensors;
 
 fn k(ohm: f64) -> String {
     format!("{:.1}", ohm / 1e3)
 }
 
-/// The page of a reproduction.
 /// The paper's patterns, held or not, at the top of the report.
-fn patterns_section(page: &mut Page, r: &Reproduction) {
+fn patterns_section(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
     let list = super::patterns(r);
-    page.heading("The paper's patterns");
+    page.heading(at.titled("The paper's patterns"));
     page.text(super::patterns::tally(&list));
     let mut t = Table::new([
         "pattern",
@@ -42,8 +41,16 @@ fn patterns_section(page: &mut Page, r: &Reproduction) {
     page.table(t);
 }
 
+/// The report of a reproduction on a page of its own.
 pub fn page(r: &Reproduction) -> Page {
     let mut page = Page::new("The paper's Section IV reproduced on the simulator (dlw reproduce)");
+    add_sections(&mut page, r, Placement::ALONE);
+    page
+}
+
+/// What the reproduction ran, the paper's patterns held or not, then each experiment of
+/// Section IV: the paper's table beside `dlw`'s, why they differ, and the figures.
+pub(super) fn add_sections(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
     let scale = r.settings.duration_scale;
     page.text(format!(
         "Every experiment of Section IV runs here on dlw's bench simulator instead of the bench: \
@@ -65,14 +72,13 @@ pub fn page(r: &Reproduction) -> Page {
              are larger than a full run's."
         ));
     }
-    patterns_section(&mut page, r);
-    table_iii(&mut page, r);
-    rate(&mut page, r);
-    relaxation(&mut page, r);
-    table_iv(&mut page, r);
-    table_v(&mut page, r);
-    table_vi(&mut page, r);
-    page
+    patterns_section(page, r, at);
+    table_iii(page, r, at);
+    rate(page, r, at);
+    relaxation(page, r, at);
+    table_iv(page, r, at);
+    table_v(page, r, at);
+    table_vi(page, r, at);
 }
 
 fn joint_letters(r: &Reproduction) -> Vec<char> {
@@ -83,8 +89,8 @@ fn tension(s: &[LoopsSensor]) -> &LoopsSensor {
     &s[0]
 }
 
-fn table_iii(page: &mut Page, r: &Reproduction) {
-    page.heading("Resistance-strain relationship (Section IV-A1, Table III, Fig. 4)");
+fn table_iii(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
+    page.heading(at.titled("Resistance-strain relationship (Section IV-A1, Table III, Fig. 4)"));
     let mut header = vec!["parameter".to_owned()];
     for l in joint_letters(r) {
         header.push(format!("Joint {l}: paper"));
@@ -185,16 +191,16 @@ fn table_iii(page: &mut Page, r: &Reproduction) {
     ));
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
-        page.heading(format!("Joint {}: loops and fits (Fig. 4)", j.letter));
+        page.heading(at.titled(&format!("Joint {}: loops and fits (Fig. 4)", j.letter)));
         j.loops.add_to_page(
             page,
-            placement(&format!("Joint {}", j.letter), &format!("{l}-loops")),
+            within(at, &format!("Joint {}", j.letter), &format!("{l}-loops")).placement(),
         );
     }
 }
 
-fn rate(page: &mut Page, r: &Reproduction) {
-    page.heading("Rate dependence (Section IV-A2, Fig. 5)");
+fn rate(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
+    page.heading(at.titled("Rate dependence (Section IV-A2, Fig. 5)"));
     let mut t = Table::new([
         "joint",
         "corr(GF, rise time): paper",
@@ -272,19 +278,19 @@ fn rate(page: &mut Page, r: &Reproduction) {
     ));
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
-        page.heading(format!(
+        page.heading(at.titled(&format!(
             "Joint {}: GF and R₀ per cycle (Fig. 5(d), (e))",
             j.letter
-        ));
+        )));
         j.rate.add_to_page(
             page,
-            placement(&format!("Joint {}", j.letter), &format!("{l}")),
+            within(at, &format!("Joint {}", j.letter), &format!("{l}")).placement(),
         );
     }
 }
 
-fn relaxation(page: &mut Page, r: &Reproduction) {
-    page.heading("Relaxation (Section IV-A3, Fig. 6)");
+fn relaxation(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
+    page.heading(at.titled("Relaxation (Section IV-A3, Fig. 6)"));
     let mut t = Table::new([
         "joint",
         "holds",
@@ -322,10 +328,10 @@ fn relaxation(page: &mut Page, r: &Reproduction) {
     ));
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
-        page.heading(format!("Joint {}: holds (Fig. 6)", j.letter));
+        page.heading(at.titled(&format!("Joint {}: holds (Fig. 6)", j.letter)));
         j.relaxation.add_to_page(
             page,
-            placement(&format!("Joint {}", j.letter), &format!("{l}")),
+            within(at, &format!("Joint {}", j.letter), &format!("{l}")).placement(),
         );
     }
 }
@@ -349,8 +355,8 @@ fn fmt(x: Option<f64>) -> String {
     x.map_or("–".into(), |v| format!("{v:.2}"))
 }
 
-fn table_iv(page: &mut Page, r: &Reproduction) {
-    page.heading("Angle estimation with one sensor (Section IV-B1, Table IV, Fig. 7)");
+fn table_iv(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
+    page.heading(at.titled("Angle estimation with one sensor (Section IV-B1, Table IV, Fig. 7)"));
     let mut header = vec!["RMSE (°)".to_owned()];
     for l in joint_letters(r) {
         header.push(format!("Joint {l}: paper"));
@@ -403,16 +409,18 @@ fn table_iv(page: &mut Page, r: &Reproduction) {
     });
     for j in &r.joints {
         let l = j.letter.to_ascii_lowercase();
-        page.heading(format!("Joint {}: estimates (Fig. 7)", j.letter));
+        page.heading(at.titled(&format!("Joint {}: estimates (Fig. 7)", j.letter)));
         runs(&j.estimation, false).add_to_page(
             page,
-            placement(&format!("Joint {}", j.letter), &format!("{l}-one")),
+            within(at, &format!("Joint {}", j.letter), &format!("{l}-one")).placement(),
         );
     }
 }
 
-fn table_v(page: &mut Page, r: &Reproduction) {
-    page.heading("Angle estimation with two sensors, Joint C (Section IV-B2, Table V, Fig. 8)");
+fn table_v(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
+    page.heading(
+        at.titled("Angle estimation with two sensors, Joint C (Section IV-B2, Table V, Fig. 8)"),
+    );
     let Some(c) = r.joints.iter().find(|j| j.loops.sensors.len() > 1) else {
         page.text("No joint with two sensors was run.");
         return;
@@ -486,10 +494,12 @@ fn table_v(page: &mut Page, r: &Reproduction) {
     let l = c.letter.to_ascii_lowercase();
     runs(&c.estimation, true).add_to_page(
         page,
-        placement(
+        within(
+            at,
             &format!("Joint {}, two sensors", c.letter),
             &format!("{l}-two"),
-        ),
+        )
+        .placement(),
     );
 }
 
@@ -514,8 +524,8 @@ fn stroke_model_text() -> String {
     )
 }
 
-fn table_vi(page: &mut Page, r: &Reproduction) {
-    page.heading("Closed-loop control, Joint D (Section IV-C, Table VI, Fig. 10)");
+fn table_vi(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
+    page.heading(at.titled("Closed-loop control, Joint D (Section IV-C, Table VI, Fig. 10)"));
     let mut t = Table::new([
         "RMSE (°)",
         "open loop: paper",
@@ -555,34 +565,34 @@ fn table_vi(page: &mut Page, r: &Reproduction) {
     ));
     page.text(prose::table_vi(mo, mc, po, pc));
     page.text(stroke_model_text());
-    let control_page = control_report::page(&r.control.control, &r.control.run);
-    let from = control_page
-        .blocks
-        .iter()
-        .position(|b| matches!(b, Block::Heading(h) if h == "Setup"))
-        .unwrap_or(0);
-    for block in control_page.blocks.into_iter().skip(from) {
-        page.blocks.push(match block {
-            Block::Figure {
-                name,
-                chart,
-                caption,
-            } => Block::Figure {
-                name: format!("d-control-{name}"),
-                chart,
-                caption,
-            },
-            Block::Heading(h) => Block::Heading(format!("Joint D: {h}")),
-            other => other,
-        });
+    control_report::add_details(
+        page,
+        &r.control.control,
+        &r.control.run,
+        within(at, "Joint D", "d-control").placement(),
+    );
+}
+
+/// Where one joint's analysis lands on the shared page, inside the page's own place `at`:
+/// its label (`Joint A`) and figure prefix (`a-loops`), each behind `at`'s.
+struct Within {
+    label: String,
+    figure_prefix: String,
+}
+
+impl Within {
+    fn placement(&self) -> Placement<'_> {
+        Placement {
+            label: &self.label,
+            figure_prefix: &self.figure_prefix,
+        }
     }
 }
 
-/// Where a joint's analysis lands on the shared page.
-fn placement<'a>(label: &'a str, figure_prefix: &'a str) -> Placement<'a> {
-    Placement {
-        label,
-        figure_prefix,
+fn within(at: Placement<'_>, label: &str, figure_prefix: &str) -> Within {
+    Within {
+        label: at.titled(label),
+        figure_prefix: at.figure_name(figure_prefix),
     }
 }
 

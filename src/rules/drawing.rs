@@ -13,9 +13,10 @@
 use geo::BoundingRect;
 
 use crate::design::Design;
+use crate::drawing::{ImportedDxf, Provenance};
 use crate::layout::Layout;
 
-use super::{check_layout, strain, Violation, Warning};
+use super::{check_layout, strain, Checked, RulesError, Violation, Warning};
 
 /// Two lengths closer than this are the same (mm).
 const SAME_MM: f64 = 1e-9;
@@ -76,6 +77,53 @@ impl Derived {
             ),
         ]
     }
+}
+
+/// An imported drawing that passed every rule of the design it is to be cut with.
+#[derive(Debug, Clone)]
+pub struct CheckedDrawing {
+    /// The drawn layout, with the design's kerf and trace width (a drawing carries neither).
+    pub layout: Layout,
+    /// Where the drawing came from, how it differs from the design's own layout, and the
+    /// joint's numbers as drawn.
+    pub provenance: Provenance,
+    /// Warnings for the joint as drawn.
+    pub warnings: Vec<Warning>,
+}
+
+/// Checks `imported`, read from `bytes` of the file `file_name`, against the design `checked`
+/// ([`check_drawing`], with the design's clearance) and records its provenance.
+///
+/// # Errors
+/// [`RulesError`] naming the design and listing every broken rule.
+pub fn check_imported(
+    checked: &Checked,
+    imported: &ImportedDxf,
+    file_name: &str,
+    bytes: &[u8],
+) -> Result<CheckedDrawing, RulesError> {
+    let design = &checked.design;
+    let clearance_mm = design.file.fabrication.clearance_mm();
+    let provenance = Provenance::new(file_name, bytes, imported, &checked.layout);
+    let mut layout = imported.layout.clone();
+    layout.kerf_mm = checked.layout.kerf_mm;
+    layout.trace_width_mm = checked.layout.trace_width_mm;
+    let report = check_drawing(design, &layout, clearance_mm);
+    if !report.errors.is_empty() {
+        return Err(RulesError {
+            name: design.file.name.clone(),
+            violations: report.errors,
+        });
+    }
+    let provenance = match &report.derived {
+        Some(d) => provenance.with_derived(d.summary(design)),
+        None => provenance,
+    };
+    Ok(CheckedDrawing {
+        layout,
+        provenance,
+        warnings: report.warnings,
+    })
 }
 
 /// Checks a drawn `layout` against `design`, with `clearance_mm` edge to edge.

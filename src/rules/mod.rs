@@ -42,7 +42,7 @@ use crate::design::{Design, DesignFile};
 use crate::layout::Layout;
 
 /// A drawing checked against its design, and the joint's numbers as drawn.
-pub use drawing::{check_drawing, Derived, DrawingReport};
+pub use drawing::{check_drawing, check_imported, CheckedDrawing, Derived, DrawingReport};
 /// How far the joint length may differ from the notch pattern (mm).
 pub use length::LENGTH_TOLERANCE_MM;
 /// How a notch is named in messages.

@@ -1,0 +1,146 @@
+//! A reproduction as one [`Analysis`]: the numbers `dlw reproduce --json` prints, the terminal
+//! summary, and the report.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use serde::{Serialize, Serializer};
+
+use super::{patterns, report, Reproduction};
+use crate::analysis::{Analysis, Placement};
+use crate::characterize::EstimationRun;
+use crate::control::SchemeMetrics;
+use crate::fit::Characteristic;
+use crate::report::{Page, PAGE_FILE};
+
+/// What `dlw reproduce --json` prints; the keys are part of the interface.
+#[derive(Serialize)]
+struct Json<'a> {
+    duration_scale: f64,
+    patterns: Vec<patterns::Pattern>,
+    seconds: f64,
+    joints: Vec<JointNumbers<'a>>,
+    control_open_loop: SchemeMetrics,
+    control_closed_loop: SchemeMetrics,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    report: Option<&'a Path>,
+}
+
+/// One of Joints A-C: its sensor 1's fit, rate and relaxation numbers, and every estimation run.
+#[derive(Serialize)]
+struct JointNumbers<'a> {
+    joint: char,
+    gauge_factor: f64,
+    r0_ohm: f64,
+    characteristic: Option<Characteristic>,
+    gf_rise_correlation: f64,
+    r0_std_ohm: f64,
+    relaxation_correlation: f64,
+    relaxation_median_tau_s: Option<f64>,
+    estimation: &'a [EstimationRun],
+}
+
+impl Serialize for Reproduction {
+    /// The tables' numbers, not every trace.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let [open, closed] = self.control.run.metrics;
+        Json {
+            duration_scale: self.settings.duration_scale,
+            patterns: patterns::patterns(self),
+            seconds: self.seconds,
+            joints: self
+                .joints
+                .iter()
+                .map(|j| {
+                    let l = &j.loops.sensors[0].summary;
+                    JointNumbers {
+                        joint: j.letter,
+                        gauge_factor: l.gauge_factor,
+                        r0_ohm: l.r0_ohm,
+                        characteristic: l.characteristic,
+                        gf_rise_correlation: j.rate.sensors[0].gf_rise_correlation,
+                        r0_std_ohm: j.rate.sensors[0].r0_std_ohm,
+                        relaxation_correlation: j.relaxation.sensors[0].correlation,
+                        relaxation_median_tau_s: j.relaxation.sensors[0].median_tau_s,
+                        estimation: &j.estimation.runs,
+                    }
+                })
+                .collect(),
+            control_open_loop: open,
+            control_closed_loop: closed,
+            report: self.report.as_deref(),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl Reproduction {
+    /// Records that the [`report::page`] was written into `dir`.
+    pub fn written_to(&mut self, dir: &Path) {
+        self.report = Some(dir.join(PAGE_FILE));
+    }
+}
+
+impl Analysis for Reproduction {
+    /// Per joint its fit, rate, relaxation and estimation numbers; Joint D's Table VI; every
+    /// pattern held or not, and their tally; the report and the time taken.
+    fn summary(&self) -> String {
+        let mut out = String::new();
+        for j in &self.joints {
+            let l = &j.loops.sensors[0].summary;
+            let est = |name: &str| {
+                j.estimation
+                    .runs
+                    .iter()
+                    .find(|x| x.config == name && !x.split)
+                    .map_or(f64::NAN, |x| x.metrics.rmse_deg)
+            };
+            let _ = writeln!(
+                out,
+                "Joint {}: GF {:.2}, R0 {:.1} kΩ; corr(GF, rise) {:.4}, std R0 {:.3} kΩ; relaxation corr {:.3}; RMSE linear {:.2}°, PI {:.2}°",
+                j.letter,
+                l.gauge_factor,
+                l.r0_ohm / 1e3,
+                j.rate.sensors[0].gf_rise_correlation,
+                j.rate.sensors[0].r0_std_ohm / 1e3,
+                j.relaxation.sensors[0].correlation,
+                est("linear"),
+                est("PI")
+            );
+        }
+        let [o, c] = self.control.run.metrics.map(|m| m.table_vi());
+        let _ = writeln!(
+            out,
+            "Joint D control RMSE (°): open loop {:.2} / {:.2} / {:.2}, closed loop {:.2} / {:.2} / {:.2} (sensed-actual / actual-desired / sensed-desired)",
+            o[0], o[1], o[2], c[0], c[1], c[2]
+        );
+        let list = patterns::patterns(self);
+        for p in &list {
+            let _ = writeln!(
+                out,
+                "pattern {}: {} (paper: {}; dlw: {})",
+                p.verdict(),
+                p.name,
+                p.paper,
+                p.dlw
+            );
+            if let Some(why) = &p.cannot_show {
+                let _ = writeln!(out, "  why: {why}");
+            }
+        }
+        let _ = writeln!(out, "{}", patterns::tally(&list));
+        match &self.report {
+            Some(report) => {
+                let _ = writeln!(out, "report {} ({:.1} s)", report.display(), self.seconds);
+            }
+            None => {
+                let _ = writeln!(out, "ran in {:.1} s", self.seconds);
+            }
+        }
+        out
+    }
+
+    fn add_to_page(&self, page: &mut Page, at: Placement<'_>) {
+        report::add_sections(page, self, at);
+    }
+}
