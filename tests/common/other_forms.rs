@@ -26,6 +26,9 @@
 //!   - [`Effect::Creep`]: two first-order creeps (3 s and 40 s) of the resistance change;
 //!   - [`Effect::Drift`]: an exponential warm-up of the baseline, `D·(1 − e^(−t/T))`, or a
 //!     square root of time ([`Forms::drift_sqrt`]); neither linear in time nor a random walk.
+//! - **Outside the library** ([`Outside`], on [`Forms::outside_sensor`]): a sensitivity that
+//!   fades (settling, in a step, by cycles), follows a slow sinusoid, or a sensor that stiffens,
+//!   has a dead zone, a quadratic term, or an offset above a strain.
 //! - **Noise**, on the divider voltage and on the tracker angle: white plus AR(1) with other
 //!   correlation times than the simulator's (0.7 s on the voltage, 2.5 s on the angle).
 //!
