@@ -269,3 +269,69 @@ fn the_tours_discovery_headline() {
     out += &format!("unexplained: {}\n", j["unexplained"]);
     insta::assert_snapshot!("tour_discovery", out);
 }
+
+/// `--json` and the text summary are two views of one result (`DiscoverResult`, an `Analysis`):
+/// the JSON keeps the keys it always had, and the text's evidence and gaps are the JSON's
+/// numbers.
+#[test]
+fn json_and_text_are_one_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let rec = simulate(d, "rec", "joint-a.toml", "300", "5", Some(BACKLASH));
+    let o = discover("joint-a.toml", &rec, &d.join("json"), &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let keys: Vec<&str> = json
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(String::as_str)
+        .collect();
+    assert_eq!(
+        keys,
+        [
+            "ambiguous",
+            "candidates",
+            "discovered",
+            "gaps",
+            "report",
+            "scenario",
+            "unexplained"
+        ]
+    );
+    let design = shipped_design("joint-a.toml");
+    let text_out = d.join("text");
+    let o = common::dlw(&[
+        "discover".as_ref(),
+        "--design".as_ref(),
+        design.as_ref(),
+        rec.as_os_str(),
+        "-o".as_ref(),
+        text_out.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let first = &json["discovered"][0];
+    let line = format!(
+        "discovered {} on {} (evidence {:.1}",
+        first["effect"].as_str().unwrap(),
+        first["channel"].as_str().unwrap(),
+        first["evidence"].as_f64().unwrap()
+    );
+    assert!(text.contains(&line), "{line:?} not in\n{text}");
+    for g in json["gaps"].as_array().unwrap() {
+        let gap = format!(
+            "{:.4} → {:.4} {}",
+            g["before"].as_f64().unwrap(),
+            g["after"].as_f64().unwrap(),
+            g["unit"].as_str().unwrap()
+        );
+        assert!(text.contains(&gap), "{gap:?} not in\n{text}");
+    }
+    let report = text_out.join("report.html");
+    assert!(
+        text.contains(&format!("report   {}", report.display())),
+        "{text}"
+    );
+    assert!(report.exists());
+}

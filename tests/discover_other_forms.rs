@@ -3,13 +3,16 @@
 //! hysteresis, rational saturation, a square-root signed rate response, two-term creep and an
 //! exponential warm-up drift, with white + AR(1) noise of other correlation times. Discovery must
 //! name the right effect on the right channel, and nothing on clean recordings, although none
-//! of these forms is the simulator's.
+//! of these forms is the simulator's: the acceptance figures, asserted at CI size and
+//! measured at full size with `DLW_DISCOVER_FULL=1 cargo test --release --test
+//! discover_other_forms -- --nocapture`.
 
 mod common;
 use common::other_forms::{self, Bench, Effect};
 use common::shipped_design;
 
 use std::path::Path;
+use std::sync::Mutex;
 
 /// Recording length (s): Joint A's; Joint C's insensitive sensor (GF 1.28) gets the paper's
 /// 3000 s random run, as in `tests/discover_matrix.rs`.
@@ -57,70 +60,217 @@ fn named(report: &serde_json::Value) -> Vec<(String, String)> {
         .collect()
 }
 
-/// Each effect alone on Joint A (UAN) and, for the sensor effects, on Joint C's sensor 2; plus
-/// clean recordings. Prints every case; asserts no wrong name, no name on the clean ones, and
-/// the right first name on the right channel in at least five sixths of the effect cases.
+/// One recording: the design, the effect with its sensor (none: a clean control), the seed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Case {
+    design: &'static str,
+    effect: Option<(Effect, usize)>,
+    seed: u64,
+}
+
+impl Case {
+    fn name(&self) -> String {
+        format!(
+            "{}-{}-{}",
+            self.design.trim_end_matches(".toml"),
+            self.effect.map_or("clean", |(e, _)| e.name()),
+            self.seed
+        )
+    }
+
+    /// The channel the effect acts on.
+    fn channel(&self) -> Option<String> {
+        self.effect.map(|(e, sensor)| {
+            if e.is_plant() {
+                "plant".to_owned()
+            } else {
+                format!("sensor{sensor}")
+            }
+        })
+    }
+
+    /// The same seed without the effect: the generator's noise is drawn identically (the
+    /// effects draw no random numbers), so its held-out RMSE is the floor no model removes.
+    fn twin(&self) -> Case {
+        Case {
+            effect: None,
+            ..*self
+        }
+    }
+}
+
+/// What discovery said about one case.
+struct Seen {
+    named: Vec<(String, String)>,
+    flagged: bool,
+    /// Per channel, the held-out RMSE before and after.
+    gaps: Vec<(String, f64, f64)>,
+}
+
+fn seen(dir: &Path, case: &Case) -> Seen {
+    let bench = Bench {
+        effects: case.effect.into_iter().collect(),
+        duration_s: duration_s(case.design),
+        seed: case.seed,
+        ..Bench::default()
+    };
+    let report = discover(dir, case.design, &bench, &case.name());
+    Seen {
+        named: named(&report),
+        flagged: !report["unexplained"].as_array().unwrap().is_empty(),
+        gaps: report["gaps"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|g| {
+                (
+                    g["channel"].as_str().unwrap().to_owned(),
+                    g["before"].as_f64().unwrap(),
+                    g["after"].as_f64().unwrap(),
+                )
+            })
+            .collect(),
+    }
+}
+
+impl Seen {
+    fn gap(&self, channel: &str) -> (f64, f64) {
+        self.gaps
+            .iter()
+            .find(|g| g.0 == channel)
+            .map(|g| (g.1, g.2))
+            .unwrap()
+    }
+}
+
+/// The part of an RMSE above the noise floor.
+fn above(rmse: f64, floor: f64) -> f64 {
+    (rmse * rmse - floor * floor).max(0.0).sqrt()
+}
+
+/// The acceptance figures on recordings from a generator discovery was not built on
+/// (other functional forms, white + AR(1) noise of other correlation times): each effect alone
+/// on Joint A (UAN) and, for the sensor effects, on Joint C's sensor 2, with the clean twin of
+/// every effect case and more clean controls. Asserted: the right effect first on the right
+/// channel in ≥ 95 % of the effect cases, no wrong name, a name or an `unexplained` flag on
+/// ≤ 1 % of the clean recordings, and a median held-out gap shrink ≥ 50 % above the twin's
+/// floor. CI runs one seed per case and 3 more controls per joint; `DLW_DISCOVER_FULL=1` runs
+/// 5 seeds and 20 more controls per joint.
 #[test]
-fn discover_names_effects_of_other_functional_forms() {
-    let dir = tempfile::tempdir().unwrap();
-    type Case = (&'static str, Option<(Effect, usize)>, u64);
+fn discover_meets_the_acceptance_figures_on_other_functional_forms() {
+    let full = std::env::var("DLW_DISCOVER_FULL").is_ok();
+    let (seeds, controls) = if full { (5u64, 20u64) } else { (1, 3) };
     let mut cases: Vec<Case> = Vec::new();
-    for (i, effect) in Effect::ALL.into_iter().enumerate() {
-        cases.push(("joint-a.toml", Some((effect, 1)), 100 + i as u64));
-        if !effect.is_plant() {
-            cases.push(("joint-c.toml", Some((effect, 2)), 200 + i as u64));
+    for s in 0..seeds {
+        for (i, effect) in Effect::ALL.into_iter().enumerate() {
+            let seed = 100 * (s + 1) + i as u64;
+            cases.push(Case {
+                design: "joint-a.toml",
+                effect: Some((effect, 1)),
+                seed,
+            });
+            if !effect.is_plant() {
+                cases.push(Case {
+                    design: "joint-c.toml",
+                    effect: Some((effect, 2)),
+                    seed: seed + 50,
+                });
+            }
         }
     }
-    for seed in 0..3 {
-        cases.push(("joint-a.toml", None, 300 + seed));
-        cases.push(("joint-c.toml", None, 400 + seed));
+    let twins: Vec<Case> = cases.iter().map(Case::twin).collect();
+    cases.extend(twins);
+    for s in 0..controls {
+        for design in ["joint-a.toml", "joint-c.toml"] {
+            cases.push(Case {
+                design,
+                effect: None,
+                seed: 5000 + s,
+            });
+        }
     }
-    let (mut right, mut effect_cases, mut false_names) = (0, 0, Vec::new());
-    for (design, effect, seed) in cases {
-        let bench = Bench {
-            effects: effect.into_iter().collect(),
-            duration_s: duration_s(design),
-            seed,
-            ..Bench::default()
+    let dir = tempfile::tempdir().unwrap();
+    let queue = Mutex::new(cases.iter());
+    let results = Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..2 {
+            scope.spawn(|| loop {
+                let next = queue.lock().unwrap().next();
+                let Some(case) = next else { break };
+                let s = seen(dir.path(), case);
+                results.lock().unwrap().push((*case, s));
+            });
+        }
+    });
+    let results = results.into_inner().unwrap();
+    let twin = |case: &Case| {
+        results
+            .iter()
+            .find(|(c, _)| *c == case.twin())
+            .map(|(_, s)| s)
+            .unwrap()
+    };
+    let (mut effects, mut right, mut wrong, mut clean, mut alarms) =
+        (0, 0, Vec::new(), 0, Vec::new());
+    let mut shrinks = Vec::new();
+    for (case, s) in &results {
+        let Some(channel) = case.channel() else {
+            clean += 1;
+            eprintln!(
+                "{}: discovered {:?}, flagged {}",
+                case.name(),
+                s.named,
+                s.flagged
+            );
+            if !s.named.is_empty() || s.flagged {
+                alarms.push(case.name());
+            }
+            continue;
         };
-        let name = format!(
-            "{}-{}-{seed}",
-            design.trim_end_matches(".toml"),
-            effect.map_or("clean", |(e, _)| e.name())
-        );
-        let report = discover(dir.path(), design, &bench, &name);
-        let got = named(&report);
-        eprintln!("{name}: discovered {got:?}");
-        match effect {
-            Some((e, sensor)) => {
-                effect_cases += 1;
-                let channel = if e.is_plant() {
-                    "plant".to_owned()
-                } else {
-                    format!("sensor{sensor}")
-                };
-                if got.first() == Some(&(e.name().to_owned(), channel)) {
-                    right += 1;
-                }
-            }
-            None => {
-                if !got.is_empty() {
-                    false_names.push((name, got));
-                }
-            }
+        effects += 1;
+        let truth = (case.effect.unwrap().0.name().to_owned(), channel.clone());
+        if s.named.first() == Some(&truth) {
+            right += 1;
         }
+        wrong.extend(
+            s.named
+                .iter()
+                .filter(|n| **n != truth)
+                .map(|n| (case.name(), n.clone())),
+        );
+        let (before, after) = s.gap(&channel);
+        let floor = twin(case).gap(&channel).0;
+        let shrink = 1.0 - above(after, floor) / above(before, floor);
+        shrinks.push(shrink);
+        eprintln!(
+            "{}: discovered {:?}, {channel} RMSE {before:.4} → {after:.4} (floor {floor:.4}): gap shrink {:.0} %",
+            case.name(),
+            s.named,
+            100.0 * shrink
+        );
     }
-    eprintln!("other forms: {right}/{effect_cases} named right");
-    assert!(
-        false_names.is_empty(),
-        "clean recordings named: {false_names:?}"
+    shrinks.sort_by(f64::total_cmp);
+    let median = shrinks[shrinks.len() / 2];
+    eprintln!(
+        "other forms: right effect on the right channel {right}/{effects} ({:.0} %), wrong names {}, clean recordings with a name or a flag {}/{clean}, median held-out gap shrink {:.0} % above the floor",
+        100.0 * right as f64 / effects as f64,
+        wrong.len(),
+        alarms.len(),
+        100.0 * median
     );
-    // Measured: 12 of 12, never a wrong name (docs/discovery.md). The test holds five sixths:
-    // these forms are not the simulator's, and a miss is not a wrong name.
+    assert!(wrong.is_empty(), "wrong names: {wrong:?}");
     assert!(
-        right * 6 >= effect_cases * 5,
-        "{right} of {effect_cases} effect cases named right"
+        alarms.len() * 100 <= clean,
+        "clean recordings named or flagged: {alarms:?} of {clean}"
     );
+    // Measured 2026-11-25: CI 12/12; full size 56/60 (93 %), so the full-size run fails here:
+    // Joint A's two-term creep is missed on seeds 305, 405 and 505 and Joint C's drift on 556,
+    // never named wrong (docs/discovery.md, "Other functional forms").
+    assert!(
+        right as f64 >= 0.95 * effects as f64,
+        "{right} of {effects} effect cases named right"
+    );
+    assert!(median >= 0.5, "median gap shrink {median}");
 }
 
 /// Writes one recording per effect (Joint A; the sensor effects also on Joint C's sensor 2) and

@@ -1,11 +1,14 @@
 //! `dlw discover` on forms the other-forms generator did not have before (issue 19): memoryless
 //! saturations of four shapes, asymmetric soft backlash, relaxation and backlash at several
-//! sizes with nothing on the sensor, a drift that grows as √t, and a rate with a drift. Every
-//! case asserts the exact set of names: a wrong name is the failure that costs a researcher
-//! most, and a name on a channel the effect is not on is a wrong name.
+//! sizes with nothing on the sensor, a drift that grows as √t, a rate with a drift, and eight
+//! effects outside the library on Joint A and on both sensors of Joint C. Every case of a
+//! library effect asserts the exact set of names: a wrong name is the failure that costs a
+//! researcher most, and a name on a channel the effect is not on is a wrong name.
+//!
+//! CI size runs one seed per out-of-library case; `DLW_DISCOVER_FULL=1` runs three.
 
 mod common;
-use common::other_forms::{self, Bench, Effect, Forms, Saturation};
+use common::other_forms::{self, Bench, Effect, Forms, Outside, Saturation};
 use common::shipped_design;
 
 use std::collections::BTreeSet;
@@ -34,22 +37,17 @@ fn names(dir: &Path, bench: &Bench, name: &str) -> BTreeSet<(String, String)> {
             );
         }
     }
-    report["discovered"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|d| {
-            (
-                d["effect"].as_str().unwrap().to_owned(),
-                d["channel"].as_str().unwrap().to_owned(),
-            )
-        })
-        .collect()
+    pairs(&report)
 }
 
 /// Runs `dlw discover --json` on a generated recording of Joint A; returns the JSON.
 fn discover_json(dir: &Path, bench: &Bench, name: &str) -> serde_json::Value {
-    let design = shipped_design("joint-a.toml");
+    discover_on(dir, "joint-a.toml", bench, name)
+}
+
+/// Runs `dlw discover --json` on a generated recording of the shipped `design`.
+fn discover_on(dir: &Path, design: &str, bench: &Bench, name: &str) -> serde_json::Value {
+    let design = shipped_design(design);
     let rec = dir.join(name);
     other_forms::write_recording(Path::new(&design), bench, &rec);
     let out = dir.join(format!("{name}-out"));
@@ -70,6 +68,21 @@ fn discover_json(dir: &Path, bench: &Bench, name: &str) -> serde_json::Value {
     serde_json::from_slice(&o.stdout).unwrap()
 }
 
+/// The (effect, channel) pairs a report names.
+fn pairs(report: &serde_json::Value) -> BTreeSet<(String, String)> {
+    report["discovered"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| {
+            (
+                d["effect"].as_str().unwrap().to_owned(),
+                d["channel"].as_str().unwrap().to_owned(),
+            )
+        })
+        .collect()
+}
+
 fn expect(pairs: &[(&str, &str)]) -> BTreeSet<(String, String)> {
     pairs
         .iter()
@@ -77,29 +90,21 @@ fn expect(pairs: &[(&str, &str)]) -> BTreeSet<(String, String)> {
         .collect()
 }
 
-/// Runs every case; prints all before asserting. A name outside a case's expected set is a
-/// wrong name and fails at once; a case whose set comes back incomplete is a miss, and at most
-/// `max_misses` are allowed (each test states which case misses and why).
 /// A case: its name, the bench, the names expected.
 type Case = (String, Bench, BTreeSet<(String, String)>);
 
-fn run(cases: Vec<Case>, max_misses: usize) {
+/// Runs every case and prints all before asserting that each named exactly its expected set.
+fn run(cases: Vec<Case>) {
     let dir = tempfile::tempdir().unwrap();
-    let (mut wrong, mut missed) = (Vec::new(), Vec::new());
+    let mut failed = Vec::new();
     for (name, bench, want) in cases {
         let got = names(dir.path(), &bench, &name);
         eprintln!("{name}: discovered {got:?}, expected {want:?}");
-        if !got.is_subset(&want) {
-            wrong.push((name, got, want));
-        } else if got != want {
-            missed.push(name);
+        if got != want {
+            failed.push((name, got, want));
         }
     }
-    assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
-    assert!(
-        missed.len() <= max_misses,
-        "missed {missed:?} (at most {max_misses})"
-    );
+    assert!(failed.is_empty(), "not the expected names: {failed:#?}");
 }
 
 fn bench(effects: &[(Effect, usize)], seed: u64, forms: Forms) -> Bench {
@@ -136,22 +141,22 @@ fn memoryless_curves_of_every_shape_are_saturation() {
         )
     })
     .collect();
-    // Measured: the power law (no knee, sensitivity falling as ε^−0.2) is missed: the tanh of
-    // the library's saturation does not draw it well enough to clear the threshold, and its
-    // memoryless curve no longer lets the plays win. A miss, never `hysteresis`.
-    run(cases, 1);
+    run(cases);
 }
 
-/// A plant effect, at half, once and twice its size, and a backlash wider on one side, names
-/// the plant effect and nothing on the sensor.
+/// A plant effect at several sizes, and a backlash wider on one side, names the plant effect
+/// and nothing on the sensor. Relaxation is asserted from ¾ of its size up: at half its size
+/// (Prony fractions 0.02 and 0.025) its evidence on 300 s measured 19.3, 15.5 and under 5 nats
+/// on three seeds, below the 20-nat threshold (docs/discovery.md, "Detection limits"); those
+/// sizes are checked in `plant_effects_below_detection_name_no_sensor_effect`.
 #[test]
 fn plant_effects_name_no_sensor_effect() {
     let mut cases = Vec::new();
-    for (effect, name) in [
-        (Effect::Backlash, "backlash"),
-        (Effect::Relaxation, "relaxation"),
+    for (effect, name, scales) in [
+        (Effect::Backlash, "backlash", [0.5, 1.0, 2.0]),
+        (Effect::Relaxation, "relaxation", [0.75, 1.0, 2.0]),
     ] {
-        for (k, scale) in [0.5, 1.0, 2.0].into_iter().enumerate() {
+        for (k, scale) in scales.into_iter().enumerate() {
             let forms = Forms {
                 plant_scale: Some(scale),
                 ..Forms::default()
@@ -172,9 +177,64 @@ fn plant_effects_name_no_sensor_effect() {
         bench(&[(Effect::Backlash, 0)], 640, forms),
         expect(&[("backlash", "plant")]),
     ));
-    // Measured: relaxation at half size (fractions 0.02 and 0.025) is missed, below the
-    // evidence threshold on 300 s; never a sensor name.
-    run(cases, 1);
+    run(cases);
+}
+
+/// Plant effects too small to name (a quarter and half the relaxation, a quarter of the
+/// backlash) on Joint A, and both plant effects on Joint C's 3000 s: whatever the plant channel
+/// shows, never a sensor name and never a flag on a sensor.
+#[test]
+fn plant_effects_below_detection_name_no_sensor_effect() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut cases: Vec<(&str, String, Bench)> = Vec::new();
+    for (effect, scale, seed) in [
+        (Effect::Relaxation, 0.25, 651),
+        (Effect::Relaxation, 0.5, 652),
+        (Effect::Backlash, 0.25, 653),
+    ] {
+        let forms = Forms {
+            plant_scale: Some(scale),
+            ..Forms::default()
+        };
+        cases.push((
+            "joint-a.toml",
+            format!("{}-x{scale}", effect.name()),
+            bench(&[(effect, 0)], seed, forms),
+        ));
+    }
+    for (effect, seed) in [(Effect::Backlash, 661), (Effect::Relaxation, 662)] {
+        cases.push((
+            "joint-c.toml",
+            format!("joint-c-{}", effect.name()),
+            Bench {
+                duration_s: 3000.0,
+                ..bench(&[(effect, 0)], seed, Forms::default())
+            },
+        ));
+    }
+    let mut failed = Vec::new();
+    for (design, name, bench) in cases {
+        let report = discover_on(dir.path(), design, &bench, &name);
+        let got = pairs(&report);
+        let flagged = flagged(&report);
+        eprintln!("{name}: discovered {got:?}, unexplained on {flagged:?}");
+        let on_sensor =
+            got.iter().any(|(_, c)| c != "plant") || flagged.iter().any(|c| c != "plant");
+        if on_sensor {
+            failed.push((name, got, flagged));
+        }
+    }
+    assert!(failed.is_empty(), "a sensor named or flagged: {failed:?}");
+}
+
+/// The channels a report flags `unexplained`.
+fn flagged(report: &serde_json::Value) -> Vec<String> {
+    report["unexplained"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|u| u["channel"].as_str().unwrap().to_owned())
+        .collect()
 }
 
 /// A drift of another form (√t) is `drift`; a rate with a drift is both, and not `creep`.
@@ -184,85 +244,105 @@ fn drift_is_time_not_history() {
         drift_sqrt: true,
         ..Forms::default()
     };
-    run(
-        vec![
-            (
-                "drift-sqrt".into(),
-                bench(&[(Effect::Drift, 1)], 700, sqrt),
-                expect(&[("drift", "sensor1")]),
+    run(vec![
+        (
+            "drift-sqrt".into(),
+            bench(&[(Effect::Drift, 1)], 700, sqrt),
+            expect(&[("drift", "sensor1")]),
+        ),
+        (
+            "rate-and-drift".into(),
+            bench(
+                &[(Effect::Rate, 1), (Effect::Drift, 1)],
+                710,
+                Forms::default(),
             ),
-            (
-                "rate-and-drift".into(),
-                bench(
-                    &[(Effect::Rate, 1), (Effect::Drift, 1)],
-                    710,
-                    Forms::default(),
-                ),
-                expect(&[("rate", "sensor1"), ("drift", "sensor1")]),
-            ),
-        ],
-        0,
-    );
+            expect(&[("rate", "sensor1"), ("drift", "sensor1")]),
+        ),
+    ]);
 }
 
-/// Effects outside the library: a sensitivity that fades exponentially (the library's
-/// `gain_drift` is linear in time) and a sensor that stiffens (its sensitivity rises with
-/// strain, which no effect of the library draws). Never one of the seven library names; the
-/// channel is flagged `unexplained`, or the fade is named `gain_drift`.
+/// The seven library effects: an out-of-library case must never be named as one of them.
+const LIBRARY: [&str; 7] = [
+    "hysteresis",
+    "saturation",
+    "rate",
+    "creep",
+    "drift",
+    "relaxation",
+    "backlash",
+];
+
+/// Effects outside the library ([`Outside`]: a sensitivity that fades settling, in a step, by
+/// cycles or with a temperature-like sinusoid; a sensor that stiffens, has a dead zone, a
+/// quadratic term or an offset above a strain) on Joint A's sensor and on each of Joint C's
+/// two sensors. Never one of the seven library names, never a name or a flag on another
+/// channel; the right channel flagged `unexplained`, or a change of sensitivity named
+/// `gain_drift`, in at least 80 % of the cases. One seed per case; three with
+/// `DLW_DISCOVER_FULL=1`.
 #[test]
 fn effects_outside_the_library_are_flagged_not_named() {
     let dir = tempfile::tempdir().unwrap();
-    let library = [
-        "hysteresis",
-        "saturation",
-        "rate",
-        "creep",
-        "drift",
-        "relaxation",
-        "backlash",
-    ];
-    let cases = [
-        (
-            "gain-fade",
-            Forms {
-                gain_fade: true,
-                ..Forms::default()
-            },
-        ),
-        (
-            "stiffening",
-            Forms {
-                stiffening: true,
-                ..Forms::default()
-            },
-        ),
-    ];
-    let mut failures = Vec::new();
-    for (i, (name, forms)) in cases.into_iter().enumerate() {
-        let report = discover_json(dir.path(), &bench(&[], 800 + i as u64, forms), name);
-        let named: Vec<String> = report["discovered"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|d| format!("{}@{}", d["effect"], d["channel"]))
-            .collect();
-        let flagged: Vec<String> = report["unexplained"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|u| u["channel"].as_str().unwrap().to_owned())
-            .collect();
-        eprintln!("{name}: named {named:?}, unexplained on {flagged:?}");
-        let wrong = named
-            .iter()
-            .any(|n| library.iter().any(|l| n.starts_with(&format!("\"{l}\""))));
-        let gain_drift = named.iter().any(|n| n == "\"gain_drift\"@\"sensor1\"");
-        let flagged_right = flagged == ["sensor1"];
-        if wrong || !(flagged_right || gain_drift) {
-            failures.push((name, named, flagged));
+    let seeds: u64 = if std::env::var("DLW_DISCOVER_FULL").is_ok() {
+        3
+    } else {
+        1
+    };
+    let mut cases: Vec<(&str, usize, Outside, u64)> = Vec::new();
+    for seed in 0..seeds {
+        for (i, outside) in Outside::ALL.into_iter().enumerate() {
+            cases.push(("joint-a.toml", 1, outside, 800 + 10 * seed + i as u64));
+            // Joint C's two sensors take turns (both in the full run).
+            for sensor in [1, 2] {
+                if seeds > 1 || (i + sensor) % 2 == 0 {
+                    cases.push(("joint-c.toml", sensor, outside, 900 + 10 * seed + i as u64));
+                }
+            }
         }
     }
-    assert!(failures.is_empty(), "{failures:?}");
+    let (mut right, mut wrong, mut missed) = (0, Vec::new(), Vec::new());
+    let total = cases.len();
+    for (design, sensor, outside, seed) in cases {
+        let joint_c = design == "joint-c.toml";
+        let bench = Bench {
+            duration_s: if joint_c { 3000.0 } else { DURATION_S },
+            ..bench(
+                &[],
+                seed,
+                Forms {
+                    outside: Some(outside),
+                    outside_sensor: sensor,
+                    ..Forms::default()
+                },
+            )
+        };
+        let name = format!("{}-{outside:?}-sensor{sensor}-{seed}", &design[..7]);
+        let report = discover_on(dir.path(), design, &bench, &name);
+        let named = pairs(&report);
+        let flagged = flagged(&report);
+        eprintln!("{name}: named {named:?}, unexplained on {flagged:?}");
+        let channel = format!("sensor{sensor}");
+        let gain_change = matches!(
+            outside,
+            Outside::GainFade | Outside::GainStep | Outside::GainCycles | Outside::GainSine
+        );
+        let is_wrong = |(effect, ch): &(String, String)| {
+            LIBRARY.contains(&effect.as_str()) || *ch != channel || !gain_change
+        };
+        if named.iter().any(is_wrong) || flagged.iter().any(|c| *c != channel) {
+            wrong.push((name, named, flagged));
+        } else if named.is_empty() && flagged.is_empty() {
+            missed.push(name);
+        } else {
+            right += 1;
+        }
+    }
+    eprintln!("out of library: {right}/{total} flagged or named gain_drift on the right channel, wrong {}, missed {missed:?}", wrong.len());
+    assert!(wrong.is_empty(), "wrong names or channels: {wrong:#?}");
+    assert!(
+        right * 5 >= total * 4,
+        "{right} of {total} flagged; missed {missed:?}"
+    );
 }
 
 /// The simulator's own `gain_drift` (the sensitivity fading 2 per hour, 17 % over 300 s) is
@@ -304,20 +384,9 @@ fn the_simulators_gain_drift_is_named() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let named: Vec<(String, String)> = report["discovered"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|d| {
-            (
-                d["effect"].as_str().unwrap().to_owned(),
-                d["channel"].as_str().unwrap().to_owned(),
-            )
-        })
-        .collect();
     assert_eq!(
-        named,
-        [("gain_drift".to_owned(), "sensor1".to_owned())],
+        pairs(&report),
+        expect(&[("gain_drift", "sensor1")]),
         "{report}"
     );
     let fade = report["discovered"][0]["parameters"]["fade_per_hour"]

@@ -3,12 +3,12 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
+use dlw::analysis::Analysis;
 use dlw::design::Design;
-use dlw::discover::{self, scenario, Outcome};
+use dlw::discover::{self, scenario};
 use dlw::output::write_folder_atomic;
 use dlw::recording::Recording;
 use dlw::sim::Scenario;
-use serde::Serialize;
 
 /// Arguments of `dlw discover`.
 #[derive(Debug, clap::Args)]
@@ -36,15 +36,6 @@ pub struct Args {
     /// Print the result as JSON.
     #[arg(long)]
     json: bool,
-}
-
-/// `--json`. The keys are part of the interface (issue 9).
-#[derive(Debug, Serialize)]
-struct Json {
-    #[serde(flatten)]
-    summary: discover::Summary,
-    scenario: PathBuf,
-    report: PathBuf,
 }
 
 /// Runs `dlw discover`.
@@ -83,82 +74,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     )
     .with_context(|| format!("discovering on {}", args.recording.display()))?;
     bar.finish_and_clear();
-    let text = discover::scenario_text(&base, &recording, &design, &outcome)
+    let mut result = discover::DiscoverResult::new(outcome);
+    let text = result
+        .scenario_text(&base, &recording, &design)
         .map_err(anyhow::Error::msg)?;
     let name = args.recording.file_name().map_or_else(
         || args.recording.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let page = discover::report::page(&name, &outcome);
-    let mut files = page.files()?;
+    let mut files = result.report_page(&name).files()?;
     files.push(("scenario.toml".to_owned(), text.into_bytes()));
     write_folder_atomic(&args.output, &files)?;
-    let scenario_path = args.output.join("scenario.toml");
-    let report_path = args.output.join("report.html");
+    result.written = Some(discover::Written {
+        scenario: args.output.join("scenario.toml"),
+        report: args.output.join("report.html"),
+    });
     if args.json {
-        println!(
-            "{}",
-            dlw::finite::to_json(&Json {
-                summary: discover::Summary::of(&outcome),
-                scenario: scenario_path,
-                report: report_path,
-            })?
-        );
+        // Printed from the result itself (its keys in order), checked for non-finite numbers.
+        println!("{}", dlw::finite::to_json(&result)?);
     } else {
-        print_text(&outcome, &scenario_path, &report_path);
+        print!("{}", result.summary());
     }
     Ok(())
-}
-
-fn print_text(outcome: &Outcome, scenario: &std::path::Path, report: &std::path::Path) {
-    if outcome.discovered.is_empty() {
-        println!("discovered: none");
-    }
-    for d in &outcome.discovered {
-        println!(
-            "discovered {} on {} (evidence {:.1}{})",
-            d.effect.name(),
-            d.channel.name(),
-            d.evidence,
-            d.runner_up.map_or(String::new(), |(e, v)| format!(
-                "; runner-up {} {v:.1}",
-                e.name()
-            ))
-        );
-    }
-    for a in &outcome.ambiguous {
-        println!(
-            "ambiguous on {}: {}",
-            a.channel.name(),
-            a.contenders
-                .iter()
-                .map(|(e, v)| format!("{} {v:.1}", e.name()))
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-    }
-    for u in &outcome.unexplained {
-        println!(
-            "unexplained on {}: evidence {:.1} for structure no candidate explains, {}",
-            u.channel.name(),
-            u.evidence,
-            u.place
-        );
-    }
-    for g in &outcome.gaps {
-        let deg = match (g.before_deg, g.after_deg) {
-            (Some(b), Some(a)) => format!(" ({b:.3}° → {a:.3}° of estimate)"),
-            _ => String::new(),
-        };
-        println!(
-            "gap {:<8} {:.4} → {:.4} {} on {}{deg}",
-            g.channel.name(),
-            g.before,
-            g.after,
-            g.unit,
-            g.on
-        );
-    }
-    println!("scenario {}", scenario.display());
-    println!("report   {}", report.display());
 }

@@ -13,12 +13,15 @@ pub mod locate;
 pub mod model;
 pub mod noise;
 pub mod report;
+mod result;
 pub mod scenario;
 mod search;
 mod summary;
 pub mod terms;
 pub mod unexplained;
 
+/// The discovery's result as an [`crate::analysis::Analysis`].
+pub use result::{DiscoverResult, Written};
 /// `dlw discover --json`'s summary and the scenario file's text.
 pub use summary::{scenario_text, Named, Scored, Summary};
 

@@ -1,15 +1,16 @@
 //! The discovery report: the noise model, where each channel disagreed, the candidates' scores
 //! round by round, the named effects, the gaps before and after, and per channel the held-out
-//! overlay and residuals before and after (through the shared `report` layer).
+//! overlay and residuals before and after (through the shared `report` layer), added to a page
+//! by [`super::DiscoverResult`]'s [`crate::analysis::Analysis::add_to_page`].
 
+use crate::analysis::Placement;
 use crate::report::{Chart, Page, Series, Table, PALETTE};
 
 use super::model::Channel;
 use super::{Outcome, CLEAR_RATIO, THRESHOLD_NATS};
 
-/// The report page of `outcome` for the recording called `name`.
-pub fn page(name: &str, outcome: &Outcome) -> Page {
-    let mut page = Page::new(format!("Discovery: {name}"));
+/// Adds the discovery's sections to `page`, placed by `at`.
+pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     page.text(format!(
         "Each channel is compared on its own: the plant (stroke → tracker angle) and each sensor \
          (tracker angle → resistance). The base model is calibrated on the training blocks, the \
@@ -23,7 +24,7 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
         outcome.samples,
         1.0 / outcome.dt_s
     ));
-    page.heading("Result");
+    page.heading(at.heading("Result"));
     if outcome.discovered.is_empty() {
         page.text(if outcome.ambiguous.is_empty() {
             "Nothing named: no candidate buys enough held-out evidence.".to_owned()
@@ -69,7 +70,7 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
         ));
     }
     if !outcome.unexplained.is_empty() {
-        page.heading("What the library does not explain");
+        page.heading(at.heading("What the library does not explain"));
         page.text(format!(
             "After the named effects, generic regressors (a curve of any shape, plays, lags, \
              time) still buy at least {} nats of held-out evidence on these channels: a real \
@@ -91,7 +92,7 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
         }
         page.table(table);
     }
-    page.heading("Gap between simulation and measurement (held out)");
+    page.heading(at.heading("Gap between simulation and measurement (held out)"));
     let mut gaps = Table::new([
         "channel",
         "on",
@@ -118,7 +119,7 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
         ]);
     }
     page.table(gaps);
-    page.heading("Noise model (frozen from the rest)");
+    page.heading(at.heading("Noise model (frozen from the rest)"));
     let mut noise = Table::new(["channel", "σ at rest", "AR coefficients φ"]);
     for c in &outcome.channels {
         noise.row([
@@ -133,7 +134,7 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
         ]);
     }
     page.table(noise);
-    page.heading("Candidates");
+    page.heading(at.heading("Candidates"));
     let mut cands = Table::new(["round", "channel", "effect", "shape", "evidence"]);
     for c in &outcome.candidates {
         cands.row([
@@ -151,12 +152,11 @@ pub fn page(name: &str, outcome: &Outcome) -> Page {
          under Result).",
     );
     for c in &outcome.channels {
-        channel_section(&mut page, c);
+        channel_section(page, c, at);
     }
-    page
 }
 
-fn channel_section(page: &mut Page, c: &super::ChannelReport) {
+fn channel_section(page: &mut Page, c: &super::ChannelReport, at: Placement<'_>) {
     let name = c.channel.name();
     let unit = match c.channel {
         Channel::Plant => "angle (°)",
@@ -166,7 +166,7 @@ fn channel_section(page: &mut Page, c: &super::ChannelReport) {
         Channel::Plant => 1.0,
         Channel::Sensor(_) => 1e-3,
     };
-    page.heading(format!("Channel {name}"));
+    page.heading(at.heading(&format!("Channel {name}")));
     let mut places = Table::new([
         "situation",
         "share of held-out samples",
@@ -204,7 +204,7 @@ fn channel_section(page: &mut Page, c: &super::ChannelReport) {
         held(&c.after),
         PALETTE[2],
     ));
-    page.figure(format!("overlay-{name}"), overlay, "Measured against the calibrated base model and the model with the named effects, on the held-out blocks only (the gaps between them are the training blocks).");
+    page.figure(at.figure(&format!("overlay-{name}")), overlay, "Measured against the calibrated base model and the model with the named effects, on the held-out blocks only (the gaps between them are the training blocks).");
     let diff = |m: &[f64]| -> Vec<f64> { c.measured.iter().zip(m).map(|(y, p)| y - p).collect() };
     let residual = Chart::new(
         format!("{name}: residual before and after (held-out samples)"),
@@ -222,7 +222,7 @@ fn channel_section(page: &mut Page, c: &super::ChannelReport) {
         PALETTE[2],
     ));
     page.figure(
-        format!("residual-{name}"),
+        at.figure(&format!("residual-{name}")),
         residual,
         "The residual before and after; what remains after should look like the noise at rest.",
     );

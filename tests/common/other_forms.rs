@@ -26,6 +26,9 @@
 //!   - [`Effect::Creep`]: two first-order creeps (3 s and 40 s) of the resistance change;
 //!   - [`Effect::Drift`]: an exponential warm-up of the baseline, `D·(1 − e^(−t/T))`, or a
 //!     square root of time ([`Forms::drift_sqrt`]); neither linear in time nor a random walk.
+//! - **Outside the library** ([`Outside`], on [`Forms::outside_sensor`]): a sensitivity that
+//!   fades (settling, in a step, by cycles), follows a slow sinusoid, or a sensor that stiffens,
+//!   has a dead zone, a quadratic term, or an offset above a strain.
 //! - **Noise**, on the divider voltage and on the tracker angle: white plus AR(1) with other
 //!   correlation times than the simulator's (0.7 s on the voltage, 2.5 s on the angle).
 //!
@@ -150,18 +153,74 @@ pub struct Forms {
     pub drift_sqrt: bool,
     /// The plant effects' size, times the constants above (1 when `None`).
     pub plant_scale: Option<f64>,
-    /// Out of the library: sensor 1's sensitivity fades as `1 − F·(1 − e^(−t/T))`
-    /// ([`GAIN_FADE`]), a fatigue of another form than the library's `gain_drift` (linear).
-    pub gain_fade: bool,
-    /// Out of the library: sensor 1 stiffens, its sensitivity rising with strain,
-    /// `f(ε) = ε·(1 + |ε|/ε_k)` ([`STIFFENING_STRAIN`]): no effect of the library draws it.
-    pub stiffening: bool,
+    /// An effect outside the library, on [`Forms::outside_sensor`]'s sensor.
+    pub outside: Option<Outside>,
+    /// The sensor (1 or 2) the out-of-library effect acts on (1 when 0).
+    pub outside_sensor: usize,
 }
 
-/// Out-of-library gain fade: the fraction lost in the end `F` and its time constant `T` (s).
-pub const GAIN_FADE: (f64, f64) = (0.25, 150.0);
+/// Effects a real sensor has that the library lacks: a sensitivity that changes over the run
+/// in other forms than the library's `gain_drift` (linear in time), and curves or offsets no
+/// library effect draws. None of them may be named as one of the seven library effects; each
+/// is to be flagged `unexplained`, or a change of sensitivity named `gain_drift`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outside {
+    /// The sensitivity fades as `1 − F·(1 − e^(−t/T))` ([`GAIN_FADE`], `T` a fraction of the
+    /// run): fatigue that settles.
+    GainFade,
+    /// The sensitivity drops by [`GAIN_STEP`] at the middle of the run (a crack opening).
+    GainStep,
+    /// The sensitivity fades in proportion to the strain travelled so far (fatigue by cycles,
+    /// not by time), by [`GAIN_CYCLES`] at the end.
+    GainCycles,
+    /// The sensitivity follows a slow sinusoid, `1 + A·sin(2πt/P)` ([`GAIN_SINE`], `P` a
+    /// fraction of the run): a temperature that drifts up and down.
+    GainSine,
+    /// The sensor stiffens: `f(ε) = ε·(1 + |ε|/ε_k)` ([`STIFFENING_STRAIN`]), its sensitivity
+    /// rising with strain.
+    Stiffening,
+    /// A dead zone: no response below [`DEAD_ZONE`] × the peak strain,
+    /// `f(ε) = sign(ε)·max(|ε| − ε_d, 0)`.
+    DeadZone,
+    /// A quadratic term, `f(ε) = ε + ε²/ε_q` ([`QUADRATIC_STRAIN`]): stiffening on one side,
+    /// softening on the other (two-sided strain on a BSN joint).
+    Quadratic,
+    /// A strain-dependent offset: above half the peak strain the resistance jumps by
+    /// [`OFFSET_STEP`] × the span (a crack that opens at a strain).
+    OffsetStep,
+}
+
+impl Outside {
+    /// All of them.
+    pub const ALL: [Outside; 8] = [
+        Outside::GainFade,
+        Outside::GainStep,
+        Outside::GainCycles,
+        Outside::GainSine,
+        Outside::Stiffening,
+        Outside::DeadZone,
+        Outside::Quadratic,
+        Outside::OffsetStep,
+    ];
+}
+
+/// Out-of-library gain fade: the fraction lost in the end `F` and its time constant `T` as a
+/// fraction of the run.
+pub const GAIN_FADE: (f64, f64) = (0.25, 0.5);
+/// Out-of-library gain step: the fraction lost at the middle of the run.
+pub const GAIN_STEP: f64 = 0.15;
+/// Out-of-library fade by cycles: the fraction lost by the end of the strain travelled.
+pub const GAIN_CYCLES: f64 = 0.25;
+/// Out-of-library temperature-like gain: amplitude `A` and period `P` as a fraction of the run.
+pub const GAIN_SINE: (f64, f64) = (0.1, 0.5);
 /// Out-of-library stiffening: the strain at which the sensitivity has doubled.
 pub const STIFFENING_STRAIN: f64 = 0.02;
+/// Out-of-library dead zone, as a fraction of the peak strain.
+pub const DEAD_ZONE: f64 = 0.15;
+/// Out-of-library quadratic term: the strain at which it equals the linear one.
+pub const QUADRATIC_STRAIN: f64 = 0.03;
+/// Out-of-library strain-dependent offset, as a fraction of the span.
+pub const OFFSET_STEP: f64 = 0.05;
 
 /// What to generate.
 #[derive(Debug, Clone, Default)]
@@ -286,6 +345,12 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
         let mut creep = [0.0_f64; 2];
         let (white, ar, tau) = NOISE_V;
         let mut noise = Noise::new(white, ar, tau, SAMPLE_HZ, &mut rng);
+        let outside = bench
+            .forms
+            .outside
+            .filter(|_| sensor == bench.forms.outside_sensor.max(1));
+        let travel_total: f64 = strain.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
+        let mut travel = 0.0_f64;
         for (i, &e) in strain.iter().enumerate() {
             let t = i as f64 * dt;
             let felt = sign * e;
@@ -311,8 +376,13 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
                     }
                 };
             }
-            if bench.forms.stiffening && sensor == 1 {
-                x *= 1.0 + x.abs() / STIFFENING_STRAIN;
+            match outside {
+                Some(Outside::Stiffening) => x *= 1.0 + x.abs() / STIFFENING_STRAIN,
+                Some(Outside::DeadZone) => {
+                    x = x.signum() * (x.abs() - DEAD_ZONE * PEAK_STRAIN).max(0.0);
+                }
+                Some(Outside::Quadratic) => x += x * x / QUADRATIC_STRAIN,
+                _ => {}
             }
             if has(Effect::Hysteresis, sensor) {
                 let (beta, gamma, weight) = BOUC_WEN;
@@ -320,11 +390,24 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
                 x += weight * z;
             }
             let mut change = r0 * gf * x;
-            if bench.forms.gain_fade && sensor == 1 {
-                let (fraction, tau) = GAIN_FADE;
-                change *= 1.0 - fraction * (1.0 - (-t / tau).exp());
-            }
+            travel += de.abs();
+            change *= match outside {
+                Some(Outside::GainFade) => {
+                    let (fraction, tau) = GAIN_FADE;
+                    1.0 - fraction * (1.0 - (-t / (tau * bench.duration_s)).exp())
+                }
+                Some(Outside::GainStep) if t >= bench.duration_s / 2.0 => 1.0 - GAIN_STEP,
+                Some(Outside::GainCycles) => 1.0 - GAIN_CYCLES * travel / travel_total,
+                Some(Outside::GainSine) => {
+                    let (amplitude, period) = GAIN_SINE;
+                    1.0 + amplitude * (2.0 * PI * t / (period * bench.duration_s)).sin()
+                }
+                _ => 1.0,
+            };
             let mut ohm = r0 + change;
+            if outside == Some(Outside::OffsetStep) && felt.abs() > 0.5 * span_strain {
+                ohm += OFFSET_STEP * span_ohm;
+            }
             if has(Effect::Rate, sensor) {
                 let (reference, tau, size) = RATE;
                 rate += (de / dt - rate) * (1.0 - (-dt / tau).exp());
