@@ -72,23 +72,3 @@ pub trait Analysis: Serialize {
         serde_json::to_value(self)
     }
 }
-
-impl Placement<'_> {
-    /// `title` with the label in front (`Joint A: Candidates`), or alone on a page of its own.
-    pub fn heading(&self, title: &str) -> String {
-        if self.label.is_empty() {
-            title.to_owned()
-        } else {
-            format!("{}: {title}", self.label)
-        }
-    }
-
-    /// A figure's file name with the prefix in front (`joint-a-overlay-plant`).
-    pub fn figure(&self, name: &str) -> String {
-        if self.figure_prefix.is_empty() {
-            name.to_owned()
-        } else {
-            format!("{}{name}", self.figure_prefix)
-        }
-    }
-}

@@ -24,7 +24,7 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         outcome.samples,
         1.0 / outcome.dt_s
     ));
-    page.heading(at.heading("Result"));
+    page.heading(at.titled("Result"));
     if outcome.discovered.is_empty() {
         page.text(if outcome.ambiguous.is_empty() {
             "Nothing named: no candidate buys enough held-out evidence.".to_owned()
@@ -70,7 +70,7 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         ));
     }
     if !outcome.unexplained.is_empty() {
-        page.heading(at.heading("What the library does not explain"));
+        page.heading(at.titled("What the library does not explain"));
         page.text(format!(
             "After the named effects, generic regressors (a curve of any shape, plays, lags, \
              time) still buy at least {} nats of held-out evidence on these channels: a real \
@@ -92,7 +92,7 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         }
         page.table(table);
     }
-    page.heading(at.heading("Gap between simulation and measurement (held out)"));
+    page.heading(at.titled("Gap between simulation and measurement (held out)"));
     let mut gaps = Table::new([
         "channel",
         "on",
@@ -119,7 +119,7 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         ]);
     }
     page.table(gaps);
-    page.heading(at.heading("Noise model (frozen from the rest)"));
+    page.heading(at.titled("Noise model (frozen from the rest)"));
     let mut noise = Table::new(["channel", "σ at rest", "AR coefficients φ"]);
     for c in &outcome.channels {
         noise.row([
@@ -134,7 +134,7 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         ]);
     }
     page.table(noise);
-    page.heading(at.heading("Candidates"));
+    page.heading(at.titled("Candidates"));
     let mut cands = Table::new(["round", "channel", "effect", "shape", "evidence"]);
     for c in &outcome.candidates {
         cands.row([
@@ -166,7 +166,7 @@ fn channel_section(page: &mut Page, c: &super::ChannelReport, at: Placement<'_>)
         Channel::Plant => 1.0,
         Channel::Sensor(_) => 1e-3,
     };
-    page.heading(at.heading(&format!("Channel {name}")));
+    page.heading(at.titled(&format!("Channel {name}")));
     let mut places = Table::new([
         "situation",
         "share of held-out samples",
@@ -204,7 +204,7 @@ fn channel_section(page: &mut Page, c: &super::ChannelReport, at: Placement<'_>)
         held(&c.after),
         PALETTE[2],
     ));
-    page.figure(at.figure(&format!("overlay-{name}")), overlay, "Measured against the calibrated base model and the model with the named effects, on the held-out blocks only (the gaps between them are the training blocks).");
+    page.figure(at.figure_name(&format!("overlay-{name}")), overlay, "Measured against the calibrated base model and the model with the named effects, on the held-out blocks only (the gaps between them are the training blocks).");
     let diff = |m: &[f64]| -> Vec<f64> { c.measured.iter().zip(m).map(|(y, p)| y - p).collect() };
     let residual = Chart::new(
         format!("{name}: residual before and after (held-out samples)"),
@@ -222,7 +222,7 @@ fn channel_section(page: &mut Page, c: &super::ChannelReport, at: Placement<'_>)
         PALETTE[2],
     ));
     page.figure(
-        at.figure(&format!("residual-{name}")),
+        at.figure_name(&format!("residual-{name}")),
         residual,
         "The residual before and after; what remains after should look like the noise at rest.",
     );
