@@ -481,7 +481,7 @@ fn discover<'py>(
         Some(path) => Scenario::load(path).map_err(value_error)?,
         None => Scenario::default(),
     };
-    let (summary, text) = py
+    let (result, text) = py
         .detach(|| -> Result<_, String> {
             let resolved = base
                 .clone()
@@ -497,10 +497,11 @@ fn discover<'py>(
             )
             .map_err(|e| format!("discovering: {}", error_text(&e)))?;
             let text = discovery::scenario_text(&base, &recording, &design, &outcome)?;
-            Ok((discovery::Summary::of(&outcome), text))
+            Ok((discovery::DiscoverResult::new(outcome), text))
         })
         .map_err(message)?;
-    let out = to_python(py, &summary)?;
+    // The result's JSON, the one `dlw discover --json` prints, without the files' paths.
+    let out = to_python(py, &result)?;
     out.set_item("scenario_toml", text)?;
     Ok(out)
 }
