@@ -16,6 +16,7 @@
 //! --test discover_matrix -- --nocapture`.
 
 mod common;
+use common::discovery::{above, discover_json, gaps, named};
 use common::shipped_design;
 
 use std::path::Path;
@@ -82,11 +83,6 @@ impl Outcome {
     }
 }
 
-/// The gap above the noise floor: `√(RMSE² − floor²)`, 0 below it.
-fn above(rmse: f64, floor: f64) -> f64 {
-    (rmse * rmse - floor * floor).max(0.0).sqrt()
-}
-
 fn run(dir: &Path, case: &Case) -> Outcome {
     let bsn = case.design == "joint-c.toml";
     let duration = if bsn { "3000" } else { "300" };
@@ -131,44 +127,9 @@ fn run(dir: &Path, case: &Case) -> Outcome {
         String::from_utf8_lossy(&o.stderr)
     );
     let out = dir.join(format!("{name}-out"));
-    let o = common::dlw(&[
-        "discover",
-        "--design",
-        &design,
-        &rec.display().to_string(),
-        "-o",
-        &out.display().to_string(),
-        "--json",
-    ]);
-    assert!(
-        o.status.success(),
-        "{name}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let named = json["discovered"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|d| {
-            (
-                d["effect"].as_str().unwrap().to_owned(),
-                d["channel"].as_str().unwrap().to_owned(),
-            )
-        })
-        .collect();
-    let gaps = json["gaps"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|g| {
-            (
-                g["channel"].as_str().unwrap().to_owned(),
-                g["before"].as_f64().unwrap(),
-                g["after"].as_f64().unwrap(),
-            )
-        })
-        .collect();
+    let json = discover_json(&design, &rec, &out);
+    let named = named(&json);
+    let gaps = gaps(&json);
     // Nothing is written but the scenario and the report, and the scenario simulates.
     assert!(out.join("report.html").is_file() && out.join("scenario.toml").is_file());
     Outcome {

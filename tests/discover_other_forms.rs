@@ -8,6 +8,7 @@
 //! discover_other_forms -- --nocapture`.
 
 mod common;
+use common::discovery::{above, discover_json, gaps, named};
 use common::other_forms::{self, Bench, Effect};
 use common::shipped_design;
 
@@ -28,36 +29,11 @@ fn duration_s(design: &str) -> f64 {
 fn discover(dir: &Path, design: &str, bench: &Bench, name: &str) -> serde_json::Value {
     let rec = dir.join(name);
     other_forms::write_recording(Path::new(&shipped_design(design)), bench, &rec);
-    let out = dir.join(format!("{name}-out"));
-    let o = common::dlw(&[
-        "discover".as_ref(),
-        "--design".as_ref(),
-        shipped_design(design).as_ref(),
-        rec.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-        "--json".as_ref(),
-    ]);
-    assert!(
-        o.status.success(),
-        "discover {name} failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    serde_json::from_slice(&o.stdout).expect("discover --json prints JSON")
-}
-
-fn named(report: &serde_json::Value) -> Vec<(String, String)> {
-    report["discovered"]
-        .as_array()
-        .expect("a discovered array")
-        .iter()
-        .map(|d| {
-            (
-                d["effect"].as_str().unwrap().to_owned(),
-                d["channel"].as_str().unwrap().to_owned(),
-            )
-        })
-        .collect()
+    discover_json(
+        &shipped_design(design),
+        &rec,
+        &dir.join(format!("{name}-out")),
+    )
 }
 
 /// One recording: the design, the effect with its sensor (none: a clean control), the seed.
@@ -118,18 +94,7 @@ fn seen(dir: &Path, case: &Case) -> Seen {
     Seen {
         named: named(&report),
         flagged: !report["unexplained"].as_array().unwrap().is_empty(),
-        gaps: report["gaps"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|g| {
-                (
-                    g["channel"].as_str().unwrap().to_owned(),
-                    g["before"].as_f64().unwrap(),
-                    g["after"].as_f64().unwrap(),
-                )
-            })
-            .collect(),
+        gaps: gaps(&report),
     }
 }
 
@@ -141,11 +106,6 @@ impl Seen {
             .map(|g| (g.1, g.2))
             .unwrap()
     }
-}
-
-/// The part of an RMSE above the noise floor.
-fn above(rmse: f64, floor: f64) -> f64 {
-    (rmse * rmse - floor * floor).max(0.0).sqrt()
 }
 
 /// The acceptance figures on recordings from a generator discovery was not built on

@@ -8,6 +8,7 @@
 //! CI size runs one seed per out-of-library case; `DLW_DISCOVER_FULL=1` runs three.
 
 mod common;
+use common::discovery::{self, named};
 use common::other_forms::{self, Bench, Effect, Forms, Outside, Saturation};
 use common::shipped_design;
 
@@ -50,37 +51,12 @@ fn discover_on(dir: &Path, design: &str, bench: &Bench, name: &str) -> serde_jso
     let design = shipped_design(design);
     let rec = dir.join(name);
     other_forms::write_recording(Path::new(&design), bench, &rec);
-    let out = dir.join(format!("{name}-out"));
-    let o = common::dlw(&[
-        "discover".as_ref(),
-        "--design".as_ref(),
-        design.as_ref(),
-        rec.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-        "--json".as_ref(),
-    ]);
-    assert!(
-        o.status.success(),
-        "discover {name} failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    serde_json::from_slice(&o.stdout).unwrap()
+    discovery::discover_json(&design, &rec, &dir.join(format!("{name}-out")))
 }
 
 /// The (effect, channel) pairs a report names.
 fn pairs(report: &serde_json::Value) -> BTreeSet<(String, String)> {
-    report["discovered"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|d| {
-            (
-                d["effect"].as_str().unwrap().to_owned(),
-                d["channel"].as_str().unwrap().to_owned(),
-            )
-        })
-        .collect()
+    named(report).into_iter().collect()
 }
 
 fn expect(pairs: &[(&str, &str)]) -> BTreeSet<(String, String)> {

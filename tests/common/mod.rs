@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod designs;
+pub mod discovery;
 
 use std::ffi::OsStr;
 use std::path::Path;
