@@ -238,6 +238,61 @@ fn drift_is_time_not_history() {
     ]);
 }
 
+/// A material that creeps with two time constants (the other-forms generator's 3 s and 40 s)
+/// is `creep`, written with both; a rate response, a lag as fast as that creep's fast term, is
+/// never `creep` (a two-term creep fits it as well as the rate does, by its fast lag, and is
+/// named only when its slow lag clears the threshold on its own after the rate). Seed 505's
+/// creep was left ambiguous against hysteresis with one time constant; seed 204's rate was
+/// named `creep` by a two-term creep without the slow-lag test. The written scenario carries
+/// both time constants and simulates.
+#[test]
+fn a_creep_of_two_time_constants_is_creep_and_a_rate_is_not() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, effect, seed, want) in [
+        ("creep-505", Effect::Creep, 505, "creep"),
+        ("rate-204", Effect::Rate, 204, "rate"),
+    ] {
+        let report = discover_json(
+            dir.path(),
+            &bench(&[(effect, 1)], seed, Forms::default()),
+            name,
+        );
+        assert_eq!(pairs(&report), expect(&[(want, "sensor1")]), "{name}");
+        if effect != Effect::Creep {
+            continue;
+        }
+        // The generator's terms: fractions 0.05 (3 s) and 0.06 (40 s) of the change.
+        let p = &report["discovered"][0]["parameters"];
+        let [(fast_fraction, fast_tau), (fraction, tau)] = other_forms::CREEP;
+        let got = |key: &str| p[key].as_f64().unwrap();
+        assert!(
+            (got("tau_s") / tau).ln().abs() < 2f64.ln()
+                && (got("fast_tau_s") / fast_tau).ln().abs() < 3f64.ln(),
+            "{name}: {p}"
+        );
+        for (key, truth) in [("fraction", fraction), ("fast_fraction", fast_fraction)] {
+            assert!((got(key) / truth - 1.0).abs() < 0.3, "{name}: {key} in {p}");
+        }
+        let scenario = dir.path().join(format!("{name}-out/scenario.toml"));
+        let text = std::fs::read_to_string(&scenario).unwrap();
+        assert!(text.contains("fast_tau_s"), "{text}");
+        let out = dir.path().join(format!("{name}-resimulated"));
+        common::dlw_ok(&[
+            "simulate".as_ref(),
+            "--design".as_ref(),
+            shipped_design("joint-a.toml").as_ref(),
+            "--scenario".as_ref(),
+            scenario.as_os_str(),
+            "--protocol".as_ref(),
+            "random".as_ref(),
+            "--duration-s".as_ref(),
+            "20".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]);
+    }
+}
+
 /// The seven library effects: an out-of-library case must never be named as one of them.
 const LIBRARY: [&str; 7] = [
     "hysteresis",

@@ -335,6 +335,13 @@ pub fn discover(
             candidates.extend(scored.iter().cloned());
             match search.pick(ch, scored) {
                 Pick::Nothing => {}
+                // The sensors' candidates are built on the plant model's proxy: a plant
+                // effect is added first, and the sensors are scored on the rebuilt proxy next
+                // round, so that the plant's missing effect never reads as a sensor's.
+                Pick::Clear(top, runner) if ch == Channel::Plant => {
+                    best.push((top, runner));
+                    break;
+                }
                 Pick::Clear(top, runner) => best.push((top, runner)),
                 Pick::Ambiguous(a) => {
                     ambiguous.push(a);

@@ -122,13 +122,17 @@ impl ChannelModel {
         };
         for t in &self.terms {
             match t {
-                Term::Relaxation { tau_s } | Term::Creep { tau_s } => {
+                Term::Relaxation { tau_s } => {
                     columns.push(low_pass(&driver, *tau_s, data.dt_s));
-                    labels.push(if matches!(t, Term::Creep { .. }) {
-                        "creep"
-                    } else {
-                        "relaxation"
-                    });
+                    labels.push("relaxation");
+                }
+                Term::Creep { tau_s, fast_tau_s } => {
+                    columns.push(low_pass(&driver, *tau_s, data.dt_s));
+                    labels.push("creep");
+                    if let Some(f) = fast_tau_s {
+                        columns.push(low_pass(&driver, *f, data.dt_s));
+                        labels.push("creep_fast");
+                    }
                 }
                 Term::Hysteresis {
                     radii,

@@ -65,9 +65,16 @@ pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
             p.insert("signed".into(), if *signed { 1.0 } else { 0.0 });
             p.insert("smoothing_s".into(), *tau_s);
         }
-        Term::Creep { tau_s } => {
+        Term::Creep { tau_s, fast_tau_s } => {
             p.insert("fraction".into(), fitted.get("creep").unwrap_or(0.0) / gain);
             p.insert("tau_s".into(), *tau_s);
+            if let Some(f) = fast_tau_s {
+                p.insert(
+                    "fast_fraction".into(),
+                    fitted.get("creep_fast").unwrap_or(0.0) / gain,
+                );
+                p.insert("fast_tau_s".into(), *f);
+            }
         }
         Term::Drift { settle_tau_s } => {
             let c = fitted.get("drift").unwrap_or(0.0);
@@ -141,6 +148,7 @@ pub fn known(scenario: &Scenario) -> Known {
                 ch,
                 Term::Creep {
                     tau_s: s.creep.tau_s,
+                    fast_tau_s: (s.creep.fast_fraction != 0.0).then_some(s.creep.fast_tau_s),
                 },
             ));
         }
@@ -248,10 +256,14 @@ fn write_sensor(sensor: &mut SensorParams, ch: &ChannelReport) -> Result<(), Str
                     sensor.rate.reference_rate_per_s = LOG_REFERENCE_RATE;
                 }
             }
-            Term::Creep { tau_s } => {
+            Term::Creep { tau_s, fast_tau_s } => {
                 sensor.creep.enabled = true;
                 sensor.creep.fraction = f.get("creep").unwrap_or(0.0) / b;
                 sensor.creep.tau_s = *tau_s;
+                if let Some(fast) = fast_tau_s {
+                    sensor.creep.fast_fraction = f.get("creep_fast").unwrap_or(0.0) / b;
+                    sensor.creep.fast_tau_s = *fast;
+                }
             }
             Term::Drift { settle_tau_s } => {
                 let c = f.get("drift").unwrap_or(0.0);

@@ -312,6 +312,33 @@ impl<'a> Search<'a> {
         Some(scored)
     }
 
+    /// A creep of one time constant that leads a near tie is tested in the two-term form that
+    /// fits the training samples best ([`Term::two_term_creeps`]): a material creeps with
+    /// several time constants, and a rival must not be credited with what a second one
+    /// explains. `None` for other candidates, or when no two-term creep fits.
+    fn two_term(&self, top: &Candidate) -> Option<Candidate> {
+        if !matches!(
+            top.term,
+            Term::Creep {
+                fast_tau_s: None,
+                ..
+            }
+        ) {
+            return None;
+        }
+        let m = &self.models[&top.channel];
+        let (term, _) = Term::two_term_creeps()
+            .into_iter()
+            .filter_map(|t| Some((t.clone(), self.train_ss(m, &t)?)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))?;
+        Some(Candidate {
+            evidence: self.gain(m, &term)?,
+            shape: term.describe(),
+            term,
+            ..top.clone()
+        })
+    }
+
     /// Names channel `ch`'s winner among `scored` (best first) when it clears
     /// [`THRESHOLD_NATS`] and is clear of its rivals: ahead of the runner-up by [`CLEAR_RATIO`],
     /// or, against every contender closer than that, by nested evidence (the winner still
@@ -339,19 +366,27 @@ impl<'a> Search<'a> {
         }
         let m = &self.models[&ch];
         let ahead = runner.map_or(true, |(_, e)| top.evidence >= CLEAR_RATIO * e.max(0.0));
-        let clear = ahead
-            || scored
+        // Against every contender closer than the ratio: nested evidence, with a leading creep
+        // in its two-term form.
+        let settled = |term: &Term| {
+            scored
                 .iter()
                 .skip(1)
                 .filter(|c| c.evidence * CLEAR_RATIO > top.evidence)
                 .filter(rival)
                 .all(|c| {
-                    let top_after = self.gain(&m.with(c.term.clone()), &top.term);
-                    let rival_after = self.gain(&m.with(top.term.clone()), &c.term);
+                    let top_after = self.gain(&m.with(c.term.clone()), term);
+                    let rival_after = self.gain(&m.with(term.clone()), &c.term);
                     matches!((top_after, rival_after), (Some(t), Some(r)) if t >= THRESHOLD_NATS && r < THRESHOLD_NATS)
-                });
-        if clear {
-            Pick::Clear(top.clone(), runner)
+                })
+        };
+        let winner = if ahead || settled(&top.term) {
+            Some(top.clone())
+        } else {
+            self.two_term(top).filter(|two| settled(&two.term))
+        };
+        if let Some(winner) = winner {
+            Pick::Clear(winner, runner)
         } else {
             Pick::Ambiguous(Ambiguity {
                 channel: ch,
@@ -367,14 +402,29 @@ impl<'a> Search<'a> {
     /// The named effect's one continuous shape parameter, refined between its grid
     /// neighbours: a coarse width or time constant leaves a residual for which another effect
     /// would be named next on a long recording (Joint C's backlash at 3000 s: then
-    /// relaxation).
+    /// relaxation). A creep named with one time constant takes its two-term form
+    /// ([`Search::two_term`]) when the second time constant clears [`THRESHOLD_NATS`] over the
+    /// first: otherwise its fast part is left for `unexplained`, or for a rate named next.
     pub(super) fn refine(&self, winner: Candidate) -> Candidate {
         let m = &self.models[&winner.channel];
-        let ss = self.train_ss(m, &winner.term).unwrap_or(f64::INFINITY);
         let grid = Term::grid(winner.effect, self.span_of(winner.channel));
-        Candidate {
-            term: refine(winner.term.clone(), ss, &grid, &|t| self.train_ss(m, t)),
-            ..winner
+        let refined = |c: Candidate| {
+            let ss = self.train_ss(m, &c.term).unwrap_or(f64::INFINITY);
+            Candidate {
+                term: refine(c.term.clone(), ss, &grid, &|t| self.train_ss(m, t)),
+                ..c
+            }
+        };
+        let one = refined(winner);
+        match self.two_term(&one) {
+            Some(two)
+                if self
+                    .gain(&m.with(one.term.clone()), &two.term)
+                    .is_some_and(|e| e >= THRESHOLD_NATS) =>
+            {
+                refined(two)
+            }
+            _ => one,
         }
     }
 

@@ -8,7 +8,8 @@
 //! - **Sensor** (tracker angle → resistance): `R = c₀ + b·x + …` where `x` is the felt strain
 //!   (`±ε(θ)`, Eq. 3), or `ε_s·tanh(ε/ε_s)` with `saturation`; `hysteresis` adds plays
 //!   `play_ρ(x)` (a Prandtl-Ishlinskii model); `rate` adds `LP_τ(ẋ)` (signed) or
-//!   `x·log₁₀(1 + LP_τ(|ẋ|)/ṙ₀)` (log); `creep` adds `LP_τ(x)`; `drift` adds `t` or `1 − e^(−t/τ)`.
+//!   `x·log₁₀(1 + LP_τ(|ẋ|)/ṙ₀)` (log); `creep` adds `LP_τ(x)`, or `LP_τ(x)` and `LP_τf(x)` (a
+//!   material creeping with a slow and a fast time constant); `drift` adds `t` or `1 − e^(−t/τ)`.
 
 use serde::Serialize;
 
@@ -73,6 +74,13 @@ pub const STATIC_KNOTS_PER_SIDE: usize = 12;
 /// (tests/discover_unseen.rs, `saturation-Power`).
 pub const STATIC_KNOT_GRADING: f64 = 2.0;
 
+/// Slow time constants (s) of a two-term creep: at least six times its fast ones, so that the
+/// two columns are not one lag twice.
+pub const CREEP_SLOW_TAUS_S: [f64; 3] = [20.0, 40.0, 80.0];
+/// Fast time constants (s) of a two-term creep: the slow end of the signed rate's grid, whose
+/// lag it is (`Term::same_family`).
+pub const CREEP_FAST_TAUS_S: [f64; 2] = [1.0, 3.0];
+
 /// Reference strain rate of the log form (1/s), the simulator's default.
 pub const LOG_REFERENCE_RATE: f64 = 1e-3;
 
@@ -123,6 +131,9 @@ pub enum Term {
     Creep {
         /// Time constant (s).
         tau_s: f64,
+        /// A second, faster time constant (s) of [`CREEP_FAST_TAUS_S`], if any: a Prony series
+        /// of two terms.
+        fast_tau_s: Option<f64>,
     },
     /// `x·(t − t₀)`: the sensitivity changing linearly over the run.
     GainDrift,
@@ -146,6 +157,22 @@ impl Term {
             Term::Drift { .. } => Effect::Drift,
             Term::GainDrift => Effect::GainDrift,
         }
+    }
+
+    /// Creeps of two time constants ([`CREEP_SLOW_TAUS_S`] with a fast one of
+    /// [`CREEP_FAST_TAUS_S`]): not a grid of their own (their fast lag is the signed rate's and
+    /// their slow one fits a warm-up drift, so as a candidate they would win a rate with a
+    /// drift), but the form in which a leading one-term creep settles a near tie.
+    pub fn two_term_creeps() -> Vec<Term> {
+        CREEP_SLOW_TAUS_S
+            .iter()
+            .flat_map(|&tau_s| {
+                CREEP_FAST_TAUS_S.iter().map(move |&f| Term::Creep {
+                    tau_s,
+                    fast_tau_s: Some(f),
+                })
+            })
+            .collect()
     }
 
     /// The shapes searched for `effect`, given the span of the input (`stroke` span in mm for
@@ -186,7 +213,10 @@ impl Term {
                 .collect(),
             Effect::Creep => [5.0, 10.0, 20.0, 40.0, 80.0]
                 .iter()
-                .map(|&tau_s| Term::Creep { tau_s })
+                .map(|&tau_s| Term::Creep {
+                    tau_s,
+                    fast_tau_s: None,
+                })
                 .collect(),
             Effect::GainDrift => vec![Term::GainDrift],
             Effect::Drift => [None, Some(60.0), Some(150.0), Some(400.0)]
@@ -215,7 +245,7 @@ impl Term {
     pub fn scale(&self) -> Option<f64> {
         match *self {
             Term::Backlash { half_mm } => Some(half_mm),
-            Term::Relaxation { tau_s } | Term::Creep { tau_s } | Term::Rate { tau_s, .. } => {
+            Term::Relaxation { tau_s } | Term::Creep { tau_s, .. } | Term::Rate { tau_s, .. } => {
                 Some(tau_s)
             }
             Term::Saturation { strain } => Some(strain),
@@ -230,7 +260,7 @@ impl Term {
         match &mut t {
             Term::Backlash { half_mm: v }
             | Term::Relaxation { tau_s: v }
-            | Term::Creep { tau_s: v }
+            | Term::Creep { tau_s: v, .. }
             | Term::Rate { tau_s: v, .. }
             | Term::Saturation { strain: v } => *v = value,
             Term::Drift {
@@ -248,6 +278,7 @@ impl Term {
         let v = self.scale()?;
         let same_form = |t: &&Term| match (self, *t) {
             (Term::Rate { signed: a, .. }, Term::Rate { signed: b, .. }) => a == b,
+            (Term::Creep { fast_tau_s: a, .. }, Term::Creep { fast_tau_s: b, .. }) => a == b,
             _ => t.effect() == self.effect(),
         };
         let scales: Vec<f64> = grid
@@ -292,7 +323,14 @@ impl Term {
                 "{} form, smoothing {tau_s} s",
                 if *signed { "signed" } else { "log" }
             ),
-            Term::Creep { tau_s } => format!("τ = {tau_s} s"),
+            Term::Creep {
+                tau_s,
+                fast_tau_s: None,
+            } => format!("τ = {tau_s} s"),
+            Term::Creep {
+                tau_s,
+                fast_tau_s: Some(f),
+            } => format!("τ = {tau_s} s and {f} s"),
             Term::Drift { settle_tau_s: None } => "linear in time".to_owned(),
             Term::GainDrift => "sensitivity linear in time".to_owned(),
             Term::Drift {
@@ -376,7 +414,10 @@ mod tests {
 
     #[test]
     fn a_lag_of_the_strain_and_a_lag_of_its_rate_are_one_family() {
-        let creep = Term::Creep { tau_s: 10.0 };
+        let creep = Term::Creep {
+            tau_s: 10.0,
+            fast_tau_s: None,
+        };
         let signed = Term::Rate {
             signed: true,
             tau_s: 3.0,
@@ -420,11 +461,42 @@ mod tests {
         };
         assert_eq!(t.neighbours(&grid), Some((0.3, 3.0)));
         // At the grid's end, a factor of 2 beyond it.
-        let end = Term::Creep { tau_s: 80.0 };
+        let end = Term::Creep {
+            tau_s: 80.0,
+            fast_tau_s: None,
+        };
         assert_eq!(
             end.neighbours(&Term::grid(Effect::Creep, 0.01)),
             Some((40.0, 160.0))
         );
+        // A two-term creep refines its slow time constant alone, a factor of 2 each way (the
+        // grid has no two-term points), and keeps its fast one; its slow one is at least six
+        // times the fast.
+        let two = Term::Creep {
+            tau_s: 40.0,
+            fast_tau_s: Some(3.0),
+        };
+        assert_eq!(
+            two.neighbours(&Term::grid(Effect::Creep, 0.01)),
+            Some((20.0, 80.0))
+        );
+        assert_eq!(
+            two.with_scale(50.0),
+            Term::Creep {
+                tau_s: 50.0,
+                fast_tau_s: Some(3.0)
+            }
+        );
+        for t in Term::two_term_creeps() {
+            let Term::Creep {
+                tau_s,
+                fast_tau_s: Some(fast),
+            } = t
+            else {
+                panic!("{t:?}")
+            };
+            assert!(tau_s >= 6.0 * fast, "{t:?}");
+        }
         assert_eq!(Term::Drift { settle_tau_s: None }.neighbours(&grid), None);
         let moved = Term::Backlash { half_mm: 0.1 }.with_scale(0.2);
         assert_eq!(moved, Term::Backlash { half_mm: 0.2 });

@@ -281,7 +281,7 @@ pub enum SensorModelKind {
 /// | `saturation` | off, `strain = 0.02` | same | the paper's conclusion: saturation below 2 % |
 /// | `drift` | off, 0 Ω/s, 20 Ω/√s | 0 Ω/s, 0.7 Ω/√s | the spread of R0 over 3000 s (Section IV-A2): 1.10 kΩ (A), 0.038 kΩ (C) |
 /// | `rate` | off, `log`, 0.1 per decade, 1e-3 /s, 1 s; `signed`: 0.05 s·R0·GF | same | illustrative (the paper found no correlation) |
-/// | `creep` | off, 0.03, 30 s | same | illustrative (Section IV-A3: the resistance barely changed during holds) |
+/// | `creep` | off, 0.03, 30 s; second term 0, 3 s | same | illustrative (Section IV-A3: the resistance barely changed during holds) |
 /// | `gain_drift` | off, `fade_per_hour = 0.2` | same | illustrative: fatigue, the durability the paper's conclusion leaves open |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -466,7 +466,8 @@ impl Default for RateDependence {
 }
 
 /// Sensor creep (`[sensorN.creep]`): the resistance change grows by `fraction` of itself with
-/// time constant `tau_s` while the strain is held.
+/// time constant `tau_s` while the strain is held, and by `fast_fraction` more with
+/// `fast_tau_s` (a second Prony term; 0 by default: one time constant).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Creep {
@@ -477,6 +478,10 @@ pub struct Creep {
     pub fraction: f64,
     /// Time constant (s).
     pub tau_s: f64,
+    /// Relative growth of the second, faster term once settled.
+    pub fast_fraction: f64,
+    /// The second term's time constant (s).
+    pub fast_tau_s: f64,
 }
 
 impl Default for Creep {
@@ -485,6 +490,8 @@ impl Default for Creep {
             enabled: false,
             fraction: 0.03,
             tau_s: 30.0,
+            fast_fraction: 0.0,
+            fast_tau_s: 3.0,
         }
     }
 }
@@ -788,6 +795,8 @@ impl Scenario {
             );
             c.finite(&k("creep.fraction"), s.creep.fraction);
             c.positive(&k("creep.tau_s"), s.creep.tau_s);
+            c.finite(&k("creep.fast_fraction"), s.creep.fast_fraction);
+            c.positive(&k("creep.fast_tau_s"), s.creep.fast_tau_s);
         }
         for (i, s) in self.sensors().enumerate() {
             let table = |name: &str| format!("sensor{}.{name}", i + 1);

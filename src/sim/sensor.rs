@@ -14,7 +14,8 @@
 //!    - `signed`: `c·ṙ` is added, `ṙ` being the signed `dε/dt` through the same low-pass and
 //!      `c` in Ω·s: loading reads high, unloading low.
 //! 4. **Creep** (switchable): `c ← c + (φ·ΔR − c)·(1 − e^(−Δt/τ))` is added, so a held strain's
-//!    resistance change grows by `φ` with time constant `τ`.
+//!    resistance change grows by `φ` with time constant `τ`; a second term of its own `φ_f`
+//!    and `τ_f` is added the same way (a two-term Prony series).
 //! 5. **Gain drift** (switchable): `ΔR` is scaled by `1 − fade·t` (fatigue: the sensitivity
 //!    fades over the run), after the rate and before the creep.
 //! 6. **Baseline drift** (switchable): `rate·t + settle·(1 − e^(−t/τ)) + W(t)` is added, `W` a
@@ -61,9 +62,8 @@ struct Rate {
 
 #[derive(Debug, Clone)]
 struct Creep {
-    fraction: f64,
-    alpha: f64,
-    ohm: f64,
+    /// Per term: the fraction, the filter's weight per sample, and the term's resistance.
+    terms: [(f64, f64, f64); 2],
 }
 
 #[derive(Debug, Clone)]
@@ -147,9 +147,14 @@ impl Sensor {
                 .enabled
                 .then_some((params.gain_drift.fade_per_hour * dt_s / 3600.0, 0)),
             creep: params.creep.enabled.then(|| Creep {
-                fraction: params.creep.fraction,
-                alpha: alpha(params.creep.tau_s),
-                ohm: 0.0,
+                terms: [
+                    (params.creep.fraction, alpha(params.creep.tau_s), 0.0),
+                    (
+                        params.creep.fast_fraction,
+                        alpha(params.creep.fast_tau_s),
+                        0.0,
+                    ),
+                ],
             }),
             drift: params.drift.enabled.then(|| Drift {
                 rate_ohm_per_sample: params.drift.rate_ohm_per_s * dt_s,
@@ -194,8 +199,10 @@ impl Sensor {
         }
         let mut ohm = self.reference_ohm + change;
         if let Some(c) = &mut self.creep {
-            c.ohm += (c.fraction * change - c.ohm) * c.alpha;
-            ohm += c.ohm;
+            for (fraction, alpha, term_ohm) in &mut c.terms {
+                *term_ohm += (*fraction * change - *term_ohm) * *alpha;
+                ohm += *term_ohm;
+            }
         }
         if let Some(d) = &mut self.drift {
             ohm += d.linear_ohm + d.walk_ohm + d.settled_ohm;
@@ -302,6 +309,27 @@ mod tests {
         }
         let change = 215e3 * 15.3 * 0.01;
         assert_relative_eq!(r, 215e3 + 1.1 * change, max_relative = 1e-9);
+    }
+
+    #[test]
+    fn a_two_term_creep_adds_each_terms_share_of_a_held_change() {
+        let (a, _) = params(NotchStyle::Uan, |p| {
+            p.creep.enabled = true;
+            p.creep.fraction = 0.1;
+            p.creep.tau_s = 100.0;
+            p.creep.fast_fraction = 0.05;
+            p.creep.fast_tau_s = 1.0;
+        });
+        let mut s = sensor(&a, 1);
+        let steps = 500;
+        let mut r = 0.0;
+        for _ in 0..steps {
+            r = s.step(0.01);
+        }
+        let t = steps as f64 * DT;
+        let change = 215e3 * 15.3 * 0.01;
+        let grown = 0.1 * (1.0 - (-t / 100.0).exp()) + 0.05 * (1.0 - (-t / 1.0).exp());
+        assert_relative_eq!(r, 215e3 + (1.0 + grown) * change, max_relative = 1e-9);
     }
 
     #[test]
