@@ -149,7 +149,10 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     page.text(
         "Each candidate's shape is its best point on the search grid; a named effect's width, \
          strain or time constant is then refined between the grid points (its parameters \
-         under Result).",
+         under Result). A creep may be named with two time constants (fast_tau_s and \
+         fast_fraction): in that form when it settles a near tie the one-term creep leads, or \
+         when its second term adds the threshold over the first; its evidence under Result is \
+         then that form's.",
     );
     for c in &outcome.channels {
         channel_section(page, c, at);
