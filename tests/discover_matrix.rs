@@ -19,8 +19,8 @@ mod common;
 use common::discovery::{above, discover_json, gaps, named};
 use common::shipped_design;
 
+use rayon::prelude::*;
 use std::path::Path;
-use std::sync::Mutex;
 
 /// Effect sizes, per joint (`docs/discovery.md` says why these).
 fn scenario(effect: &str, bsn: bool) -> String {
@@ -203,19 +203,10 @@ fn discovery_matrix() {
         });
     }
     let dir = tempfile::tempdir().unwrap();
-    let queue = Mutex::new(cases.iter());
-    let results = Mutex::new(Vec::new());
-    std::thread::scope(|scope| {
-        for _ in 0..2 {
-            scope.spawn(|| loop {
-                let next = queue.lock().unwrap().next();
-                let Some(case) = next else { break };
-                let outcome = run(dir.path(), case);
-                results.lock().unwrap().push((case, outcome));
-            });
-        }
-    });
-    let results = results.into_inner().unwrap();
+    let results: Vec<(&Case, Outcome)> = cases
+        .par_iter()
+        .map(|case| (case, run(dir.path(), case)))
+        .collect();
     let twin = |case: &Case| {
         results
             .iter()

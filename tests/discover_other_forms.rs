@@ -12,8 +12,8 @@ use common::discovery::{above, discover_json, gaps, named};
 use common::other_forms::{self, Bench, Effect};
 use common::shipped_design;
 
+use rayon::prelude::*;
 use std::path::Path;
-use std::sync::Mutex;
 
 /// Recording length (s): Joint A's; Joint C's insensitive sensor (GF 1.28) gets the paper's
 /// 3000 s random run, as in `tests/discover_matrix.rs`.
@@ -150,19 +150,10 @@ fn discover_meets_the_acceptance_figures_on_other_functional_forms() {
         }
     }
     let dir = tempfile::tempdir().unwrap();
-    let queue = Mutex::new(cases.iter());
-    let results = Mutex::new(Vec::new());
-    std::thread::scope(|scope| {
-        for _ in 0..2 {
-            scope.spawn(|| loop {
-                let next = queue.lock().unwrap().next();
-                let Some(case) = next else { break };
-                let s = seen(dir.path(), case);
-                results.lock().unwrap().push((*case, s));
-            });
-        }
-    });
-    let results = results.into_inner().unwrap();
+    let results: Vec<(Case, Seen)> = cases
+        .par_iter()
+        .map(|case| (*case, seen(dir.path(), case)))
+        .collect();
     let twin = |case: &Case| {
         results
             .iter()

@@ -1,7 +1,8 @@
 //! `dlw discover` on forms the other-forms generator did not have before (issue 19): memoryless
 //! saturations of four shapes, asymmetric soft backlash, relaxation and backlash at several
 //! sizes with nothing on the sensor, a drift that grows as √t, a rate with a drift, and eight
-//! effects outside the library on Joint A and on both sensors of Joint C. Every case of a
+//! effects outside the library on Joint A and on both sensors of Joint C, and a creep of two
+//! time constants against a rate. Every case of a
 //! library effect asserts the exact set of names: a wrong name is the failure that costs a
 //! researcher most, and a name on a channel the effect is not on is a wrong name.
 //!
@@ -404,17 +405,7 @@ fn the_simulators_gain_drift_is_named() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let out = dir.path().join("out");
-    let o = common::dlw(&[
-        "discover".as_ref(),
-        "--design".as_ref(),
-        design.as_ref(),
-        rec.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-        "--json".as_ref(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let report = discovery::discover_json(&design, &rec, &out);
     assert_eq!(
         pairs(&report),
         expect(&[("gain_drift", "sensor1")]),
