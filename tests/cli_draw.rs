@@ -97,3 +97,40 @@ fn a_failed_output_leaves_no_other_file() {
         "left files behind"
     );
 }
+
+/// Under `SOURCE_DATE_EPOCH` a drawing is the same bytes every time (its dates are that instant
+/// and its GUIDs a digest of it); without it, the GUIDs are random; a value that is not whole
+/// seconds is refused and nothing is written.
+#[test]
+fn source_date_epoch_makes_the_dxf_reproducible() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = common_designs::shipped()[0].clone();
+    let draw = |name: &str, epoch: Option<&str>| {
+        let path = dir.path().join(name);
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_dlw"));
+        c.arg("draw").arg(&design).arg("--dxf").arg(&path);
+        match epoch {
+            Some(e) => c.env("SOURCE_DATE_EPOCH", e),
+            None => c.env_remove("SOURCE_DATE_EPOCH"),
+        };
+        (c.output().unwrap(), path)
+    };
+    let (o1, a) = draw("a.dxf", Some("1764115200"));
+    let (o2, b) = draw("b.dxf", Some("1764115200"));
+    assert!(o1.status.success() && o2.status.success());
+    let (a, b) = (std::fs::read(a).unwrap(), std::fs::read(b).unwrap());
+    assert_eq!(a, b, "two drawings under one SOURCE_DATE_EPOCH differ");
+    let text = String::from_utf8(a).unwrap();
+    // 2025-11-26 00:00 UTC, as the dxf crate writes a Julian date.
+    assert!(
+        text.contains("$TDUCREATE\r\n 40\r\n2461006.0\r\n"),
+        "no epoch date"
+    );
+    let (_, c) = draw("c.dxf", None);
+    let (_, d) = draw("d.dxf", None);
+    assert_ne!(std::fs::read(c).unwrap(), std::fs::read(d).unwrap());
+    let (bad, path) = draw("bad.dxf", Some("yesterday"));
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("SOURCE_DATE_EPOCH = \"yesterday\""));
+    assert!(!path.exists());
+}

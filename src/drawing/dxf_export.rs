@@ -29,6 +29,15 @@ pub enum DxfExportError {
     /// The `dxf` crate refused the drawing.
     #[error("cannot encode the DXF drawing: {0}")]
     Encode(String),
+    /// `SOURCE_DATE_EPOCH` is set but is not a time the drawing can carry.
+    #[error(
+        "SOURCE_DATE_EPOCH = {value:?} is not whole seconds since 1970 from 0 to 253402300799 \
+         (the drawing's dates come from it when it is set)"
+    )]
+    SourceDateEpoch {
+        /// The variable's value.
+        value: String,
+    },
     /// A list is too long for DXF's 16-bit integers.
     #[error("{what} count {count} is more than a DXF drawing can number (limit 32767)")]
     TooMany {
@@ -55,6 +64,15 @@ pub fn layout_to_dxf(layout: &Layout, clearance_mm: f64) -> Result<Vec<u8>, DxfE
     drawing.header.version = AcadVersion::R2000;
     drawing.header.default_drawing_units = Units::Millimeters;
     drawing.header.drawing_units = DrawingUnits::Metric;
+    let reproducible = source_date_epoch()?;
+    if let Some(when) = reproducible {
+        drawing.header.creation_date = when.into();
+        drawing.header.creation_date_universal = when;
+        drawing.header.update_date = when.into();
+        drawing.header.update_date_universal = when;
+        drawing.header.fingerprint_guid = uuid::Uuid::nil();
+        drawing.header.version_guid = uuid::Uuid::nil();
+    }
     drawing.add_app_id(AppId {
         name: APP_ID.to_string(),
         ..Default::default()
@@ -92,12 +110,56 @@ pub fn layout_to_dxf(layout: &Layout, clearance_mm: f64) -> Result<Vec<u8>, DxfE
             0.0,
         );
     }
+    let mut text = save(&drawing)?;
+    if reproducible.is_some() {
+        // The GUIDs, random by default, become a digest of the drawing itself.
+        let guid = content_guid(&text);
+        drawing.header.fingerprint_guid = guid;
+        drawing.header.version_guid = guid;
+        text = save(&drawing)?;
+    }
+    Ok(add_table_handles(&text).into_bytes())
+}
+
+/// The drawing's DXF text as the `dxf` crate writes it.
+fn save(drawing: &dxf::Drawing) -> Result<String, DxfExportError> {
     let mut bytes = Vec::new();
     drawing
         .save(&mut bytes)
         .map_err(|e| DxfExportError::Encode(e.to_string()))?;
-    let text = String::from_utf8(bytes).map_err(|e| DxfExportError::Encode(e.to_string()))?;
-    Ok(add_table_handles(&text).into_bytes())
+    String::from_utf8(bytes).map_err(|e| DxfExportError::Encode(e.to_string()))
+}
+
+/// A version-4-shaped GUID made of the first 16 bytes of the text's SHA-256: the same drawing
+/// gets the same GUID, another drawing almost surely another.
+fn content_guid(text: &str) -> uuid::Uuid {
+    use sha2::{Digest, Sha256};
+    let digest = Sha256::digest(text.as_bytes());
+    let mut bytes = [0u8; 16];
+    bytes.copy_from_slice(&digest[..16]);
+    uuid::Builder::from_random_bytes(bytes).into_uuid()
+}
+
+/// The instant `SOURCE_DATE_EPOCH` names, when it is set.
+///
+/// The drawing's creation and update dates (`$TDCREATE`, `$TDUPDATE` and their universal
+/// twins) are the time it was written and its GUIDs (`$FINGERPRINTGUID`, `$VERSIONGUID`) are
+/// random, unless `SOURCE_DATE_EPOCH` (the reproducible-builds convention) is set: then the
+/// dates are that instant and the GUIDs a digest of the drawing, so that the same design gives
+/// the same bytes. The local dates are that instant in the machine's time zone, as the `dxf`
+/// crate writes them.
+fn source_date_epoch() -> Result<Option<chrono::DateTime<chrono::Utc>>, DxfExportError> {
+    let Some(raw) = std::env::var_os("SOURCE_DATE_EPOCH") else {
+        return Ok(None);
+    };
+    let value = raw.to_string_lossy().into_owned();
+    value
+        .parse::<i64>()
+        .ok()
+        .filter(|s| (0..=253_402_300_799).contains(s))
+        .and_then(|s| chrono::DateTime::from_timestamp(s, 0))
+        .map(Some)
+        .ok_or(DxfExportError::SourceDateEpoch { value })
 }
 
 /// Gives every `TABLE` head a handle (group code 5) and moves `$HANDSEED` past them.
