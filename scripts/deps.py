@@ -4,7 +4,8 @@
     scripts/deps.py [--dot FILE] [--json]
 
 A module is a top-level folder or file of src/ (`fit`, `stats`, ...). An edge A -> B means a
-file of A names `crate::B` (in a `use` or a path). Prints the modules by level (a module's
+file of A names `crate::B` (in a `use` or a path; `dlw::B` in the binary's `cli`), tests
+included. Prints the modules by level (a module's
 level is one above the highest level it uses; the floors are level 0), the edge count, and
 every pair of modules that use each other or cycle. With --dot, writes a Graphviz file of the
 graph, grouped by level (docs/architecture.md shows it). Comments and doc comments do not count
@@ -17,9 +18,9 @@ import sys
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src")
 SKIP = {"main.rs", "lib.rs"}
-PATH = re.compile(r"\bcrate::([a-z_][a-z0-9_]*)")
+PATH = re.compile(r"\b(?:crate|dlw)::([a-z_][a-z0-9_]*)")
 # `use crate::{a::X, b::Y}` groups: every first segment inside the braces.
-GROUP = re.compile(r"\bcrate::\{([^;]*?)\};", re.S)
+GROUP = re.compile(r"\b(?:crate|dlw)::\{([^;]*?)\};", re.S)
 
 
 def modules():

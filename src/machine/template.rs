@@ -130,6 +130,13 @@ mod tests {
     };
 
     #[test]
+    fn numbers_lose_trailing_zeros_and_never_read_negative_zero() {
+        assert_eq!(format_number(-0.00001), "0");
+        assert_eq!(format_number(160.0), "160");
+        assert_eq!(format_number(0.16), "0.16");
+    }
+
+    #[test]
     fn renders_placeholders_and_refuses_unknown_ones() {
         let t = Template::parse("S{power_mw}", &["power_mw", "power_w"]).unwrap();
         assert_eq!(t.render(&VALUES), vec!["S160"]);

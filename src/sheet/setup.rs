@@ -314,42 +314,6 @@ fn mandrel_line(od: f64, id: f64) -> String {
 mod tests {
     use super::*;
 
-    fn sheet_for(design: &str) -> String {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("designs")
-            .join(design);
-        let file = crate::design::DesignFile::read(&path).unwrap();
-        let checked = crate::rules::check_file(file).unwrap();
-        let sets = crate::process::ProcessLibrary::beside(&path)
-            .resolve(&checked.design.file.process)
-            .unwrap();
-        let profile = crate::machine::MachineLibrary::beside(&path)
-            .find(None)
-            .unwrap();
-        crate::job::make_job(&checked.design, &checked.layout, &sets, &profile, "x.ngc")
-            .unwrap()
-            .sheet
-    }
-
-    #[test]
-    fn text_matches_the_joints_style_and_names_both_lengths() {
-        let c = sheet_for("joint-c.toml");
-        assert!(c.contains("This is a BSN joint"), "{c}");
-        assert!(!c.contains("UAN"), "a BSN sheet mentions UAN:\n{c}");
-        assert!(c.contains("two backbones run along A90 and A270"));
-        let a = sheet_for("joint-a.toml");
-        assert!(a.contains("(this is a UAN joint)"), "{a}");
-        assert!(!a.contains("BSN"), "a UAN sheet mentions BSN:\n{a}");
-        for sheet in [&a, &c] {
-            assert!(
-                sheet.contains("part length 13.3 mm beside bending length L = 9.5 mm"),
-                "{sheet}"
-            );
-            assert!(sheet.contains("## Laser safety"));
-            assert!(sheet.contains("a dwell of 5 s"));
-        }
-    }
-
     #[test]
     fn mandrels_are_the_papers_for_its_tubes() {
         // Joint B/C/D: 1.6 mm OD, r_i = 0.61 → bore 1.22 mm; Joint A: 2.48 mm OD, bore 1.75 mm.
