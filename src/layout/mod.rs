@@ -82,6 +82,17 @@ pub struct Notch {
     pub outline: Vec<Polygon<f64>>,
 }
 
+impl Notch {
+    /// How the notch is named in messages: `notch 4`, or `notch 4 (side 1)` on a BSN joint.
+    pub fn label(&self, bsn: bool) -> String {
+        if bsn {
+            format!("notch {} (side {})", self.level + 1, self.side)
+        } else {
+            format!("notch {}", self.level + 1)
+        }
+    }
+}
+
 /// A laser-written line.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trace {

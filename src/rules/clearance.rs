@@ -21,7 +21,6 @@ use geo::{ConvexHull, Coord, LineString, Polygon};
 
 use crate::layout::Layout;
 
-use super::notch_layout::notch_label;
 use super::parts::{closest_on_cylinder, join_pieces, polyline_length, sub_polyline, Part};
 use super::Violation;
 
@@ -89,7 +88,7 @@ fn cuts(layout: &Layout) -> Vec<Part> {
     let mut cuts: Vec<Part> = layout
         .notches
         .iter()
-        .map(|n| Part::from_polygons(&n.outline, &notch_label(n, bsn)))
+        .map(|n| Part::from_polygons(&n.outline, &n.label(bsn)))
         .collect();
     cuts.push(Part::from_lines(&layout.parting, |_| {
         "the parting cut".into()

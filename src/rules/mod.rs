@@ -45,8 +45,6 @@ use crate::layout::Layout;
 pub use drawing::{check_drawing, check_imported, CheckedDrawing, Derived, DrawingReport};
 /// How far the joint length may differ from the notch pattern (mm).
 pub use length::LENGTH_TOLERANCE_MM;
-/// How a notch is named in messages.
-pub(crate) use notch_layout::notch_label;
 /// A broken design rule, and a warning.
 pub use violation::{Violation, Warning};
 /// The tube wall against the cutting sets' `min_wall_mm`.

@@ -12,19 +12,10 @@
 
 use geo::BoundingRect;
 
-use crate::layout::{Layout, Notch};
+use crate::layout::Layout;
 
 use super::parts::{closest_on_cylinder, Part};
 use super::Violation;
-
-/// How a notch is named in messages: `notch 4`, or `notch 4 (side 1)` on a BSN joint.
-pub(crate) fn notch_label(notch: &Notch, bsn: bool) -> String {
-    if bsn {
-        format!("notch {} (side {})", notch.level + 1, notch.side)
-    } else {
-        format!("notch {}", notch.level + 1)
-    }
-}
 
 /// Checks the notches of `layout`.
 pub(crate) fn check(layout: &Layout, out: &mut Vec<Violation>) {
@@ -32,7 +23,7 @@ pub(crate) fn check(layout: &Layout, out: &mut Vec<Violation>) {
     let kerf_mm = layout.kerf_mm;
     let mut boxes: Vec<(f64, f64, String, Part)> = Vec::new();
     for notch in &layout.notches {
-        let label = notch_label(notch, bsn);
+        let label = notch.label(bsn);
         let (lo, hi) = notch
             .outline
             .iter()
@@ -103,6 +94,7 @@ mod tests {
 
     use super::*;
     use crate::design::Design;
+    use crate::layout::Notch;
 
     fn joint_a() -> Layout {
         let d = Design::from_toml(include_str!("../../designs/joint-a.toml")).unwrap();

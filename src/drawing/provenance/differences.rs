@@ -9,7 +9,6 @@
 use geo::{Area, BoundingRect, LineString};
 
 use crate::layout::{Layout, Notch, Trace};
-use crate::rules::notch_label;
 
 /// Lines are ASCII: the program header carries them as G-code comments.
 ///
@@ -46,7 +45,7 @@ impl NotchBox {
             });
         }
         Some(Self {
-            label: notch_label(notch, bsn),
+            label: notch.label(bsn),
             x,
             s: s?,
             area_mm2: notch.outline.iter().map(|p| p.unsigned_area()).sum(),
