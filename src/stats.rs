@@ -1,4 +1,5 @@
-//! The shared statistics: [`min_max`], [`moments`], [`slope`], [`rmse`], [`median`].
+//! The shared statistics: [`min_max`], [`moments`], [`slope`], [`rmse`], [`median`], and
+//! linear interpolation in a time series ([`interpolate`], [`interpolate_held`]).
 //!
 //! # NaN policy (one for every function here)
 //! A value that is not finite (NaN, ±∞) is **skipped**, and in the paired functions
@@ -141,9 +142,78 @@ pub fn std_dev(v: &[f64]) -> Option<f64> {
     Some((ss / (n - 1) as f64).sqrt())
 }
 
+/// `values` (at increasing `time_s`) linearly interpolated at `t`; `None` outside
+/// `[time_s[0], time_s[last]]` or for an empty series. At a sample's own time, its value.
+///
+/// The interpolation is not subject to the NaN policy above: it returns what lies between the
+/// two samples around `t`, as they are.
+pub fn interpolate(time_s: &[f64], values: &[f64], t: f64) -> Option<f64> {
+    let (&first, &last) = (time_s.first()?, time_s.last()?);
+    if !(first..=last).contains(&t) {
+        return None;
+    }
+    // The first sample at or after t.
+    let i = time_s.partition_point(|&x| x < t);
+    if time_s[i] == t || i == 0 {
+        return values.get(i).copied();
+    }
+    let (t0, t1) = (time_s[i - 1], time_s[i]);
+    let w = (t - t0) / (t1 - t0);
+    Some(values[i - 1] + w * (values[i] - values[i - 1]))
+}
+
+/// As [`interpolate`], with the first value held before the series and the last after it;
+/// `None` only for an empty series.
+pub fn interpolate_held(time_s: &[f64], values: &[f64], t: f64) -> Option<f64> {
+    let (&first, &last) = (time_s.first()?, time_s.last()?);
+    if t < first {
+        values.first().copied()
+    } else if t > last {
+        values.get(time_s.len() - 1).copied()
+    } else {
+        interpolate(time_s, values, t)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn interpolates_inside_and_refuses_outside() {
+        let t = [0.0, 1.0, 2.0];
+        let v = [0.0, 10.0, 30.0];
+        let table = [
+            (0.0, Some(0.0)),
+            (0.25, Some(2.5)),
+            (1.0, Some(10.0)),
+            (1.5, Some(20.0)),
+            (2.0, Some(30.0)),
+            (-0.1, None),
+            (2.1, None),
+        ];
+        for (x, want) in table {
+            assert_eq!(interpolate(&t, &v, x), want, "{x}");
+        }
+        assert_eq!(interpolate(&[], &[], 0.0), None);
+    }
+
+    #[test]
+    fn interpolation_between_at_and_beyond_the_samples() {
+        let (t, v) = ([0.0, 1.0, 3.0], [10.0, 20.0, 0.0]);
+        assert_eq!(interpolate(&t, &v, 0.5), Some(15.0));
+        assert_eq!(interpolate(&t, &v, 2.0), Some(10.0));
+        assert_eq!(interpolate(&t, &v, 1.0), Some(20.0));
+        assert_eq!(interpolate(&t, &v, 3.0), Some(0.0));
+        assert_eq!(interpolate(&t, &v, -0.1), None);
+        assert_eq!(interpolate(&t, &v, 3.1), None);
+        assert_eq!(interpolate(&t, &v, f64::NAN), None);
+        assert_eq!(interpolate(&[], &[], 0.0), None);
+        assert_eq!(interpolate_held(&t, &v, -5.0), Some(10.0));
+        assert_eq!(interpolate_held(&t, &v, 5.0), Some(0.0));
+        assert_eq!(interpolate_held(&t, &v, 2.0), Some(10.0));
+        assert_eq!(interpolate_held(&[], &[], 2.0), None);
+    }
 
     const NAN: f64 = f64::NAN;
     const INF: f64 = f64::INFINITY;

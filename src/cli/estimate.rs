@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use dlw::fluoro::read_angles;
 use dlw::output::write_atomic;
+use dlw::recording::read_angles;
 use dlw::recording::Recording;
 use dlw::replay::{load_config, replay, replay_against_truth, Metrics, TruthMetrics};
 use dlw_estimator::FilterConfig;

@@ -123,25 +123,11 @@ fn read_profile(path: &Path) -> Result<Vec<(f64, f64)>, ControlError> {
 }
 
 /// The piecewise-linear profile through `knots` (strictly increasing times) at `t = i/hz`,
-/// held before the first and after the last knot.
+/// held before the first and after the last knot (0 without knots).
 fn interpolate(knots: &[(f64, f64)], samples: usize, hz: f64) -> Vec<f64> {
-    let mut next = 0;
+    let (time_s, values): (Vec<f64>, Vec<f64>) = knots.iter().copied().unzip();
     (0..samples)
-        .map(|i| {
-            let t = i as f64 / hz;
-            while next < knots.len() && knots[next].0 <= t {
-                next += 1;
-            }
-            match (next.checked_sub(1), knots.get(next)) {
-                (Some(a), Some(&(tb, vb))) => {
-                    let (ta, va) = knots[a];
-                    va + (t - ta) / (tb - ta) * (vb - va)
-                }
-                (None, Some(&(_, v))) => v,
-                (Some(a), None) => knots[a].1,
-                (None, None) => 0.0,
-            }
-        })
+        .map(|i| crate::stats::interpolate_held(&time_s, &values, i as f64 / hz).unwrap_or(0.0))
         .collect()
 }
 

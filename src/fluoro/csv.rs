@@ -1,4 +1,5 @@
-//! `angles.csv`: what `dlw fluoro` writes and `dlw estimate --truth` reads.
+//! `angles.csv`: what `dlw fluoro` writes and `dlw estimate --truth` reads
+//! (`crate::recording::read_angles`, beside the recordings it is compared with).
 //!
 //! ```text
 //! time_s,angle_deg,raw_deg,area_px,axis_ratio,flags
@@ -12,9 +13,7 @@
 //! so a ground truth made by another tool can be compared as well; a row with an empty
 //! `angle_deg` is a frame without an angle and is left out.
 
-use std::path::{Path, PathBuf};
-
-use super::{FluoroError, Series};
+use super::Series;
 use crate::fixed::push_fixed;
 
 /// The header `dlw fluoro` writes.
@@ -51,116 +50,11 @@ pub fn angles_csv_bytes(series: &Series) -> Vec<u8> {
     out
 }
 
-/// A ground-truth angle series read from a CSV.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct TruthAngles {
-    /// The file read.
-    pub path: PathBuf,
-    /// Times of the frames with an angle (s), increasing.
-    pub time_s: Vec<f64>,
-    /// Their angles (°).
-    pub angle_deg: Vec<f64>,
-    /// Rows without an angle (skipped frames).
-    pub skipped: usize,
-}
-
-/// Reads a ground-truth CSV.
-///
-/// # Errors
-/// [`FluoroError::Read`], or see [`parse_angles`].
-pub fn read_angles(path: &Path) -> Result<TruthAngles, FluoroError> {
-    let text = crate::output::read_limited(path, crate::limits::MAX_RECORDING_BYTES).map_err(
-        |source| FluoroError::Read {
-            path: path.to_path_buf(),
-            source,
-        },
-    )?;
-    parse_angles(&text, path)
-}
-
-/// Parses a ground-truth CSV's text; `path` names it in errors.
-///
-/// # Errors
-/// [`FluoroError::CsvLine`] for a header without `time_s` or `angle_deg`, a row with the wrong
-/// number of fields, a field that is not a finite number, a time that does not increase;
-/// [`FluoroError::CsvEmpty`] when no row has an angle.
-pub fn parse_angles(text: &str, path: &Path) -> Result<TruthAngles, FluoroError> {
-    let bad = |line: usize, reason: String| FluoroError::CsvLine {
-        path: path.to_path_buf(),
-        line,
-        reason,
-    };
-    let mut lines = text.lines().enumerate();
-    let header: Vec<&str> = lines
-        .next()
-        .map_or("", |(_, l)| l)
-        .split(',')
-        .map(str::trim)
-        .collect();
-    let column = |name: &str| {
-        header.iter().position(|h| *h == name).ok_or_else(|| {
-            bad(
-                1,
-                format!(
-                    "header {:?} has no {name} column",
-                    crate::limits::quote(&header.join(","))
-                ),
-            )
-        })
-    };
-    let (ti, ai) = (column("time_s")?, column("angle_deg")?);
-    let mut truth = TruthAngles {
-        path: path.to_path_buf(),
-        ..TruthAngles::default()
-    };
-    let mut previous: Option<f64> = None;
-    for (i, text) in lines {
-        let line = i + 1;
-        if text.trim().is_empty() {
-            continue;
-        }
-        let fields: Vec<&str> = text.split(',').map(str::trim).collect();
-        if fields.len() != header.len() {
-            return Err(bad(
-                line,
-                format!("has {} fields, expected {}", fields.len(), header.len()),
-            ));
-        }
-        let number = |name: &str, f: &str| -> Result<f64, FluoroError> {
-            f.parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(line, format!("{name} = {f:?} is not a finite number")))
-        };
-        let t = number("time_s", fields[ti])?;
-        if let Some(p) = previous {
-            if t <= p {
-                return Err(bad(
-                    line,
-                    format!("time_s = {t} does not increase (previous row: {p})"),
-                ));
-            }
-        }
-        previous = Some(t);
-        if fields[ai].is_empty() {
-            truth.skipped += 1;
-            continue;
-        }
-        truth.time_s.push(t);
-        truth.angle_deg.push(number("angle_deg", fields[ai])?);
-    }
-    if truth.time_s.is_empty() {
-        return Err(FluoroError::CsvEmpty {
-            path: path.to_path_buf(),
-        });
-    }
-    Ok(truth)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::fluoro::{Baseline, Row};
+    use std::path::Path;
 
     #[test]
     fn writes_and_reads_back() {
@@ -202,37 +96,10 @@ mod tests {
         assert_eq!(lines[0], ANGLES_HEADER);
         assert_eq!(lines[1], "0.000000,0.2500,10.5000,2140,6.412,none");
         assert_eq!(lines[2], "0.500000,,,3,1.000,too_small|edge");
-        let t = parse_angles(&text, Path::new("a.csv")).unwrap();
+        let t = crate::recording::parse_angles(&text, Path::new("a.csv")).unwrap();
         assert_eq!(
             (t.time_s, t.angle_deg, t.skipped),
             (vec![0.0, 1.0], vec![0.25, -3.0], 1)
         );
-    }
-
-    #[test]
-    fn names_bad_lines() {
-        let table = [
-            (
-                "time,angle\n0,1\n",
-                "line 1: header \"time,angle\" has no time_s",
-            ),
-            ("time_s,angle_deg\n0,1,2\n", "line 2: has 3 fields"),
-            ("time_s,angle_deg\n0,x\n", "line 2: angle_deg = \"x\""),
-            (
-                "time_s,angle_deg\n0,1\n0,2\n",
-                "line 3: time_s = 0 does not increase",
-            ),
-            ("time_s,angle_deg\n0,NaN\n", "not a finite number"),
-            ("time_s,angle_deg\n0,\n", "has no frame with an angle"),
-        ];
-        for (text, needle) in table {
-            let err = parse_angles(text, Path::new("a.csv"))
-                .unwrap_err()
-                .to_string();
-            assert!(err.contains(needle), "{text:?}: {err}");
-        }
-        // Another tool's CSV: extra columns, any order.
-        let t = parse_angles("frame,angle_deg,time_s\n1,2.5,0.5\n", Path::new("b.csv")).unwrap();
-        assert_eq!((t.time_s, t.angle_deg), (vec![0.5], vec![2.5]));
     }
 }

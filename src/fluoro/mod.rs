@@ -55,7 +55,7 @@ pub use component::{largest_component, Component};
 /// The region of a frame the pin is searched in.
 pub use crop::Crop;
 /// `angles.csv`, written and read.
-pub use csv::{angles_csv_bytes, parse_angles, read_angles, TruthAngles, ANGLES_HEADER};
+pub use csv::{angles_csv_bytes, ANGLES_HEADER};
 /// The second-moment ellipse.
 pub use ellipse::Ellipse;
 /// A folder of frames analyzed in name order.
@@ -219,30 +219,6 @@ pub enum FluoroError {
         name: String,
         /// The encoder's message.
         message: String,
-    },
-    /// An angles CSV could not be read.
-    #[error("cannot read {path}")]
-    Read {
-        /// The file.
-        path: PathBuf,
-        /// What the operating system said.
-        source: std::io::Error,
-    },
-    /// An angles CSV is malformed at one line.
-    #[error("{path} line {line}: {reason}")]
-    CsvLine {
-        /// The file.
-        path: PathBuf,
-        /// 1-based line number (the header is line 1).
-        line: usize,
-        /// What is wrong, naming the value.
-        reason: String,
-    },
-    /// An angles CSV has no frame with an angle.
-    #[error("{path} has no frame with an angle")]
-    CsvEmpty {
-        /// The file.
-        path: PathBuf,
     },
     /// A file or folder could not be written.
     #[error("cannot write {path}")]

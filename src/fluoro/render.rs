@@ -121,7 +121,7 @@ impl RecordedAngle<'_> {
     pub fn render(&self, scene: &PinScene, k: usize) -> Frame {
         let (t0, t1) = self.span_s();
         let t = t0 + k as f64 / self.fps;
-        let angle = crate::replay::interpolate_at(self.time_s, self.angle_deg, t.min(t1))
+        let angle = crate::stats::interpolate(self.time_s, self.angle_deg, t.min(t1))
             .unwrap_or(self.angle_deg[0]);
         render_frame(
             scene,

@@ -85,7 +85,7 @@ pub fn resample(table: &DaqTable, rate_hz: f64) -> Result<DaqTable, ResampleErro
                     } else {
                         None
                     };
-                    boxcar.unwrap_or_else(|| interpolate(&table.time_s, values, t))
+                    boxcar.unwrap_or_else(|| held(&table.time_s, values, t))
                 })
                 .collect()
         })
@@ -100,17 +100,10 @@ fn mean_within(time_s: &[f64], values: &[f64], t: f64, half: f64) -> Option<f64>
     (b > a).then(|| values[a..b].iter().sum::<f64>() / (b - a) as f64)
 }
 
-/// `values` at `t`, linearly between the samples around it (the end value beyond the ends).
-fn interpolate(time_s: &[f64], values: &[f64], t: f64) -> f64 {
-    let k = time_s.partition_point(|&x| x <= t);
-    if k == 0 {
-        return values[0];
-    }
-    if k >= time_s.len() {
-        return values[values.len() - 1];
-    }
-    let f = (t - time_s[k - 1]) / (time_s[k] - time_s[k - 1]);
-    values[k - 1] + (values[k] - values[k - 1]) * f
+/// `values` at `t`, linearly between the samples around it (the end value beyond the ends);
+/// the DAQ table is never empty here.
+fn held(time_s: &[f64], values: &[f64], t: f64) -> f64 {
+    crate::stats::interpolate_held(time_s, values, t).unwrap_or(f64::NAN)
 }
 
 #[cfg(test)]

@@ -26,8 +26,11 @@
 //! tables, which the simulator reads back with its own types.
 
 pub mod provenance;
+mod truth;
 
 pub use provenance::{ImportInfo, ImportSource, Provenance, SimulationInfo};
+/// A ground-truth angle series (`angles.csv`) to compare a recording's estimates with.
+pub use truth::{parse_angles, read_angles, TruthAngles, TruthError};
 
 use std::path::{Path, PathBuf};
 

@@ -28,9 +28,7 @@ use crate::recording::Recording;
 /// Estimator config files in TOML or JSON.
 pub use config_file::{config_text, load_config, ConfigFileError, ConfigFormat};
 /// Comparing estimates with a ground truth at other times.
-pub use truth::{
-    compare_with_truth, interpolate_at, replay_against_truth, TruthMetrics, TruthReplay,
-};
+pub use truth::{compare_with_truth, replay_against_truth, TruthMetrics, TruthReplay};
 
 /// Why a replay could not run.
 #[derive(Debug, thiserror::Error)]
@@ -556,7 +554,7 @@ mod tests {
         );
         // Frames at 2 Hz from the true angle, offset by 0.5°: the RMSE is the offset.
         let frames: Vec<usize> = (0..4).map(|k| k * 250).collect();
-        let truth = crate::fluoro::TruthAngles {
+        let truth = crate::recording::TruthAngles {
             path: "angles.csv".into(),
             time_s: frames.iter().map(|&i| rec.samples.time_s[i]).collect(),
             angle_deg: frames.iter().map(|&i| true_deg[i] + 0.5).collect(),

@@ -11,25 +11,8 @@ use dlw_estimator::{EstimatorConfig, Flags};
 use serde::Serialize;
 
 use super::{estimates_csv, run_estimator, tracker_metrics, Metrics, ReplayError};
-use crate::fluoro::TruthAngles;
 use crate::recording::Recording;
-
-/// `values` (at increasing `time_s`) interpolated linearly at `t`; `None` outside
-/// `[time_s[0], time_s[last]]`.
-pub fn interpolate_at(time_s: &[f64], values: &[f64], t: f64) -> Option<f64> {
-    let (&first, &last) = (time_s.first()?, time_s.last()?);
-    if !(first..=last).contains(&t) {
-        return None;
-    }
-    // The first sample at or after t.
-    let i = time_s.partition_point(|&x| x < t);
-    if time_s[i] == t || i == 0 {
-        return Some(values[i]);
-    }
-    let (t0, t1) = (time_s[i - 1], time_s[i]);
-    let w = (t - t0) / (t1 - t0);
-    Some(values[i - 1] + w * (values[i] - values[i - 1]))
-}
+use crate::recording::TruthAngles;
 
 /// The comparison of estimates with a ground truth. The JSON keys are part of the interface.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -59,7 +42,7 @@ pub fn compare_with_truth(
 ) -> Result<TruthMetrics, ReplayError> {
     let (mut sum, mut sum_sq, mut max_abs, mut n) = (0.0, 0.0, 0.0f64, 0usize);
     for (&t, &g) in truth.time_s.iter().zip(&truth.angle_deg) {
-        if let Some(e) = interpolate_at(time_s, estimate_deg, t) {
+        if let Some(e) = crate::stats::interpolate(time_s, estimate_deg, t) {
             let err = e - g;
             sum += err;
             sum_sq += err * err;
@@ -165,25 +148,6 @@ impl TruthReplay {
 mod tests {
     use super::*;
     use std::path::PathBuf;
-
-    #[test]
-    fn interpolates_inside_and_refuses_outside() {
-        let t = [0.0, 1.0, 2.0];
-        let v = [0.0, 10.0, 30.0];
-        let table = [
-            (0.0, Some(0.0)),
-            (0.25, Some(2.5)),
-            (1.0, Some(10.0)),
-            (1.5, Some(20.0)),
-            (2.0, Some(30.0)),
-            (-0.1, None),
-            (2.1, None),
-        ];
-        for (x, want) in table {
-            assert_eq!(interpolate_at(&t, &v, x), want, "{x}");
-        }
-        assert_eq!(interpolate_at(&[], &[], 0.0), None);
-    }
 
     #[test]
     fn compares_at_frame_times() {
