@@ -20,8 +20,9 @@ mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dlw::design::Design;
-use dlw::fit::{fit_sensor_models, observe, FitOptions, ModelKind, Prefilter};
+use dlw::fit::{fit_sensor_models, FitOptions, ModelKind};
 use dlw::recording::Recording;
+use dlw::signal::{observe, Prefilter};
 use dlw::sim::{plan, ProtocolKind, Scenario, SensorModelKind};
 use dlw_estimator::SensorPlane;
 

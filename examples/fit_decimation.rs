@@ -9,7 +9,8 @@
 use std::time::Instant;
 
 use dlw::design::Design;
-use dlw::fit::{fit_sensor, observe, FitOptions, ModelKind, PlayFit, Prefilter};
+use dlw::fit::{fit_sensor, FitOptions, ModelKind, PlayFit};
+use dlw::signal::{observe, Prefilter};
 use dlw::sim::{plan, ProtocolKind, Recording, Scenario, SensorModelKind};
 use dlw_estimator::SensorPlane;
 

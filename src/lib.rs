@@ -66,6 +66,7 @@ pub mod reproduce;
 pub mod rules;
 pub mod sensor;
 pub mod sheet;
+pub mod signal;
 pub mod sim;
 pub mod stats;
 pub mod toolpath;

@@ -3,7 +3,8 @@
 //! data both PI models reproduce the line's RMSE to 1 %; and the fit does not depend on the
 //! number of threads.
 
-use dlw::fit::{characteristic, cycles, fit_plays_on, phases, PlayKind, PlayModel};
+use dlw::fit::{characteristic, fit_plays_on, PlayKind, PlayModel};
+use dlw::signal::{cycles, phases};
 use proptest::prelude::*;
 
 /// White noise of standard deviation σ from a seeded generator (uniform, scaled).

@@ -275,13 +275,10 @@ fn time_series(page: &mut Page, s: &LoopsSensor, label: &str, prefix: &str) {
 }
 
 fn loop_chart(s: &LoopsSensor, label: &str) -> Chart {
-    crate::fit::report::loop_chart(
-        &s.fit,
-        titled(
-            label,
-            &format!("Resistance against strain, {}", s.summary.sensor),
-        ),
-    )
+    s.fit.loop_chart(titled(
+        label,
+        &format!("Resistance against strain, {}", s.summary.sensor),
+    ))
 }
 
 impl crate::analysis::Analysis for LoopsResult {

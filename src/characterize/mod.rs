@@ -25,9 +25,10 @@ use dlw_estimator::SensorPlane;
 use dlw_geometry::{Joint, NotchStyle};
 use serde::Serialize;
 
-use crate::fit::{FitError, Prefilter};
+use crate::fit::FitError;
 use crate::recording::Recording;
 use crate::replay::ReplayError;
+use crate::signal::Prefilter;
 use crate::sim::ProtocolKind;
 
 /// Pearson correlation, standard deviation, least-squares slope.
@@ -111,7 +112,10 @@ pub enum CharacterizeError {
         /// The protocol recorded (`none` when there is none).
         protocol: String,
     },
-    /// The observations or a fit failed.
+    /// The recording shows the sensor nothing to analyse, or a line could not be fitted.
+    #[error(transparent)]
+    Signal(#[from] crate::signal::SignalError),
+    /// A fit failed.
     #[error(transparent)]
     Fit(#[from] FitError),
     /// The estimator could not run over the recording.

@@ -3,7 +3,7 @@
 //! correlation coefficient, and its `R₀` against the cycle number with their standard
 //! deviation.
 //!
-//! - **Cycles** are cut at the strain's turning points (`crate::fit::phases`, a turn needs the
+//! - **Cycles** are cut at the strain's turning points (`crate::signal::phases`, a turn needs the
 //!   strain to come back by a tenth of its span). Only cycles whose rise reaches
 //!   [`EQUAL_AMPLITUDE`] of the largest count, as the paper's protocol has one amplitude.
 //! - **Rise time** is the time from 10 % to 90 % of the cycle's rise, divided by 0.8: the
@@ -30,9 +30,9 @@ use serde::Serialize;
 
 use super::{figure_name, min_max, pearson, sensor_label, slope, std_dev, titled};
 use super::{CharacterizeError, Options};
-use crate::fit::{cycles, fit_linear, observe, phases, TURN_THRESHOLD};
 use crate::recording::Recording;
 use crate::report::{Chart, Page, Series, SeriesStyle, Table, PALETTE};
+use crate::signal::{cycles, fit_linear, observe, phases, Cycle, TURN_THRESHOLD};
 
 /// A cycle counts when its rise reaches this share of the largest rise.
 pub const EQUAL_AMPLITUDE: f64 = 0.75;
@@ -115,7 +115,7 @@ struct Moving {
 /// peak. The rests vary in share with the speed, and on a hysteretic sensor they would pull the
 /// line differently; the unloading branch starts from the cycle's own peak, which a slow rise
 /// lowers by relaxing, and a hysteretic sensor's unloading branch depends on that peak.
-fn moving_part(c: &crate::fit::Cycle, strain: &[f64], time_s: &[f64], amp: f64) -> Option<Moving> {
+fn moving_part(c: &Cycle, strain: &[f64], time_s: &[f64], amp: f64) -> Option<Moving> {
     let base = strain[c.loading.start];
     let load = c.loading.start..=c.loading.end;
     let cross = |share: f64| {
@@ -176,8 +176,7 @@ pub fn rate(
         let joint_strain: Vec<f64> = obs.strain.iter().map(|e| plane.sign() * e).collect();
         let (lo, hi) = min_max(&joint_strain);
         let all = cycles(&phases(&joint_strain, TURN_THRESHOLD * (hi - lo)));
-        let rise_of =
-            |c: &crate::fit::Cycle| joint_strain[c.loading.end] - joint_strain[c.loading.start];
+        let rise_of = |c: &Cycle| joint_strain[c.loading.end] - joint_strain[c.loading.start];
         let largest = all.iter().map(rise_of).fold(0.0, f64::max);
         // The equal-amplitude cycles, with the samples where each moves.
         let mut kept = Vec::new();

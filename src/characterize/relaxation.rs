@@ -21,9 +21,9 @@ use serde::Serialize;
 
 use super::{figure_name, min_max, pearson, sensor_label, titled};
 use super::{CharacterizeError, Options};
-use crate::fit::{fit_linear, observe, Prefilter};
 use crate::recording::Recording;
 use crate::report::{Chart, Legend, Page, Series, SeriesStyle, Table, PALETTE};
+use crate::signal::{fit_linear, observe, Prefilter};
 
 /// A hold's stroke stays within this share of the stroke's span.
 pub const HOLD_TOLERANCE: f64 = 1e-3;

@@ -9,10 +9,10 @@ use dlw::characterize::{
     estimate, loops, planes, rate, relaxation, Kind, NamedConfig, Options, DEFAULT_MIN_HOLD_S,
 };
 use dlw::design::Design;
-use dlw::fit::{prefilter_name, Prefilter};
 use dlw::recording::Recording;
 use dlw::replay::load_config;
 use dlw::report::Page;
+use dlw::signal::Prefilter;
 use dlw_estimator::MAX_PLAYS;
 use serde::Serialize;
 
@@ -132,7 +132,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         recording.samples.len(),
         recording.rig.sample_hz,
         args.design.display(),
-        prefilter_name(args.prefilter)
+        args.prefilter.to_string()
     ));
     let context = || format!("{} analysis of {name}", kind.name());
     let report = args.output.join("report.html");

@@ -9,9 +9,8 @@ use dlw::control::{Control, ControlResult, DesiredSource, Gains, PAPER_GAINS};
 use dlw::design::Design;
 use dlw::output::write_folder_atomic;
 use dlw::replay::load_config;
-use dlw_estimator::FilterConfig;
+use dlw::signal::FilterSpec;
 
-use super::estimate::parse_filter;
 use super::scenario_args::ScenarioArgs;
 
 /// Arguments of `dlw control`.
@@ -36,8 +35,8 @@ pub struct Args {
     #[arg(long)]
     mt_deg_per_mm: Option<f64>,
     /// Filter on the sensed angle, replacing the config's output_filter: none, ma:N or lp:T.
-    #[arg(long, value_parser = parse_filter)]
-    filter: Option<FilterConfig>,
+    #[arg(long)]
+    filter: Option<FilterSpec>,
     /// Output folder: report.html, its SVG figures and control.csv.
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
@@ -80,7 +79,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let design = Design::load(&args.design)?;
     let mut config = load_config(&args.config)?;
     if let Some(filter) = args.filter {
-        config.output_filter = filter;
+        config.output_filter = filter.config();
     }
     let scenario = args.scenario.load()?;
     let source = match args.profile {

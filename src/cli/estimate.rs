@@ -8,7 +8,7 @@ use dlw::output::write_atomic;
 use dlw::recording::read_angles;
 use dlw::recording::Recording;
 use dlw::replay::{load_config, replay, replay_against_truth, Metrics, TruthMetrics};
-use dlw_estimator::FilterConfig;
+use dlw::signal::FilterSpec;
 use serde::Serialize;
 
 /// The default estimates file, inside the recording folder.
@@ -25,8 +25,8 @@ pub struct Args {
     /// Filter on the estimated angle, replacing the config's output_filter: `none`, `ma:N`
     /// (moving average of N samples, delay (N−1)/2) or `lp:T` (first-order low-pass, time
     /// constant T samples, delay ≈ T).
-    #[arg(long, value_parser = parse_filter)]
-    filter: Option<FilterConfig>,
+    #[arg(long)]
+    filter: Option<FilterSpec>,
     /// Print the report as JSON (keys rmse_deg, max_abs_error_deg, samples, …).
     #[arg(long)]
     json: bool,
@@ -56,28 +56,6 @@ fn parse_precision(s: &str) -> Result<u32, String> {
             "precision {s:?} is not a number of decimals from 0 to {max}"
         )),
     }
-}
-
-pub(super) fn parse_filter(s: &str) -> Result<FilterConfig, String> {
-    let bad = || format!("unknown filter {s:?} (expected none, ma:N or lp:T)");
-    let config = match s.split_once(':') {
-        None if s == "none" => FilterConfig::None,
-        Some(("ma", n)) => FilterConfig::MovingAverage {
-            samples: n.parse().map_err(|_| bad())?,
-        },
-        Some(("lp", t)) => FilterConfig::LowPass {
-            time_constant_samples: dlw::limits::within(
-                "lp:T",
-                t.parse().map_err(|_| bad())?,
-                0.0,
-                dlw::limits::MAX_LOW_PASS_SAMPLES,
-                "samples",
-            )?,
-        },
-        _ => return Err(bad()),
-    };
-    config.validate().map_err(|e| e.to_string())?;
-    Ok(config)
 }
 
 /// What `estimate --json` prints; the keys are part of the interface.
@@ -125,7 +103,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim(&output, inputs, args.force)?;
     let mut config = load_config(&args.config)?;
     if let Some(filter) = args.filter {
-        config.output_filter = filter;
+        config.output_filter = filter.config();
     }
     if let Some(truth) = &args.truth {
         return run_with_truth(&args, &config, truth);

@@ -7,11 +7,12 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use dlw::analysis::Analysis;
 use dlw::design::Design;
-use dlw::fit::{fit, FitRequest, ModelKind, Prefilter, MAX_ORDER, MIN_ORDER};
+use dlw::fit::{fit, FitRequest, ModelKind, MAX_ORDER, MIN_ORDER};
 use dlw::output::write_atomic;
 use dlw::recording::Recording;
 use dlw::replay::ConfigFormat;
 use dlw::sensor::Sensors;
+use dlw::signal::Prefilter;
 
 /// Arguments of `dlw fit`.
 #[derive(Debug, clap::Args)]

@@ -7,10 +7,11 @@
 //! that the models' inputs and the noise model's whitening over the whole series never see the
 //! number a recording writes on such rows.
 
-use dlw_geometry::{Divider, Joint};
+use dlw_geometry::Joint;
 
 use super::DiscoverError;
 use crate::recording::Recording;
+use crate::sensor::Sensor;
 
 /// Rate discovery works at (Hz): each sample is the mean of `sample_hz/TARGET_HZ` recorded
 /// samples. The effects live at seconds; averaging cuts the white noise and the work.
@@ -56,10 +57,10 @@ impl Data {
         let mean =
             |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
         let mut ohm = Vec::new();
-        for (c, volts) in s.volts.iter().enumerate() {
-            let divider = Divider {
-                fixed_ohm: rig.divider_ohm[c],
-                supply_v: rig.supply_v,
+        // A recording holds one voltage column per divider, one or two (`Recording::read`).
+        for ((c, volts), sensor) in s.volts.iter().enumerate().zip(Sensor::ALL) {
+            let Some(divider) = rig.divider(sensor) else {
+                continue;
             };
             let mut r = Vec::with_capacity(n);
             for k in 0..n {

@@ -10,8 +10,9 @@ use dlw_geometry::Joint;
 use super::model::{Channel, Fitted};
 use super::terms::{Effect, Term, LOG_REFERENCE_RATE};
 use super::{ChannelReport, Known, Outcome};
-use crate::fit::{fit_sensor, FitOptions, ModelKind, Prefilter};
+use crate::fit::{fit_sensor, FitOptions, ModelKind};
 use crate::sensor::Sensor;
+use crate::signal::Prefilter;
 use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams};
 
 /// The named effect's parameters in the scenario's units, from the fitted coefficients.

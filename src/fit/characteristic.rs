@@ -3,9 +3,9 @@
 
 use serde::Serialize;
 
-use super::cycles::Cycle;
-use super::linear::slope;
 use super::{min_max, FitError};
+use crate::signal::Cycle;
+use crate::stats::slope;
 
 /// The points the PI procedure starts from. JSON keys are part of `dlw fit --json`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -103,7 +103,7 @@ pub const MIN_WINDOW_SPAN: f64 = 0.03;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fit::cycles::{cycles, phases};
+    use crate::signal::{cycles, phases};
     use approx::assert_relative_eq;
 
     #[test]

@@ -21,9 +21,6 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod characteristic;
-mod cycles;
-mod data;
-mod linear;
 mod nnls;
 mod pi;
 mod plays;
@@ -36,19 +33,11 @@ use dlw_estimator::{
     Coeffs, ContinuousPiConfig, EstimatorConfig, EstimatorError, JointConfig, LinearModel,
     ModelConfig, PiConfig, SensorConfig, SensorPlane,
 };
-use dlw_geometry::{Divider, Joint};
+use dlw_geometry::Joint;
 use serde::Serialize;
 
 /// The characteristic points of a loop (Table III).
 pub use characteristic::{characteristic, Characteristic};
-/// Loading and unloading phases and cycles of the strain.
-pub use cycles::{cycles, phases, Cycle, Phase};
-/// A sensor's strain and resistance as a fit sees them.
-pub use data::{
-    observe, Observations, Prefilter, MAX_FIT_SAMPLES, MIN_ANGLE_SPAN_DEG, RAIL_FRACTION,
-};
-/// The linear model by least squares.
-pub use linear::{fit_linear, slope, LinearFit, MIN_R2};
 /// Non-negative least squares on the normal equations.
 pub use nnls::nnls;
 /// PI fits by variable projection.
@@ -64,60 +53,26 @@ pub use plays::{
 pub use report::{report_page, Validation};
 /// `dlw fit` as a library call.
 pub use request::{
-    fit, prefilter_name, FitRequest, FitResult, PlayReport, Restart, SensorReport, Timings,
-    MAX_ORDER, MIN_ORDER,
+    fit, FitRequest, FitResult, PlayReport, Restart, SensorReport, Timings, MAX_ORDER, MIN_ORDER,
 };
 
 use crate::recording::Recording;
+use crate::sensor::Sensor;
+use crate::signal::{
+    cycles, fit_linear, observe, phases, Cycle, LinearFit, Observations, Prefilter, SignalError,
+    TURN_THRESHOLD,
+};
 
 /// Fewest cycles the PI procedure needs: the first cycle's loading and the last cycle's
 /// unloading place `ε_c`, and a second cycle shows the loop repeating.
 pub const MIN_PI_CYCLES: usize = 2;
 
-/// A turning point of the strain needs the strain to come back by this share of its span.
-pub const TURN_THRESHOLD: f64 = 0.1;
-
 /// Why a fit could not be made.
 #[derive(Debug, thiserror::Error)]
 pub enum FitError {
-    /// The recording has no such voltage column.
-    #[error("the recording has {columns} voltage column(s); sensor on that plane is recorded as v{column}_V")]
-    NoColumn {
-        /// The column needed (1-based).
-        column: usize,
-        /// Columns present.
-        columns: usize,
-    },
-    /// The joint hardly moved.
-    #[error("no motion: the recorded angle spans {span_deg:.3}°, a fit needs at least {min_deg}°")]
-    NoMotion {
-        /// Span of the recorded angle (°).
-        span_deg: f64,
-        /// The least span accepted (°).
-        min_deg: f64,
-    },
-    /// A voltage at a rail.
-    #[error("v{column}_V is at a rail in {count} sample(s), first at t = {time_s} s ({volts} V, within {margin_v} V of 0 or the supply): the divider resolves no resistance there (saturated ADC, open or shorted sensor)")]
-    Rail {
-        /// Column (1-based).
-        column: usize,
-        /// Samples at a rail.
-        count: usize,
-        /// Time of the first (s).
-        time_s: f64,
-        /// Its voltage (V).
-        volts: f64,
-        /// How near a rail counts (V).
-        margin_v: f64,
-    },
-    /// Too few samples for any fit.
-    #[error("{samples} sample(s) after decimation; a fit needs at least {min}")]
-    TooFewSamples {
-        /// Samples left.
-        samples: usize,
-        /// The least accepted.
-        min: usize,
-    },
+    /// The recording shows the sensor nothing to fit, or the line cannot be fitted.
+    #[error(transparent)]
+    Signal(#[from] SignalError),
     /// The strain never varies over the samples fitted.
     #[error("the strain does not vary over the {samples} samples fitted (the joint never moves there): there is no slope to fit; record motion")]
     FlatStrain {
@@ -151,14 +106,6 @@ pub enum FitError {
         model: &'static str,
         /// The optimizer's last termination.
         reason: String,
-    },
-    /// A fitted value no sensor has.
-    #[error("the fit gives {what} = {value}, which no sensor has")]
-    NonPhysical {
-        /// The parameter.
-        what: &'static str,
-        /// Its value.
-        value: f64,
     },
     /// A play order outside what the runtime runs.
     #[error("order {order} must lie between {min} and {max} play operators")]
@@ -257,6 +204,12 @@ pub struct SensorFit {
 }
 
 impl SensorFit {
+    /// The resistance-strain loops of this fit, as `dlw fit`'s report draws them
+    /// (the paper's Fig. 4(d-f)): for any report that shows a fit.
+    pub fn loop_chart(&self, title: String) -> crate::report::Chart {
+        report::loop_chart(self, title)
+    }
+
     /// The runtime sensor config of `model`, if it was fitted.
     pub fn config(&self, model: ModelKind) -> Option<&SensorConfig> {
         self.configs
@@ -310,10 +263,12 @@ pub fn fit_sensor_models(
     let (lo, hi) = min_max(&obs.strain);
     let cycles = cycles(&phases(&obs.strain, TURN_THRESHOLD * (hi - lo)));
     let rig = &recording.rig;
-    let divider = Divider {
-        fixed_ohm: rig.divider_ohm[plane.column() as usize - 1],
-        supply_v: rig.supply_v,
-    };
+    let divider = rig
+        .divider(Sensor::on_plane(plane))
+        .ok_or(SignalError::NoColumn {
+            column: plane.column() as usize,
+            columns: rig.divider_ohm.len(),
+        })?;
     let enough = cycles.len() >= MIN_PI_CYCLES;
     let characteristic = if enough {
         Some(characteristic(&obs.strain, &obs.ohm, &cycles)?)

@@ -195,7 +195,7 @@ const MODEL_COLOURS: [(&str, (u8, u8, u8)); 2] =
 /// hysteretic model over the last cycle. The models run over the whole recording (their plays
 /// remember the history) and are drawn over the last cycle, so that they show the loop without
 /// hiding the data. The one loop chart of `dlw fit`'s and `dlw characterize`'s reports.
-pub fn loop_chart(fit: &SensorFit, title: String) -> Chart {
+pub(super) fn loop_chart(fit: &SensorFit, title: String) -> Chart {
     let obs = &fit.observations;
     let strain_pct: Vec<f64> = obs.strain.iter().map(|e| e * 100.0).collect();
     let kohm: Vec<f64> = obs.ohm.iter().map(|r| r / 1e3).collect();

@@ -271,7 +271,7 @@ pub fn fit(request: &FitRequest<'_>, progress: &dyn Fn(&str)) -> Result<FitResul
     };
     let t_validate = clock.elapsed().as_secs_f64();
     let sum = |i: usize| fits.iter().map(|f| f.seconds[i]).sum::<f64>();
-    let prefilter = prefilter_name(request.prefilter);
+    let prefilter = request.prefilter.to_string();
     let note = format!(
         "Fitted by dlw fit ({} model, prefilter {}) from {} for {}.\nThe input filter is the fit's prefilter; the clamp range is the range the recording saw.",
         model_name(request.model),
@@ -401,14 +401,6 @@ impl Analysis for FitResult {
 
     fn add_to_page(&self, page: &mut Page, at: Placement<'_>) {
         report::add_sections(page, &self.fits, &self.validation, at);
-    }
-}
-
-/// `none` or `ma:N`.
-pub fn prefilter_name(p: Prefilter) -> String {
-    match p {
-        Prefilter::None => "none".into(),
-        Prefilter::MovingAverage(n) => format!("ma:{n}"),
     }
 }
 

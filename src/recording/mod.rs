@@ -347,6 +347,15 @@ pub fn header(channels: usize) -> String {
 }
 
 impl Rig {
+    /// The voltage divider `sensor` is read through (Eq. 4): its fixed resistor and the supply;
+    /// `None` when the rig has no divider for it.
+    pub fn divider(&self, sensor: crate::sensor::Sensor) -> Option<dlw_geometry::Divider> {
+        Some(dlw_geometry::Divider {
+            fixed_ohm: *self.divider_ohm.get(sensor.index())?,
+            supply_v: self.supply_v,
+        })
+    }
+
     /// The protocol the rig states: the top-level `protocol`, else the simulated scenario's
     /// `protocol`; `None` when neither states one.
     pub fn protocol(&self) -> Option<&str> {

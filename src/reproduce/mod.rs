@@ -35,7 +35,8 @@ use crate::characterize::{
     NamedConfig, Options, RateResult, RelaxationResult, DEFAULT_MIN_HOLD_S,
 };
 use crate::control::{Control, ControlError, ControlResult, DesiredSource, PAPER_GAINS};
-use crate::fit::{estimator_config, FitError, ModelKind, Prefilter};
+use crate::fit::{estimator_config, FitError, ModelKind};
+use crate::signal::Prefilter;
 use crate::sim::{plan, ProtocolKind, Recording, SimError};
 
 /// The simulated joints and their scenarios.

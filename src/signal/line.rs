@@ -2,7 +2,8 @@
 
 use serde::Serialize;
 
-use super::FitError;
+use super::SignalError;
+use crate::stats::{moments, Moments};
 
 /// A resistance that explains less than this share of its variance by strain (r²) is taken as
 /// not responding to strain.
@@ -31,12 +32,12 @@ impl LinearFit {
 /// Least squares of `ohm` on `strain`.
 ///
 /// # Errors
-/// [`FitError::TooFewSamples`] under 3 samples; [`FitError::NotIncreasing`] when the slope is
-/// not positive or r² is under [`MIN_R2`]; [`FitError::NonPhysical`] for `R₀ ≤ 0`.
-pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
+/// [`SignalError::TooFewSamples`] under 3 samples; [`SignalError::NotIncreasing`] when the slope is
+/// not positive or r² is under [`MIN_R2`]; [`SignalError::NonPhysical`] for `R₀ ≤ 0`.
+pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, SignalError> {
     let n = strain.len().min(ohm.len());
     if n < 3 {
-        return Err(FitError::TooFewSamples { samples: n, min: 3 });
+        return Err(SignalError::TooFewSamples { samples: n, min: 3 });
     }
     let Moments {
         mean_x: mx,
@@ -50,7 +51,7 @@ pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
     let rounding = 1e-12 * mx.abs().max(1e-12);
     if sxx.is_nan() || sxx / n as f64 <= rounding * rounding {
         // 0/0 would be the slope and r² (the error printed "r² = NaN").
-        return Err(FitError::FlatStrain { samples: n });
+        return Err(SignalError::FlatStrain { samples: n });
     }
     let nf = n as f64;
     let slope = sxy / sxx;
@@ -60,7 +61,7 @@ pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
         0.0
     };
     if !(slope > 0.0 && r2 >= MIN_R2) {
-        return Err(FitError::NotIncreasing {
+        return Err(SignalError::NotIncreasing {
             slope_ohm_per_strain: slope,
             r2,
             min_r2: MIN_R2,
@@ -68,7 +69,7 @@ pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
     }
     let r0 = my - slope * mx;
     if !(r0 > 0.0) {
-        return Err(FitError::NonPhysical {
+        return Err(SignalError::NonPhysical {
             what: "r0_ohm",
             value: r0,
         });
@@ -83,11 +84,6 @@ pub fn fit_linear(strain: &[f64], ohm: &[f64]) -> Result<LinearFit, FitError> {
         rmse_ohm: (sse / nf).sqrt(),
     })
 }
-
-/// Moved to [`crate::stats`] (one NaN policy); re-exported here this round.
-pub use crate::stats::slope;
-/// Moved to [`crate::stats`]; re-exported here this round.
-pub(crate) use crate::stats::{moments, Moments};
 
 #[cfg(test)]
 mod tests {
@@ -120,7 +116,7 @@ mod tests {
         let falling: Vec<f64> = strain.iter().map(|e| 1e5 * (1.0 - 5.0 * e)).collect();
         for ohm in [flat, falling] {
             let err = fit_linear(&strain, &ohm).unwrap_err();
-            assert!(matches!(err, FitError::NotIncreasing { .. }), "{err}");
+            assert!(matches!(err, SignalError::NotIncreasing { .. }), "{err}");
         }
     }
 }

@@ -1,11 +1,12 @@
-//! What a fit sees of a recording: one sensor's own strain and resistance per sample, after
-//! the prefilter and the decimation.
+//! What an analysis sees of a recording: one sensor's own strain and resistance per sample,
+//! after the prefilter and the decimation.
 
-use dlw_estimator::{Filter, FilterConfig, SensorPlane};
-use dlw_geometry::{Divider, Joint};
+use dlw_estimator::{Filter, SensorPlane};
+use dlw_geometry::Joint;
 
-use super::FitError;
+use super::{Prefilter, SignalError};
 use crate::recording::Recording;
+use crate::sensor::Sensor;
 
 /// Smallest span of the recorded angle a fit accepts (°): below it the strain is noise.
 pub const MIN_ANGLE_SPAN_DEG: f64 = 1.0;
@@ -18,67 +19,6 @@ pub const RAIL_FRACTION: f64 = 1e-3;
 /// the information in a slowly driven, prefiltered recording does not (`docs/fit.md` shows a
 /// fit on every sample is no better).
 pub const MAX_FIT_SAMPLES: usize = 8000;
-
-/// The prefilter applied to strain and resistance alike before fitting, and then by the
-/// runtime estimator to the resistance (the config's `input_filter`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Prefilter {
-    /// No filter.
-    None,
-    /// Causal moving average of this many samples.
-    MovingAverage(u32),
-}
-
-impl Prefilter {
-    /// The runtime estimator's filter that does the same.
-    pub fn filter_config(self) -> FilterConfig {
-        match self {
-            Self::None => FilterConfig::None,
-            Self::MovingAverage(samples) => FilterConfig::MovingAverage { samples },
-        }
-    }
-
-    /// The samples each filtered value averages (1 without a filter).
-    pub fn window(self) -> usize {
-        match self {
-            Self::None => 1,
-            Self::MovingAverage(n) => n as usize,
-        }
-    }
-
-    /// Keep every `k`-th sample after this filter: half its window, so that the decimated
-    /// series still has two samples per averaging window and aliases nothing the filter
-    /// passes (a moving average of `N` has its first null at `f_s/N`).
-    pub fn decimation(self) -> usize {
-        match self {
-            Self::None => 1,
-            Self::MovingAverage(n) => (n as usize / 2).max(1),
-        }
-    }
-}
-
-impl std::str::FromStr for Prefilter {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Self, String> {
-        if s == "none" {
-            return Ok(Self::None);
-        }
-        let n = s
-            .strip_prefix("ma:")
-            .ok_or_else(|| format!("prefilter '{s}' must be 'none' or 'ma:N'"))?;
-        let n: u32 = n
-            .parse()
-            .map_err(|_| format!("prefilter '{s}': N must be a whole number of samples"))?;
-        let max = dlw_estimator::MAX_MOVING_AVERAGE;
-        if n == 0 || n as usize > max {
-            return Err(format!(
-                "prefilter ma:{n} must average 1 to {max} samples (the runtime's limit)"
-            ));
-        }
-        Ok(Self::MovingAverage(n))
-    }
-}
 
 /// One sensor's observations.
 #[derive(Debug, Clone, PartialEq)]
@@ -122,18 +62,18 @@ impl Observations {
 /// measured the angle (`tracker_valid`) on every row of the prefilter's window.
 ///
 /// # Errors
-/// [`FitError::NoColumn`], [`FitError::NoMotion`], [`FitError::Rail`].
+/// [`SignalError::NoColumn`], [`SignalError::NoMotion`], [`SignalError::Rail`].
 pub fn observe(
     recording: &Recording,
     joint: &Joint,
     plane: SensorPlane,
     prefilter: Prefilter,
     decimation: Option<usize>,
-) -> Result<Observations, FitError> {
+) -> Result<Observations, SignalError> {
     let column = plane.column() as usize;
     let s = &recording.samples;
     let rig = &recording.rig;
-    let volts = s.volts.get(column - 1).ok_or(FitError::NoColumn {
+    let volts = s.volts.get(column - 1).ok_or(SignalError::NoColumn {
         column,
         columns: s.volts.len(),
     })?;
@@ -148,7 +88,7 @@ pub fn observe(
             (lo.min(a), hi.max(a))
         });
     if !(hi - lo >= MIN_ANGLE_SPAN_DEG) {
-        return Err(FitError::NoMotion {
+        return Err(SignalError::NoMotion {
             span_deg: (hi - lo).max(0.0),
             min_deg: MIN_ANGLE_SPAN_DEG,
         });
@@ -158,7 +98,7 @@ pub fn observe(
         .filter(|&i| volts[i] <= margin || volts[i] >= rig.supply_v - margin)
         .collect();
     if let Some(&first) = at_rail.first() {
-        return Err(FitError::Rail {
+        return Err(SignalError::Rail {
             column,
             count: at_rail.len(),
             time_s: s.time_s[first],
@@ -166,11 +106,13 @@ pub fn observe(
             margin_v: margin,
         });
     }
-    let divider = Divider {
-        fixed_ohm: rig.divider_ohm[column - 1],
-        supply_v: rig.supply_v,
-    };
-    let mut strain_filter = Filter::new(&prefilter.filter_config()).map_err(FitError::Model)?;
+    let divider = rig
+        .divider(Sensor::on_plane(plane))
+        .ok_or(SignalError::NoColumn {
+            column,
+            columns: rig.divider_ohm.len(),
+        })?;
+    let mut strain_filter = Filter::new(&prefilter.filter_config()).map_err(SignalError::Filter)?;
     let mut ohm_filter = strain_filter.clone();
     let step = decimation
         .unwrap_or_else(|| {

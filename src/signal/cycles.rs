@@ -4,6 +4,9 @@
 //! threshold (a zigzag filter), so noise and small wiggles do not split a phase. A cycle is a
 //! loading phase and the unloading phase after it, as in the paper's Fig. 4.
 
+/// A turning point of the strain needs the strain to come back by this share of its span.
+pub const TURN_THRESHOLD: f64 = 0.1;
+
 /// One monotone run of the strain, `start..=end` (sample indices).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Phase {
