@@ -132,7 +132,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         recording.samples.len(),
         recording.rig.sample_hz,
         args.design.display(),
-        args.prefilter.to_string()
+        args.prefilter
     ));
     let context = || format!("{} analysis of {name}", kind.name());
     let report = args.output.join("report.html");
