@@ -20,7 +20,7 @@ mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dlw::design::Design;
-use dlw::fit::{fit_sensor_models, FitOptions, ModelKind};
+use dlw::fit::{fit_sensor_models, FitOptions, ModelKind, PlayOrder};
 use dlw::recording::Recording;
 use dlw::signal::{observe, Prefilter};
 use dlw::sim::{plan, ProtocolKind, Scenario, SensorModelKind};
@@ -123,7 +123,7 @@ fn bench(c: &mut Criterion) {
         for model in [ModelKind::Pi, ModelKind::Linear] {
             let options = FitOptions {
                 model,
-                order: 10,
+                order: PlayOrder::DEFAULT,
                 prefilter: Prefilter::MovingAverage(100),
                 decimation: None,
             };
@@ -189,7 +189,7 @@ fn bench(c: &mut Criterion) {
     let case = &cases[8];
     let options = FitOptions {
         model: ModelKind::ContinuousPi,
-        order: 10,
+        order: PlayOrder::DEFAULT,
         prefilter: Prefilter::MovingAverage(100),
         decimation: None,
     };

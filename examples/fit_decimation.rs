@@ -9,7 +9,7 @@
 use std::time::Instant;
 
 use dlw::design::Design;
-use dlw::fit::{fit_sensor, FitOptions, ModelKind, PlayFit};
+use dlw::fit::{fit_sensor, FitOptions, ModelKind, PlayFit, PlayOrder};
 use dlw::signal::{observe, Prefilter};
 use dlw::sim::{plan, ProtocolKind, Recording, Scenario, SensorModelKind};
 use dlw_estimator::SensorPlane;
@@ -55,7 +55,7 @@ fn main() -> anyhow::Result<()> {
     for decimation in [None, Some(1)] {
         let options = FitOptions {
             model: ModelKind::Pi,
-            order: 10,
+            order: PlayOrder::DEFAULT,
             prefilter,
             decimation,
         };

@@ -20,12 +20,13 @@ pub mod estimation;
 pub mod loops;
 pub mod rate;
 pub mod relaxation;
+mod request;
 
 use dlw_estimator::SensorPlane;
 use dlw_geometry::{Joint, NotchStyle};
 use serde::Serialize;
 
-use crate::fit::FitError;
+use crate::fit::{FitError, PlayOrder};
 use crate::recording::Recording;
 use crate::replay::ReplayError;
 use crate::signal::Prefilter;
@@ -42,6 +43,8 @@ pub use loops::{loops, LoopsResult, LoopsSensor, LoopsSummary};
 pub use rate::{rate, RateCycle, RateResult, RateSensor};
 /// Holds, strain decay and ΔR against Δε (Fig. 6).
 pub use relaxation::{relaxation, Hold, RelaxationResult, RelaxationSensor};
+/// `dlw characterize` as a library call.
+pub use request::{characterize, Characterization, CharacterizeRequest, KindResult};
 
 /// The default shortest hold (s) the relaxation analysis accepts.
 pub const DEFAULT_MIN_HOLD_S: f64 = 5.0;
@@ -69,6 +72,13 @@ impl Kind {
             Self::Relaxation => "relaxation",
             Self::Estimation => "estimation",
         }
+    }
+
+    /// The kind named `name` (`loops`, `rate`, `relaxation`, `estimation`).
+    pub fn from_name(name: &str) -> Option<Self> {
+        [Self::Loops, Self::Rate, Self::Relaxation, Self::Estimation]
+            .into_iter()
+            .find(|k| k.name() == name)
     }
 
     /// The analysis for the protocol a recording's `rig.toml` states: its top-level `protocol`
@@ -118,6 +128,9 @@ pub enum CharacterizeError {
     /// A fit failed.
     #[error(transparent)]
     Fit(#[from] FitError),
+    /// An estimator config file could not be read.
+    #[error(transparent)]
+    Config(#[from] crate::replay::ConfigFileError),
     /// The estimator could not run over the recording.
     #[error(transparent)]
     Replay(#[from] ReplayError),
@@ -164,6 +177,36 @@ pub enum CharacterizeError {
     /// Estimation without a config.
     #[error("estimation needs at least one estimator config (--config C, from dlw fit or dlw estimator-config)")]
     NoConfig,
+    /// A shortest hold that is no duration.
+    #[error("--min-hold-s {min_hold_s} must be finite and greater than 0")]
+    MinHold {
+        /// The value asked for (s).
+        min_hold_s: f64,
+    },
+    /// Estimator configs given to a kind that takes none.
+    #[error("--config is for --kind estimation; the {kind} analysis takes none")]
+    ConfigsForOtherKind {
+        /// The kind asked for.
+        kind: &'static str,
+    },
+    /// The kind could not be chosen from the recording's protocol.
+    #[error("choosing the analysis for {recording}")]
+    Choose {
+        /// The recording's name.
+        recording: String,
+        /// Why.
+        source: Box<CharacterizeError>,
+    },
+    /// The kind's analysis failed.
+    #[error("{kind} analysis of {recording}")]
+    Analysis {
+        /// The kind.
+        kind: &'static str,
+        /// The recording's name.
+        recording: String,
+        /// Why.
+        source: Box<CharacterizeError>,
+    },
     /// A sensor plane the design does not carry.
     #[error("the recording has {columns} voltage column(s) but design {design:?} is {style} with {carries} sensor(s)")]
     Columns {
@@ -184,7 +227,7 @@ pub struct Options {
     /// Filter on strain and resistance before any analysis (the paper: 500 samples).
     pub prefilter: Prefilter,
     /// Plays of the PI fits (the paper: 10).
-    pub order: usize,
+    pub order: PlayOrder,
     /// Shortest hold the relaxation analysis accepts (s).
     pub min_hold_s: f64,
     /// The paper's estimation processing: a 1000-sample moving average on the angle (the PI
@@ -199,7 +242,7 @@ impl Default for Options {
     fn default() -> Self {
         Self {
             prefilter: Prefilter::MovingAverage(100),
-            order: 10,
+            order: PlayOrder::DEFAULT,
             min_hold_s: DEFAULT_MIN_HOLD_S,
             paper_processing: false,
             decimation: None,

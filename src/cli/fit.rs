@@ -4,10 +4,10 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{bail, Context};
+use anyhow::Context;
 use dlw::analysis::Analysis;
 use dlw::design::Design;
-use dlw::fit::{fit, FitRequest, ModelKind, MAX_ORDER, MIN_ORDER};
+use dlw::fit::{fit, FitRequest, ModelKind, PlayOrder};
 use dlw::output::write_atomic;
 use dlw::recording::Recording;
 use dlw::replay::ConfigFormat;
@@ -26,8 +26,8 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = ModelKind::Pi)]
     model: ModelKind,
     /// Play operators N of the PI models (2 to 16).
-    #[arg(long, default_value_t = 10)]
-    order: usize,
+    #[arg(long, default_value = "10", value_parser = super::parse_order)]
+    order: PlayOrder,
     /// Filter on strain and resistance before fitting, and the config's input filter:
     /// `none` or `ma:N` (moving average of N samples).
     #[arg(long, default_value = "ma:100")]
@@ -78,12 +78,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     )?;
     let start = Instant::now();
     let format = ConfigFormat::of(&args.output)?;
-    if !(MIN_ORDER..=MAX_ORDER).contains(&args.order) {
-        bail!(
-            "--order {} must lie between {MIN_ORDER} and {MAX_ORDER} play operators",
-            args.order
-        );
-    }
     let design = Design::load(&args.design)?;
     let recording = Recording::read(&args.recording)?;
     let validate = args

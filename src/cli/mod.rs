@@ -103,3 +103,17 @@ pub(crate) fn spinner() -> indicatif::ProgressBar {
         indicatif::ProgressBar::hidden()
     }
 }
+
+/// `--order N`: the play count of the PI fits, checked by [`dlw::fit::PlayOrder::new`].
+fn parse_order(s: &str) -> Result<dlw::fit::PlayOrder, String> {
+    let n: usize = s
+        .parse()
+        .map_err(|_| format!("--order {s:?} is not a whole number of play operators"))?;
+    dlw::fit::PlayOrder::new(n).map_err(|_| {
+        format!(
+            "--order {n} must lie between {} and {} play operators",
+            dlw::fit::PlayOrder::MIN,
+            dlw::fit::PlayOrder::MAX
+        )
+    })
+}

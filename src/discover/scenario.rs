@@ -10,7 +10,7 @@ use dlw_geometry::Joint;
 use super::model::{Channel, Fitted};
 use super::terms::{Effect, Term, LOG_REFERENCE_RATE};
 use super::{ChannelReport, Known, Outcome};
-use crate::fit::{fit_sensor, FitOptions, ModelKind};
+use crate::fit::{fit_sensor, FitOptions, ModelKind, PlayOrder};
 use crate::sensor::Sensor;
 use crate::signal::Prefilter;
 use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams};
@@ -295,7 +295,7 @@ fn fit_pi(recording: &Recording, joint: &Joint, sensor: Sensor) -> Result<PiConf
     let plane = sensor.plane();
     let options = FitOptions {
         model: ModelKind::Pi,
-        order: 10,
+        order: PlayOrder::DEFAULT,
         prefilter: Prefilter::MovingAverage(100),
         decimation: None,
     };

@@ -22,6 +22,7 @@
 
 mod characteristic;
 mod nnls;
+mod order;
 mod pi;
 mod plays;
 pub(crate) mod report;
@@ -40,6 +41,8 @@ use serde::Serialize;
 pub use characteristic::{characteristic, Characteristic};
 /// Non-negative least squares on the normal equations.
 pub use nnls::nnls;
+/// The play count of a PI model, checked once.
+pub use order::PlayOrder;
 /// PI fits by variable projection.
 pub use pi::{
     fit_plays, fit_plays_directed, fit_plays_on, PlayFit, Shape, Start, COARSE_SAMPLES,
@@ -52,9 +55,7 @@ pub use plays::{
 /// The fit report page.
 pub use report::{report_page, Validation};
 /// `dlw fit` as a library call.
-pub use request::{
-    fit, FitRequest, FitResult, PlayReport, Restart, SensorReport, Timings, MAX_ORDER, MIN_ORDER,
-};
+pub use request::{fit, FitRequest, FitResult, PlayReport, Restart, SensorReport, Timings};
 
 use crate::recording::Recording;
 use crate::sensor::Sensor;
@@ -151,7 +152,7 @@ pub struct FitOptions {
     /// The model for the config.
     pub model: ModelKind,
     /// Plays `N` of the PI models.
-    pub order: usize,
+    pub order: PlayOrder,
     /// Prefilter on strain and resistance (and the config's input filter).
     pub prefilter: Prefilter,
     /// Keep every `k`-th sample after the prefilter (`None`: the prefilter's own choice).
@@ -294,7 +295,7 @@ pub fn fit_sensor_models(
                 ));
                 fit_plays_directed(
                     kind,
-                    options.order,
+                    options.order.get(),
                     &obs.strain,
                     Some(&obs.falling),
                     &obs.ohm,

@@ -8,10 +8,11 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use dlw_estimator::{EstimatorConfig, SensorPlane, MAX_PLAYS};
+use dlw_estimator::{EstimatorConfig, SensorPlane};
 use dlw_geometry::{Joint, NotchStyle};
 use serde::Serialize;
 
+use super::PlayOrder;
 use super::{
     estimator_config, fit_sensor_models, min_max, model_name, report, Characteristic, FitError,
     FitOptions, ModelKind, ModelSummary, PlayFit, Prefilter, SensorFit, Validation,
@@ -21,11 +22,6 @@ use crate::recording::Recording;
 use crate::replay::{config_text, replay, ConfigFileError, ConfigFormat};
 use crate::report::Page;
 use crate::sensor::{Sensor, Sensors};
-
-/// Fewest play operators a PI model is fitted with.
-pub const MIN_ORDER: usize = 2;
-/// Most play operators: what the runtime crate runs.
-pub const MAX_ORDER: usize = MAX_PLAYS;
 
 /// What to fit: everything `dlw fit` takes besides its output paths.
 #[derive(Debug, Clone)]
@@ -40,8 +36,8 @@ pub struct FitRequest<'a> {
     pub design_name: String,
     /// The model the config gets.
     pub model: ModelKind,
-    /// Play operators `N` of the PI models ([`MIN_ORDER`] to [`MAX_ORDER`]).
-    pub order: usize,
+    /// Play operators `N` of the PI models.
+    pub order: PlayOrder,
     /// Prefilter on strain and resistance, and the config's input filter.
     pub prefilter: Prefilter,
     /// The sensors fitted; `None`: both for a BSN joint recorded with two columns, else sensor 1.
@@ -63,7 +59,7 @@ impl<'a> FitRequest<'a> {
             recording_name: String::from("recording"),
             design_name: String::from("design"),
             model: ModelKind::Pi,
-            order: 10,
+            order: PlayOrder::DEFAULT,
             prefilter: Prefilter::MovingAverage(100),
             sensors: None,
             compare: false,
@@ -222,18 +218,11 @@ pub struct Timings {
 /// builds the config and validates on the second recording.
 ///
 /// # Errors
-/// [`FitError`]: an order out of range, a sensor the joint does not carry, a recording that
+/// [`FitError`]: a sensor the joint does not carry, a recording that
 /// cannot identify the model asked for. A model other than the one asked for that cannot be
 /// fitted is reported in the summaries, never an error.
 pub fn fit(request: &FitRequest<'_>, progress: &dyn Fn(&str)) -> Result<FitResult, FitError> {
     let start = Instant::now();
-    if !(MIN_ORDER..=MAX_ORDER).contains(&request.order) {
-        return Err(FitError::Order {
-            order: request.order,
-            min: MIN_ORDER,
-            max: MAX_ORDER,
-        });
-    }
     let sensors = request.resolved_sensors();
     if sensors != Sensors::Single(Sensor::One) && request.joint.style() != NotchStyle::Bsn {
         return Err(FitError::NoSuchSensor { sensors });
@@ -498,13 +487,10 @@ mod tests {
     }
 
     #[test]
-    fn an_order_out_of_range_or_a_sensor_the_joint_lacks_is_a_named_error() {
+    fn a_sensor_the_joint_lacks_is_a_named_error() {
+        // An order out of range cannot be asked for: `PlayOrder::new` refuses it (its test).
         let (design, recording) = joint_a_characterization();
         let mut request = FitRequest::new(&design.joint, &recording);
-        request.order = 1;
-        let e = fit(&request, &|_| {}).unwrap_err().to_string();
-        assert!(e.contains("order 1") && e.contains("16"), "{e}");
-        request.order = 10;
         request.sensors = Some(Sensors::Both);
         let e = fit(&request, &|_| {}).unwrap_err().to_string();
         assert!(e.contains("BSN") && e.contains("UAN"), "{e}");

@@ -35,7 +35,7 @@ use crate::characterize::{
     NamedConfig, Options, RateResult, RelaxationResult, DEFAULT_MIN_HOLD_S,
 };
 use crate::control::{Control, ControlError, ControlResult, DesiredSource, PAPER_GAINS};
-use crate::fit::{estimator_config, FitError, ModelKind};
+use crate::fit::{estimator_config, FitError, ModelKind, PlayOrder};
 use crate::signal::Prefilter;
 use crate::sim::{plan, ProtocolKind, Recording, SimError};
 
@@ -50,7 +50,10 @@ pub use report::page;
 pub const SHORT_SCALE: f64 = 0.1;
 
 /// The paper's order of Joint D's PI model, "for the purpose of simplifying the control system".
-pub const CONTROL_ORDER: usize = 3;
+pub const CONTROL_ORDER: PlayOrder = match PlayOrder::checked(3) {
+    Some(order) => order,
+    None => panic!("3 plays is a PI order the runtime runs"),
+};
 
 /// Joint D's desired angle peaks at this share of the strain range its characterization
 /// covered. The sensor reads nothing beyond that range (the PI inverse stops at its end), so a
@@ -232,7 +235,7 @@ fn scaled_prefilter(prefilter: Prefilter, scale: f64) -> Prefilter {
     }
 }
 
-fn options(scale: f64, order: usize, samples: usize) -> Options {
+fn options(scale: f64, order: PlayOrder, samples: usize) -> Options {
     Options {
         prefilter: Prefilter::MovingAverage(100),
         order,
@@ -285,7 +288,7 @@ fn run_joint(
 
     let rec = simulate(joint, ProtocolKind::Characterization, scale, seed + 1)?;
     step("characterization simulated");
-    let opts = options(scale, 10, rec.samples.len());
+    let opts = options(scale, PlayOrder::DEFAULT, rec.samples.len());
     let planes = planes(&rec, j, &joint.design.file.name).map_err(analysis("loops"))?;
     let loops = loops(&rec, j, &planes, &opts).map_err(analysis("loops"))?;
     drop(rec);

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use dlw_core::analysis::Analysis as _;
 use dlw_core::design::{Design as CoreDesign, DesignFile};
 use dlw_core::discover as discovery;
-use dlw_core::fit::{FitRequest, ModelKind};
+use dlw_core::fit::{FitRequest, ModelKind, PlayOrder};
 use dlw_core::signal::Prefilter;
 use dlw_core::recording::{Recording, Rig, Samples};
 use dlw_core::sensor::Sensors;
@@ -398,6 +398,7 @@ fn fit(
     let validate = validate.map(recording_arg).transpose()?;
     let model = model_kind(model)?;
     let prefilter: Prefilter = prefilter.parse().map_err(|e: String| message(e))?;
+    let order = PlayOrder::new(order).map_err(|e| message(e.to_string()))?;
     let sensors: Option<Sensors> = sensor
         .map(|s| s.parse().map_err(|e: dlw_core::sensor::UnknownSensor| message(e.to_string())))
         .transpose()?;
@@ -507,6 +508,63 @@ fn discover<'py>(
     Ok(out)
 }
 
+/// Characterizes a recording, as `dlw characterize --json`: the dict it prints (its `report` is
+/// `None`: no page is written). `kind` is `"loops"`, `"rate"`, `"relaxation"` or
+/// `"estimation"` (`None`: the one the recording's protocol names); `configs` are estimator
+/// config files for `"estimation"`.
+#[pyfunction]
+#[pyo3(signature = (recording, design, kind=None, configs=None, prefilter="ma:100", order=10, min_hold_s=5.0, paper_processing=false))]
+#[allow(clippy::too_many_arguments)]
+fn characterize<'py>(
+    py: Python<'py>,
+    recording: &Bound<'py, PyAny>,
+    design: &Bound<'py, PyAny>,
+    kind: Option<&str>,
+    configs: Option<Vec<PathBuf>>,
+    prefilter: &str,
+    order: usize,
+    min_hold_s: f64,
+    paper_processing: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    use dlw_core::characterize::{CharacterizeRequest, Kind, Options};
+    let recording_name = recording
+        .extract::<PathBuf>()
+        .map_or_else(|_| "recording".to_owned(), |p| p.display().to_string());
+    let recording = recording_arg(recording)?;
+    let design = design_arg(design)?;
+    let kind = kind
+        .map(|k| {
+            Kind::from_name(k).ok_or_else(|| {
+                message(format!(
+                    "kind {k:?} is not loops, rate, relaxation or estimation"
+                ))
+            })
+        })
+        .transpose()?;
+    let options = Options {
+        prefilter: prefilter.parse().map_err(|e: String| message(e))?,
+        order: PlayOrder::new(order).map_err(value_error)?,
+        min_hold_s,
+        paper_processing,
+        decimation: None,
+    };
+    let result = py
+        .detach(|| {
+            dlw_core::characterize::characterize(&CharacterizeRequest {
+                recording: &recording,
+                recording_name,
+                joint: &design.joint,
+                design_name: design.file.name.clone(),
+                design_source: design.file.name.clone(),
+                kind,
+                configs: configs.unwrap_or_default(),
+                options,
+            })
+        })
+        .map_err(value_error)?;
+    to_python(py, &result)
+}
+
 /// The extension module `dlw._dlw`; `dlw/__init__.py` re-exports it.
 #[pymodule]
 fn _dlw(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -514,6 +572,7 @@ fn _dlw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Estimator>()?;
     m.add_class::<Fit>()?;
     m.add_function(wrap_pyfunction!(read_recording, m)?)?;
+    m.add_function(wrap_pyfunction!(characterize, m)?)?;
     m.add_function(wrap_pyfunction!(fit, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(discover, m)?)?;

@@ -107,6 +107,21 @@ def test_fit_from_a_dict_and_a_pi_fit(recordings):
     assert models["pi"]["rmse_ohm"] <= models["linear"]["rmse_ohm"] * 1.01
 
 
+def test_characterize_is_the_commands_json(recordings, tmp_path):
+    """characterize() returns what `dlw characterize --json` prints, but for the report path."""
+    design = DESIGNS / "joint-d.toml"
+    got = dlw.characterize(recordings / "char", design, kind="loops", order=4)
+    want = json.loads(cli("characterize", "--design", design, recordings / "char", "--kind", "loops",
+                          "--order", "4", "-o", tmp_path / "rep", "--json"))
+    assert got["report"] is None and want["report"].endswith("report.html")
+    got.pop("report"), want.pop("report")
+    assert got == want
+    with pytest.raises(ValueError, match="kind \"cubic\""):
+        dlw.characterize(recordings / "char", design, kind="cubic")
+    with pytest.raises(ValueError, match="--config is for --kind estimation"):
+        dlw.characterize(recordings / "char", design, kind="rate", configs=[tmp_path / "x.toml"])
+
+
 def test_bad_fit_input_raises_value_error(recordings):
     with pytest.raises(ValueError, match="order 1"):
         dlw.fit(recordings / "char", DESIGNS / "joint-d.toml", order=1)

@@ -2,7 +2,7 @@
 
 The same library as the ``dlw`` command: design geometry (``Design``), bench recordings
 (``read_recording``, ``simulate``), sensor fits (``fit``), the runtime estimator
-(``Estimator``) and discovery (``discover``). Bad input raises ``ValueError`` with the command's
+(``Estimator``), characterization (``characterize``) and discovery (``discover``). Bad input raises ``ValueError`` with the command's
 message. See docs/python.md.
 """
 
@@ -11,6 +11,7 @@ from ._dlw import (
     Estimator,
     Fit,
     __version__,
+    characterize,
     discover,
     fit,
     read_recording,
@@ -22,6 +23,7 @@ __all__ = [
     "Estimator",
     "Fit",
     "__version__",
+    "characterize",
     "discover",
     "fit",
     "read_recording",
