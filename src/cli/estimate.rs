@@ -3,13 +3,11 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
+use dlw::analysis::Analysis;
 use dlw::output::write_atomic;
-use dlw::recording::read_angles;
-use dlw::recording::Recording;
-use dlw::replay::{load_config, replay, replay_against_truth, Metrics, TruthMetrics};
+use dlw::recording::{read_angles, Recording};
+use dlw::replay::{estimate, load_config, EstimateRequest};
 use dlw::signal::FilterSpec;
-use serde::Serialize;
 
 /// The default estimates file, inside the recording folder.
 const DEFAULT_OUTPUT: &str = "estimates.csv";
@@ -58,30 +56,6 @@ fn parse_precision(s: &str) -> Result<u32, String> {
     }
 }
 
-/// What `estimate --json` prints; the keys are part of the interface.
-#[derive(Debug, Serialize)]
-struct Report {
-    #[serde(flatten)]
-    metrics: Metrics,
-    estimates: PathBuf,
-    warnings: Vec<String>,
-}
-
-/// What `estimate --truth --json` prints; the keys are part of the interface.
-#[derive(Debug, Serialize)]
-struct TruthReport {
-    /// The comparison with the ground truth.
-    truth: TruthMetrics,
-    /// The comparison with the tracker, `null` for a recording without its angle.
-    tracker: Option<Metrics>,
-    flagged_samples: usize,
-    held_samples: usize,
-    filter_delay_samples: f64,
-    filter_delay_s: f64,
-    estimates: PathBuf,
-    warnings: Vec<String>,
-}
-
 pub fn run(args: Args) -> anyhow::Result<()> {
     // A recording folder's own files are the input: estimates.csv written beside them by an
     // earlier run is an output, replaced with --force like any other.
@@ -105,109 +79,30 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(filter) = args.filter {
         config.output_filter = filter.config();
     }
-    if let Some(truth) = &args.truth {
-        return run_with_truth(&args, &config, truth);
-    }
-    let recording = Recording::read(&args.recording)?;
-    let result = replay(&config, &recording)
-        .with_context(|| format!("estimating over {}", args.recording.display()))?;
-    let output = args
-        .output
-        .unwrap_or_else(|| args.recording.join(DEFAULT_OUTPUT));
-    write_atomic(&output, &result.csv_bytes_with(&recording, args.precision))?;
-    let m = &result.metrics;
+    let truth = args.truth.as_ref().map(|p| read_angles(p)).transpose()?;
+    let recording = match truth {
+        Some(_) => Recording::read_allowing_empty_angle(&args.recording)?,
+        None => Recording::read(&args.recording)?,
+    };
+    let (recording_name, truth_name) = (
+        args.recording.display().to_string(),
+        args.truth.as_ref().map(|p| p.display().to_string()),
+    );
+    let mut result = estimate(&EstimateRequest {
+        config: &config,
+        recording: &recording,
+        recording_name: &recording_name,
+        truth: truth.as_ref().zip(truth_name.as_deref()),
+    })?;
+    write_atomic(&output, &result.csv_bytes(&recording, args.precision))?;
+    result.set_estimates(output);
     if args.json {
-        let report = Report {
-            metrics: *m,
-            estimates: output,
-            warnings: result.warnings,
-        };
-        println!("{}", dlw::finite::to_json(&report)?);
+        println!("{}", dlw::finite::to_json(&result)?);
     } else {
-        for w in &result.warnings {
+        for w in result.warnings() {
             eprintln!("warning: {w}");
         }
-        println!("{}", args.recording.display());
-        println!("  samples             {}", m.samples);
-        println!("  RMSE                {:.3}°", m.rmse_deg);
-        println!("  max |error|         {:.3}°", m.max_abs_error_deg);
-        println!(
-            "  filter delay        {} samples ({:.3} s), not compensated in the error",
-            m.filter_delay_samples, m.filter_delay_s
-        );
-        println!(
-            "  flagged samples     {} ({} held)",
-            m.flagged_samples, m.held_samples
-        );
-        println!("  estimates           {}", output.display());
+        print!("{}", result.summary());
     }
-    Ok(())
-}
-
-fn run_with_truth(
-    args: &Args,
-    config: &dlw_estimator::EstimatorConfig,
-    truth_path: &std::path::Path,
-) -> anyhow::Result<()> {
-    let truth = read_angles(truth_path)?;
-    let recording = Recording::read_allowing_empty_angle(&args.recording)?;
-    let result = replay_against_truth(config, &recording, &truth).with_context(|| {
-        format!(
-            "comparing the estimates over {} with {}",
-            args.recording.display(),
-            truth_path.display()
-        )
-    })?;
-    let output = args
-        .output
-        .clone()
-        .unwrap_or_else(|| args.recording.join(DEFAULT_OUTPUT));
-    write_atomic(&output, &result.csv_bytes_with(&recording, args.precision))?;
-    let t = &result.truth;
-    if args.json {
-        let report = TruthReport {
-            truth: *t,
-            tracker: result.tracker,
-            flagged_samples: result.flagged_samples,
-            held_samples: result.held_samples,
-            filter_delay_samples: result.filter_delay_samples,
-            filter_delay_s: result.filter_delay_s,
-            estimates: output,
-            warnings: result.warnings,
-        };
-        println!("{}", dlw::finite::to_json(&report)?);
-        return Ok(());
-    }
-    for w in &result.warnings {
-        eprintln!("warning: {w}");
-    }
-    println!(
-        "{} against {}",
-        args.recording.display(),
-        truth_path.display()
-    );
-    println!(
-        "  frames compared     {} ({} outside the recording, {} without an angle)",
-        t.frames, t.frames_outside, t.frames_without_angle
-    );
-    println!("  RMSE                {:.3}°", t.rmse_deg);
-    println!("  max |error|         {:.3}°", t.max_abs_error_deg);
-    println!("  mean error          {:.3}°", t.mean_error_deg);
-    match &result.tracker {
-        Some(m) => println!(
-            "  RMSE vs tracker     {:.3}° over {} samples",
-            m.rmse_deg, m.samples
-        ),
-        None => println!("  RMSE vs tracker     — (no tracker angle in the recording)"),
-    }
-    println!(
-        "  filter delay        {} samples ({:.3} s), not compensated in the error",
-        result.filter_delay_samples, result.filter_delay_s
-    );
-    println!(
-        "  flagged samples     {} ({} held)",
-        result.flagged_samples, result.held_samples
-    );
-    println!("  estimates           {}", output.display());
     Ok(())
 }

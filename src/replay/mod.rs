@@ -17,6 +17,7 @@
 //! [`config_file`] reads and writes estimator configs as TOML or JSON.
 
 mod config_file;
+mod estimate;
 pub mod truth;
 
 use dlw_estimator::{Estimator, EstimatorConfig, EstimatorError, Flags};
@@ -27,12 +28,22 @@ use crate::recording::Recording;
 
 /// Estimator config files in TOML or JSON.
 pub use config_file::{config_text, load_config, ConfigFileError, ConfigFormat};
+/// `dlw estimate` as a library call.
+pub use estimate::{estimate, EstimateRequest, Estimation, TrackerEstimation, TruthEstimation};
 /// Comparing estimates with a ground truth at other times.
 pub use truth::{compare_with_truth, replay_against_truth, TruthMetrics, TruthReplay};
 
 /// Why a replay could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum ReplayError {
+    /// A replay's error, with what was being compared.
+    #[error("{what}")]
+    Over {
+        /// What was being compared (`estimating over rec`).
+        what: String,
+        /// Why it failed.
+        source: Box<ReplayError>,
+    },
     /// The config needs more sensors than the recording has.
     #[error(
         "the config reads {config} sensor(s), up to voltage column v{column}_V, but the recording has {recording} voltage column(s)"
