@@ -36,6 +36,7 @@ pub mod ellipse;
 pub mod folder;
 pub mod frames;
 pub mod overlay;
+mod pipeline;
 pub mod render;
 pub mod series;
 pub mod smooth;
@@ -64,6 +65,8 @@ pub use folder::{analyze_folder, FolderFits};
 pub use frames::{list_frames, read_frame, Frame};
 /// Drawing the fit on a frame, and the overlay folder.
 pub use overlay::draw_overlay;
+/// `dlw fluoro` as one call.
+pub use pipeline::{fluoro, Fluoro, FluoroRequest};
 /// Synthetic frames.
 pub use render::{render_frame, PinScene};
 /// A sequence of frames to a series of angles.
@@ -231,4 +234,36 @@ pub enum FluoroError {
     /// An output file could not be written.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// A command-line option out of its range.
+    #[error("{flag} {value} is out of range ({limit})")]
+    Option {
+        /// The option.
+        flag: &'static str,
+        /// The value given.
+        value: f64,
+        /// The allowed range, in words.
+        limit: &'static str,
+    },
+    /// A setting beyond the limits of `crate::limits` (the message names value and limit).
+    #[error("{message}")]
+    Limit {
+        /// The limit's message.
+        message: String,
+    },
+    /// The folder `angles.csv` goes in does not exist.
+    #[error("cannot write {}: folder {} does not exist", output.display(), folder.display())]
+    NoOutputFolder {
+        /// `angles.csv`.
+        output: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+    },
+    /// A failure while analyzing a folder of frames.
+    #[error("analyzing frames in {}", frames.display())]
+    Analyzing {
+        /// The frames folder.
+        frames: PathBuf,
+        /// Why.
+        source: Box<FluoroError>,
+    },
 }
