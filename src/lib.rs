@@ -1,44 +1,64 @@
 //! `dlw`: from a sensing continuum-robot joint's design parameters to a finished part and a
 //! working sensor.
 //!
-//! The crate is the planner, fitting, simulation and the CLI's library half. The pieces, each in
-//! its own folder:
+//! The crate is the library half of the `dlw` command. Its modules stand on three floors, and
+//! each uses only modules on its own floor or below (`docs/architecture.md` draws the graph;
+//! `scripts/deps.py` lists it from the code, and `tests/architecture.rs` holds it free of
+//! cycles).
+//!
+//! # Shared floor (used by both sides, using nothing of `dlw` above it)
+//! - [`stats`]: the shared statistics (`min_max`, `moments`, `slope`, `rmse`, medians, linear
+//!   interpolation) and their one NaN policy;
+//! - [`fixed`]: the one number formatter (programs, drawings, templates, CSV);
+//! - [`finite`]: JSON that never carries NaN or infinity;
+//! - [`limits`]: the plausible ranges every input is checked against;
+//! - [`output`]: the output policy (never replace without `--force`, never an input), atomic
+//!   writes, so a failed command leaves no partial file, and the one bounded reader;
+//! - [`report`]: HTML report pages and their SVG charts;
+//! - [`sensor`]: which sensor (`Sensor`, `Sensors`): the one typed sensor identity.
+//!
+//! # Fabrication: design → layout → toolpath → post
 //! - [`design`]: design files (the paper's Table I plus fabrication tables), read and validated;
 //! - [`layout`]: the unrolled joint (notches, sensor traces, leads, pads, parting line) in the
 //!   drawing frame;
-//! - [`drawing`]: drawings of the joint: DXF for designers (written and read back), SVG for
-//!   people;
-//! - [`explore`]: from requirements to joints: a grid of candidates scored with the mechanics
-//!   and the sensing model, the design rules, the Pareto front (`dlw explore`);
-//! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
 //! - [`process`], [`machine`]: laser parameter sets (Table II) and machine profiles;
+//! - [`drawing`]: DXF for designers (written and read back) and SVG for people;
+//! - [`rules`]: the design rules every command runs (errors block output, warnings are
+//!   printed);
+//! - [`explore`]: from requirements to joints: candidates scored with the mechanics and the
+//!   sensing model, the design rules, the Pareto front;
 //! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting);
-//! - [`sheet`]: the operator's setup sheet, an emitter like the posts;
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
-//! - [`job`]: a design made into a program and a setup sheet for one machine;
-//! - [`output`]: writing files atomically, so a failed command never leaves a partial file;
+//! - [`sheet`]: the operator's setup sheet, an emitter like the posts;
+//! - [`job`]: a design made into a program and a setup sheet for one machine.
+//!
+//! # Sensing: recording → fit → config → estimator; recording → discover → scenario
+//! - [`recording`]: recording folders (`rig.toml`, `data.csv`), read, checked and written, with
+//!   their provenance, protocol and ground-truth angles; the floor of the sensing side;
+//! - [`import`]: recordings from a bench's own files (TDMS, LVM, CSV and a tracker log),
+//!   aligned and checked;
+//! - [`sim`]: the bench simulator (stroke → angle → strain → resistance → voltage → ADC),
+//!   writing the same recordings;
+//! - [`signal`]: observations of a sensor in a recording, prefilters, cycles and phases, the
+//!   line fit: what every analysis reads a recording through;
 //! - [`analysis`]: the one interface every analysis's result implements (JSON, summary, report
 //!   section);
-//! - [`sensor`]: which sensor (`Sensor`, `Sensors`): the one typed sensor identity;
-//! - [`characterize`]: the paper's characterization analyses over a recording (Section IV-A, IV-B);
-//! - [`discover`]: where the simulator and a recording disagree, which effect is missing, and
-//!   the gap once it is added;
-//! - [`control`]: open- and closed-loop control of a joint on the simulated bench (Section IV-C);
-//! - [`reproduce`]: the paper's Section IV on the simulator, Tables III-VI side by side;
-//! - [`replay`]: running the runtime estimator (`dlw-estimator`) over a recording, and its
-//!   config files;
-//! - [`recording`]: recording folders (`rig.toml`, `data.csv`), read, checked and written, with
-//!   their provenance (simulated or imported); depends on nothing above it;
-//! - [`stats`]: the shared statistics (`min_max`, `moments`, `slope`, `rmse`, medians) and their
-//!   one NaN policy;
-//! - [`fixed`]: the one number formatter (programs, drawings, templates, CSV);
+//! - [`fit`]: linear and Prandtl-Ishlinskii models fitted to a recording, and the estimator
+//!   config they make;
+//! - [`replay`]: the runtime estimator (`dlw-estimator`) over a recording (`dlw estimate`), and
+//!   its config files;
 //! - [`fluoro`]: the joint angle from fluoroscopy frames (the phantom's ground truth), and
 //!   synthetic frames to try it on;
-//! - [`sim`]: the bench simulator (stroke → angle → strain → resistance → voltage → ADC) and
-//!   recording folders.
+//! - [`characterize`]: the paper's characterization analyses over a recording (Section IV-A,
+//!   IV-B);
+//! - [`discover`]: where the simulator and a recording disagree, which effect is missing, and
+//!   the gap once it is added;
+//! - [`control`]: open- and closed-loop control of a joint on the simulated bench (Section
+//!   IV-C);
+//! - [`reproduce`]: the paper's Section IV on the simulator, Tables III-VI side by side.
 //!
 //! The cross-section and strain math lives in the `dlw-geometry` crate, shared with the
-//! runtime estimator.
+//! runtime estimator (`dlw-estimator`).
 
 pub mod analysis;
 pub mod characterize;

@@ -3,14 +3,14 @@
 
 use dlw::fluoro::render::PinShape;
 use dlw::fluoro::{
-    analyze_frame, render_frame, BaselineRule, Crop, PinScene, Series, SeriesSettings, Settings,
-    Skip, Threshold,
+    analyze_frame, render_frame, AngleSeries, BaselineRule, Crop, PinScene, SeriesSettings,
+    Settings, Skip, Threshold,
 };
 
 /// The pin's recovered raw angle must lie this close to the rendered one (°).
 const ANGLE_TOL_DEG: f64 = 0.5;
 
-/// A sweep from −150° to 150°, past both ±90°, through `Series`: the unwrapped raw angles
+/// A sweep from −150° to 150°, past both ±90°, through `AngleSeries`: the unwrapped raw angles
 /// follow the rendered ones up to the one multiple of 180° fixed by the first frame.
 fn sweep(scene: &PinScene, settings: &Settings) {
     let truth: Vec<f64> = (0..=40).map(|k| -150.0 + 7.5 * f64::from(k)).collect();
@@ -19,7 +19,7 @@ fn sweep(scene: &PinScene, settings: &Settings) {
         .enumerate()
         .map(|(k, &a)| analyze_frame(&render_frame(scene, a, k as u64), settings))
         .collect();
-    let series = Series::from_fits(
+    let series = AngleSeries::from_fits(
         &fits,
         &SeriesSettings {
             fps: 2.0,
@@ -187,7 +187,7 @@ fn a_sequence_reproduces_the_smoothing_and_the_baseline() {
         smooth: 8,
         baseline: BaselineRule::UntilMotion { threshold_deg: 3.0 },
     };
-    let series = Series::from_fits(&fits, &settings, 20, 1.5).unwrap();
+    let series = AngleSeries::from_fits(&fits, &settings, 20, 1.5).unwrap();
     assert_eq!(series.rows.len(), 35);
     assert_eq!(series.rows[1].time_s, 10.5);
     let gap = &series.rows[30];
@@ -235,7 +235,7 @@ fn a_sequence_reproduces_the_smoothing_and_the_baseline() {
         baseline: BaselineRule::Seconds(2.0),
         ..settings
     };
-    let s = Series::from_fits(&fits, &fixed, 20, 1.5).unwrap();
+    let s = AngleSeries::from_fits(&fits, &fixed, 20, 1.5).unwrap();
     assert_eq!((s.baseline.frames, s.baseline.end_s), (4, Some(12.0)));
     assert!(
         (s.baseline.mean_deg - offset).abs() < 0.2,

@@ -21,7 +21,7 @@ use crate::sensor::{Sensor, Sensors};
 
 use super::{figure_name, titled, CharacterizeError, Options};
 use crate::recording::Recording;
-use crate::replay::{replay, Metrics};
+use crate::replay::{replay, TrackerMetrics};
 use crate::report::{Chart, Page, Series, Table, PALETTE};
 
 /// The paper's moving average on the estimated angle (samples).
@@ -54,7 +54,7 @@ pub struct EstimationRun {
     pub role: &'static str,
     /// RMSE and the rest, as `dlw estimate --json` prints them.
     #[serde(flatten)]
-    pub metrics: Metrics,
+    pub metrics: TrackerMetrics,
     /// The estimates (°), every sample.
     #[serde(skip)]
     pub estimate_deg: Vec<f64>,

@@ -27,10 +27,10 @@ use dlw_geometry::{Joint, NotchStyle};
 use serde::Serialize;
 
 use crate::fit::{FitError, PlayOrder};
+use crate::recording::ProtocolKind;
 use crate::recording::Recording;
 use crate::replay::ReplayError;
 use crate::signal::Prefilter;
-use crate::sim::ProtocolKind;
 
 /// Pearson correlation, standard deviation, least-squares slope.
 /// The statistics the analyses report, from the one `stats` module.
@@ -52,7 +52,7 @@ pub const DEFAULT_MIN_HOLD_S: f64 = 5.0;
 /// Which analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
-pub enum Kind {
+pub enum AnalysisKind {
     /// Resistance-strain loops and fits (Section IV-A1, Fig. 4).
     Loops,
     /// Rate dependence: GF per cycle against rise time, R₀ per cycle (Section IV-A2, Fig. 5).
@@ -63,7 +63,7 @@ pub enum Kind {
     Estimation,
 }
 
-impl Kind {
+impl AnalysisKind {
     /// The kind's name as the command line writes it.
     pub fn name(self) -> &'static str {
         match self {
@@ -87,17 +87,12 @@ impl Kind {
     /// # Errors
     /// [`CharacterizeError::NoKind`] when the rig states no protocol, an unknown one, or `custom`.
     pub fn of_recording(recording: &Recording) -> Result<Self, CharacterizeError> {
-        let stated = recording.rig.protocol();
-        let protocol = match stated {
-            Some(name) => Some(
-                toml::Value::String(name.to_string())
-                    .try_into::<ProtocolKind>()
-                    .map_err(|_| CharacterizeError::NoKind {
-                        protocol: name.to_string(),
-                    })?,
-            ),
-            None => None,
-        };
+        let protocol = recording
+            .rig
+            .protocol_kind()
+            .map_err(|name| CharacterizeError::NoKind {
+                protocol: name.to_string(),
+            })?;
         match protocol {
             Some(ProtocolKind::Characterization) => Ok(Self::Loops),
             Some(ProtocolKind::RateDependence) => Ok(Self::Rate),

@@ -8,7 +8,7 @@ use dlw_geometry::Joint;
 use serde::Serialize;
 
 use super::{
-    estimate, loops, planes, rate, relaxation, CharacterizeError, EstimationResult, Kind,
+    estimate, loops, planes, rate, relaxation, AnalysisKind, CharacterizeError, EstimationResult,
     LoopsResult, NamedConfig, Options, RateResult, RelaxationResult,
 };
 use crate::analysis::{Analysis, Placement};
@@ -29,8 +29,8 @@ pub struct CharacterizeRequest<'a> {
     pub design_name: String,
     /// Where the design came from, for the report's text (the command gives its path).
     pub design_source: String,
-    /// The analysis; `None`: the one for the protocol `rig.toml` states ([`Kind::of_recording`]).
-    pub kind: Option<Kind>,
+    /// The analysis; `None`: the one for the protocol `rig.toml` states ([`AnalysisKind::of_recording`]).
+    pub kind: Option<AnalysisKind>,
     /// The estimator config files of the `estimation` analysis (none for the others), each
     /// named in the results by its file stem.
     pub configs: Vec<PathBuf>,
@@ -85,7 +85,7 @@ impl<T: Analysis> AnalysisSection for T {
 #[derive(Debug, Clone, Serialize)]
 pub struct Characterization {
     /// The analysis run.
-    pub kind: Kind,
+    pub kind: AnalysisKind,
     /// The recording's name, as the request gave it.
     pub recording: String,
     /// The report page's path, once the caller has written it.
@@ -124,12 +124,14 @@ pub fn characterize(
     let name = &request.recording_name;
     let kind = match request.kind {
         Some(k) => k,
-        None => Kind::of_recording(request.recording).map_err(|e| CharacterizeError::Choose {
-            recording: name.clone(),
-            source: Box::new(e),
+        None => AnalysisKind::of_recording(request.recording).map_err(|e| {
+            CharacterizeError::Choose {
+                recording: name.clone(),
+                source: Box::new(e),
+            }
         })?,
     };
-    if kind != Kind::Estimation && !request.configs.is_empty() {
+    if kind != AnalysisKind::Estimation && !request.configs.is_empty() {
         return Err(CharacterizeError::ConfigsForOtherKind { kind: kind.name() });
     }
     let configs = request
@@ -147,12 +149,14 @@ pub fn characterize(
     let (recording, joint, options) = (request.recording, request.joint, &request.options);
     let planes = planes(recording, joint, &request.design_name)?;
     let result = match kind {
-        Kind::Loops => loops(recording, joint, &planes, options).map(KindResult::Loops),
-        Kind::Rate => rate(recording, joint, &planes, options).map(KindResult::Rate),
-        Kind::Relaxation => {
+        AnalysisKind::Loops => loops(recording, joint, &planes, options).map(KindResult::Loops),
+        AnalysisKind::Rate => rate(recording, joint, &planes, options).map(KindResult::Rate),
+        AnalysisKind::Relaxation => {
             relaxation(recording, joint, &planes, options).map(KindResult::Relaxation)
         }
-        Kind::Estimation => estimate(recording, &configs, options).map(KindResult::Estimation),
+        AnalysisKind::Estimation => {
+            estimate(recording, &configs, options).map(KindResult::Estimation)
+        }
     }
     .map_err(|e| CharacterizeError::Analysis {
         kind: kind.name(),
@@ -193,14 +197,14 @@ impl Characterization {
     }
 }
 
-impl Kind {
+impl AnalysisKind {
     /// The heading of the kind's section, with the paper's place for it.
     pub fn heading(self) -> &'static str {
         match self {
-            Kind::Loops => "Resistance-strain loops (Section IV-A1, Fig. 4, Table III)",
-            Kind::Rate => "Rate dependence (Section IV-A2, Fig. 5)",
-            Kind::Relaxation => "Relaxation (Section IV-A3, Fig. 6)",
-            Kind::Estimation => "Angle estimation (Section IV-B, Tables IV-V, Figs. 7-8)",
+            AnalysisKind::Loops => "Resistance-strain loops (Section IV-A1, Fig. 4, Table III)",
+            AnalysisKind::Rate => "Rate dependence (Section IV-A2, Fig. 5)",
+            AnalysisKind::Relaxation => "Relaxation (Section IV-A3, Fig. 6)",
+            AnalysisKind::Estimation => "Angle estimation (Section IV-B, Tables IV-V, Figs. 7-8)",
         }
     }
 }

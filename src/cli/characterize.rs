@@ -4,7 +4,9 @@
 use std::path::PathBuf;
 
 use dlw::analysis::Analysis;
-use dlw::characterize::{characterize, CharacterizeRequest, Kind, Options, DEFAULT_MIN_HOLD_S};
+use dlw::characterize::{
+    characterize, AnalysisKind, CharacterizeRequest, Options, DEFAULT_MIN_HOLD_S,
+};
 use dlw::design::Design;
 use dlw::fit::PlayOrder;
 use dlw::recording::Recording;
@@ -21,7 +23,7 @@ pub struct Args {
     /// The analysis; default: from the protocol rig.toml records (characterization → loops,
     /// rate-dependence → rate, relaxation → relaxation, random → estimation).
     #[arg(long, value_enum)]
-    kind: Option<Kind>,
+    kind: Option<AnalysisKind>,
     /// Estimator config(s) for `estimation` (.toml or .json); repeat for several.
     #[arg(long)]
     config: Vec<PathBuf>,

@@ -51,7 +51,7 @@ impl Model {
 
 /// A candidate's numbers.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Metrics {
+pub struct DesignMetrics {
     /// Resistance change per degree, `R₀·GF·Δy/L·π/180` (Ω/°).
     pub sensitivity_ohm_per_deg: f64,
     /// Usable range (°).
@@ -70,7 +70,7 @@ pub struct Metrics {
     pub saturation_limit_deg: f64,
 }
 
-impl Metrics {
+impl DesignMetrics {
     /// The value of `metric`.
     pub fn get(&self, metric: Metric) -> f64 {
         match metric {
@@ -128,7 +128,7 @@ impl Constraint {
     }
 
     /// The candidate's value this constraint tests.
-    pub fn value(self, m: &Metrics) -> f64 {
+    pub fn value(self, m: &DesignMetrics) -> f64 {
         match self {
             Self::NotchesOpen => m.closing_deg,
             Self::MaterialWithinLimit => m.material_limit_deg,
@@ -212,7 +212,7 @@ impl Constraint {
 /// Scores a candidate: its metrics and the mask of constraints it fails, or `None` when the
 /// geometry crate refuses its section, joint or tendon (the design rules would too).
 #[inline]
-pub fn evaluate(p: &Params, model: &Model) -> Option<(Metrics, u8)> {
+pub fn evaluate(p: &Params, model: &Model) -> Option<(DesignMetrics, u8)> {
     let section = CrossSection::new(
         p.style,
         p.outer_radius_mm,
@@ -248,7 +248,7 @@ pub fn evaluate(p: &Params, model: &Model) -> Option<(Metrics, u8)> {
     if model.no_saturation && saturation_limit_deg < range_deg {
         (range_deg, range_limited_by) = (saturation_limit_deg, RangeLimit::SensorSaturation);
     }
-    let metrics = Metrics {
+    let metrics = DesignMetrics {
         sensitivity_ohm_per_deg: model.r0_ohm
             * joint.resistance_ratio_per_deg(model.gauge_factor).abs(),
         range_deg,
@@ -264,7 +264,7 @@ pub fn evaluate(p: &Params, model: &Model) -> Option<(Metrics, u8)> {
 
 /// The mask of constraints `m` fails.
 #[inline]
-fn failures(m: &Metrics, model: &Model) -> u8 {
+fn failures(m: &DesignMetrics, model: &Model) -> u8 {
     let r = model.min_range_deg;
     let checks = [
         m.closing_deg < r,

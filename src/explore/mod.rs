@@ -33,13 +33,13 @@ use crate::rules::{self, RulesError, Violation};
 /// The tube catalogue.
 pub use catalogue::{Catalogue, Tube};
 /// Scoring one candidate.
-pub use evaluate::{evaluate, Constraint, Metrics, Model};
+pub use evaluate::{evaluate, Constraint, DesignMetrics, Model};
 /// The candidate space.
 pub use grid::{Grid, Params};
 /// The Pareto front.
 pub use pareto::{dominates, front};
 /// The output folder's files and the `--json` summary.
-pub use report::{files, Files, Row, Summary};
+pub use report::{files, ExploreSummary, Files, Row};
 /// The spec file.
 pub use spec::{Axis, Constraints, Metric, Objectives, SpecError, SpecFile, Vary};
 /// Limits on a spec's size.
@@ -95,7 +95,7 @@ pub struct Candidate {
     /// Its parameters.
     pub params: Params,
     /// Its metrics.
-    pub metrics: Metrics,
+    pub metrics: DesignMetrics,
 }
 
 /// What the screen found: the survivors and, for the infeasible message, per-constraint counts.
@@ -120,7 +120,7 @@ pub struct Screen {
 }
 
 impl Screen {
-    fn add(&mut self, index: u64, params: Params, scored: Option<(Metrics, u8)>) {
+    fn add(&mut self, index: u64, params: Params, scored: Option<(DesignMetrics, u8)>) {
         self.evaluated += 1;
         let Some((metrics, mask)) = scored else {
             self.geometry_refused += 1;

@@ -104,7 +104,7 @@ impl Row {
 
 /// The `--json` document: the counts and the front.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Summary {
+pub struct ExploreSummary {
     /// Candidates in the grid.
     pub candidates: u64,
     /// Refused by the geometry.
@@ -167,7 +167,7 @@ pub fn files(
     feasible: &[Candidate],
     front: &[usize],
     top_k: usize,
-) -> Result<(Files, Summary), ChartError> {
+) -> Result<(Files, ExploreSummary), ChartError> {
     let best = x.best(feasible, front, top_k);
     let mut files = Vec::new();
     let mut names = vec![None; feasible.len()];
@@ -198,7 +198,7 @@ pub fn files(
     }
     files.push(("designs.csv".into(), all.into_bytes()));
     files.push(("front.csv".into(), front_csv.into_bytes()));
-    let summary = Summary {
+    let summary = ExploreSummary {
         candidates: screen.evaluated,
         geometry_refused: screen.geometry_refused,
         failed_constraints: screen.evaluated
@@ -244,7 +244,7 @@ fn design_toml(x: &Exploration, c: &Candidate, rank: usize) -> String {
 }
 
 /// The paper's joints scored with the spec's model (feasible or not), as plot markers.
-fn paper_points(x: &Exploration) -> Vec<(&'static str, super::Metrics)> {
+fn paper_points(x: &Exploration) -> Vec<(&'static str, super::DesignMetrics)> {
     PAPER_JOINTS
         .iter()
         .filter_map(|(label, text)| {
@@ -292,7 +292,7 @@ fn plot_pairs(x: &Exploration) -> Vec<(Metric, Metric)> {
 
 fn page(
     x: &Exploration,
-    s: &Summary,
+    s: &ExploreSummary,
     feasible: &[Candidate],
     front: &[usize],
 ) -> Result<Page, ChartError> {
@@ -389,7 +389,7 @@ fn page(
 fn scatter(
     feasible: &[Candidate],
     front: &[usize],
-    paper: &[(&str, super::Metrics)],
+    paper: &[(&str, super::DesignMetrics)],
     mx: Metric,
     my: Metric,
 ) -> Chart {

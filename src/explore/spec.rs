@@ -156,9 +156,9 @@ impl Metric {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Objectives {
-    /// Metrics to make large.
+    /// DesignMetrics to make large.
     pub maximize: Vec<Metric>,
-    /// Metrics to make small.
+    /// DesignMetrics to make small.
     pub minimize: Vec<Metric>,
 }
 

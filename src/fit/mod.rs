@@ -34,7 +34,7 @@ use dlw_estimator::{
     Coeffs, ContinuousPiConfig, EstimatorConfig, EstimatorError, JointConfig, LinearModel,
     ModelConfig, PiConfig, SensorConfig, SensorPlane,
 };
-use dlw_geometry::Joint;
+use dlw_geometry::{Divider, Joint};
 use serde::Serialize;
 
 /// The characteristic points of a loop (Table III).
@@ -326,15 +326,61 @@ pub fn fit_sensor_models(
         (PlayKind::Generalized, ModelKind::Pi, pi),
         (PlayKind::Continuous, ModelKind::ContinuousPi, cpi),
     ] {
+        let play = Play {
+            kind,
+            model,
+            plane,
+            divider,
+            noise,
+        };
+        results.push(play.record(result, &obs, options, &mut configs, &mut summaries)?);
+    }
+    let continuous_pi = results.pop().unwrap_or_else(|| Err("not fitted".into()));
+    let pi = results.pop().unwrap_or_else(|| Err("not fitted".into()));
+    Ok(SensorFit {
+        plane,
+        observations: obs,
+        cycles,
+        linear,
+        characteristic,
+        pi,
+        continuous_pi,
+        configs,
+        summaries,
+        seconds: [t_observe, t_linear, t_pi, t_cpi],
+    })
+}
+
+/// One play model's fit, on its way into a [`SensorFit`].
+struct Play {
+    kind: PlayKind,
+    model: ModelKind,
+    plane: SensorPlane,
+    divider: Divider,
+    noise: f64,
+}
+
+impl Play {
+    /// Adds the fit's summary and config (or the reason it has none) and returns what
+    /// [`SensorFit`] keeps of it; the model the user asked for fails the whole fit instead.
+    fn record(
+        &self,
+        result: Option<Result<PlayFit, FitError>>,
+        obs: &Observations,
+        options: &FitOptions,
+        configs: &mut Vec<(ModelKind, SensorConfig)>,
+        summaries: &mut Vec<ModelSummary>,
+    ) -> Result<Result<PlayFit, String>, FitError> {
+        let model = self.model;
+        let n = obs.len();
         let Some(result) = result else {
-            results.push(Err(format!(
+            return Ok(Err(format!(
                 "not asked for (--model {})",
                 model_name(options.model)
             )));
-            continue;
         };
         let built = result.and_then(|fit| {
-            let model_config = play_config(kind, &fit, &obs, noise)?;
+            let model_config = play_config(self.kind, &fit, obs, self.noise)?;
             model_config.validate().map_err(FitError::Model)?;
             Ok((fit, model_config))
         });
@@ -356,33 +402,19 @@ pub fn fit_sensor_models(
                 summaries.push(s);
                 configs.push((
                     model,
-                    SensorConfig::new(divider, model_config).on_plane(plane),
+                    SensorConfig::new(self.divider, model_config).on_plane(self.plane),
                 ));
-                results.push(Ok(fit));
+                Ok(Ok(fit))
             }
             Err(e) => {
                 if options.model == model {
                     return Err(e);
                 }
                 summaries.push(summary(model, f64::NAN, 0, n, Some(e.to_string())));
-                results.push(Err(e.to_string()));
+                Ok(Err(e.to_string()))
             }
         }
     }
-    let continuous_pi = results.pop().unwrap_or_else(|| Err("not fitted".into()));
-    let pi = results.pop().unwrap_or_else(|| Err("not fitted".into()));
-    Ok(SensorFit {
-        plane,
-        observations: obs,
-        cycles,
-        linear,
-        characteristic,
-        pi,
-        continuous_pi,
-        configs,
-        summaries,
-        seconds: [t_observe, t_linear, t_pi, t_cpi],
-    })
 }
 
 /// The estimator config holding `model` for each fitted sensor (one, or both of a BSN joint),

@@ -364,29 +364,7 @@ pub fn fit_plays_directed(
     }
     let (shape, _) = found;
     let (shape, cost, _) = refine(&full, shape, FULL_REFINEMENTS);
-    // The hysteretic model against the line it contains: kept only where its lower residual
-    // pays for its extra parameters by the Bayesian information criterion. Otherwise the
-    // extra constants fit noise, and an inverse through noise-fitted partial sums amplifies it
-    // (Joint C's nearly linear sensor: 0.4 % lower RMSE, 4.0° against the line's 0.81°).
-    let samples = full.strain.len() as f64;
-    // The model's constants are the shape, the N weights and the constant; the line's two.
-    let extra = (SHAPE + order + 1 - 2) as f64;
-    let line_shape = full.linear_shape_at(LOG_RADIUS.0);
-    let chosen = match full.line(&line_shape) {
-        Some(line) => {
-            let line_cost = line.residuals.norm_squared() / samples;
-            if samples * (line_cost / cost).ln() > extra * samples.ln() {
-                None
-            } else {
-                Some((line_shape, line, line_cost))
-            }
-        }
-        None => None,
-    };
-    let (shape, solved, cost, set_aside) = match chosen {
-        Some((line_shape, line, line_cost)) => (line_shape, line, line_cost, Some(cost.sqrt())),
-        None => (shape, full.solve(&shape), cost, None),
-    };
+    let (shape, solved, cost, set_aside) = line_or_hysteretic(&full, shape, cost, order);
     let evaluations = full.evaluations() + coarse.evaluations();
     let mut fit = full
         .play_fit(&shape, solved)
@@ -408,6 +386,38 @@ pub fn fit_plays_directed(
     fit.restarts = restarts;
     fit.evaluations = evaluations;
     Ok(fit)
+}
+
+/// The hysteretic model against the line it contains: kept only where its lower residual
+/// pays for its extra parameters by the Bayesian information criterion. Otherwise the extra
+/// constants fit noise, and an inverse through noise-fitted partial sums amplifies it (Joint C's
+/// nearly linear sensor: 0.4 % lower RMSE, 4.0° against the line's 0.81°). Returns the shape
+/// kept, its solution, its cost and, when the line was kept, the set-aside hysteretic RMSE.
+fn line_or_hysteretic(
+    full: &Projection,
+    shape: Shape,
+    cost: f64,
+    order: usize,
+) -> (Shape, Solved, f64, Option<f64>) {
+    let samples = full.strain.len() as f64;
+    // The model's constants are the shape, the N weights and the constant; the line's two.
+    let extra = (SHAPE + order + 1 - 2) as f64;
+    let line_shape = full.linear_shape_at(LOG_RADIUS.0);
+    let chosen = match full.line(&line_shape) {
+        Some(line) => {
+            let line_cost = line.residuals.norm_squared() / samples;
+            if samples * (line_cost / cost).ln() > extra * samples.ln() {
+                None
+            } else {
+                Some((line_shape, line, line_cost))
+            }
+        }
+        None => None,
+    };
+    match chosen {
+        Some((line_shape, line, line_cost)) => (line_shape, line, line_cost, Some(cost.sqrt())),
+        None => (shape, full.solve(&shape), cost, None),
+    }
 }
 
 /// [`refine`] from each start, on `threads` threads; the results in the order of `starts`.

@@ -13,14 +13,14 @@
 //! so a ground truth made by another tool can be compared as well; a row with an empty
 //! `angle_deg` is a frame without an angle and is left out.
 
-use super::Series;
+use super::AngleSeries;
 use crate::fixed::push_fixed;
 
 /// The header `dlw fluoro` writes.
 pub const ANGLES_HEADER: &str = "time_s,angle_deg,raw_deg,area_px,axis_ratio,flags";
 
 /// `angles.csv` as bytes.
-pub fn angles_csv_bytes(series: &Series) -> Vec<u8> {
+pub fn angles_csv_bytes(series: &AngleSeries) -> Vec<u8> {
     let mut out = Vec::with_capacity(series.rows.len() * 48 + 64);
     out.extend_from_slice(ANGLES_HEADER.as_bytes());
     out.push(b'\n');
@@ -58,7 +58,7 @@ mod tests {
 
     #[test]
     fn writes_and_reads_back() {
-        let series = Series {
+        let series = AngleSeries {
             rows: vec![
                 Row {
                     time_s: 0.0,

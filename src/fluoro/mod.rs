@@ -70,13 +70,13 @@ pub use pipeline::{fluoro, Fluoro, FluoroRequest};
 /// Synthetic frames.
 pub use render::{render_frame, PinScene};
 /// A sequence of frames to a series of angles.
-pub use series::{Row, Series, SeriesSettings};
+pub use series::{AngleSeries, Row, SeriesSettings};
 /// The centred moving average.
 pub use smooth::moving_average;
 /// A folder written whole or not at all.
 pub use staged::StagedFolder;
 /// The series in numbers: frames fitted and skipped, baseline, angle range.
-pub use summary::{Skipped, Summary};
+pub use summary::{FluoroSummary, Skipped};
 /// Otsu or a fixed threshold.
 pub use threshold::{pin_mask, Threshold};
 /// Unwrapping axis angles across frames.

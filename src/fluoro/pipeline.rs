@@ -1,11 +1,11 @@
 //! `dlw fluoro` as a library call: a folder of frames to `angles.csv`, its overlays and a
-//! [`Summary`], with every check the command makes.
+//! [`FluoroSummary`], with every check the command makes.
 
 use std::path::{Path, PathBuf};
 
 use super::{
-    analyze_folder, angles_csv_bytes, BaselineRule, FluoroError, Series, SeriesSettings, Settings,
-    StagedFolder, Summary,
+    analyze_folder, angles_csv_bytes, AngleSeries, BaselineRule, FluoroError, FluoroSummary,
+    SeriesSettings, Settings, StagedFolder,
 };
 use crate::limits;
 use crate::output::write_atomic;
@@ -55,7 +55,7 @@ pub struct FluoroRequest<'a> {
 #[derive(Debug, Clone)]
 pub struct Fluoro {
     /// The series in numbers.
-    pub summary: Summary,
+    pub summary: FluoroSummary,
     /// The frames folder, as given.
     pub frames: PathBuf,
     /// The baseline rule the series used.
@@ -84,7 +84,7 @@ pub fn fluoro(request: &FluoroRequest) -> Result<Fluoro, FluoroError> {
     };
     let folder =
         analyze_folder(request.frames, &request.settings, overlay.as_ref()).map_err(analyzing)?;
-    let series = Series::from_fits(
+    let series = AngleSeries::from_fits(
         &folder.fits,
         &request.series,
         request.settings.min_area_px,
@@ -96,7 +96,7 @@ pub fn fluoro(request: &FluoroRequest) -> Result<Fluoro, FluoroError> {
     }
     write_atomic(request.output, &angles_csv_bytes(&series))?;
     Ok(Fluoro {
-        summary: Summary::of(
+        summary: FluoroSummary::of(
             &folder,
             &series,
             request.output.to_path_buf(),

@@ -43,14 +43,14 @@ pub struct Row {
 
 /// The series of a frame sequence.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Series {
+pub struct AngleSeries {
     /// One row per frame.
     pub rows: Vec<Row>,
     /// The baseline subtracted.
     pub baseline: Baseline,
 }
 
-impl Series {
+impl AngleSeries {
     /// The series of `fits`, one per frame in order.
     ///
     /// # Errors

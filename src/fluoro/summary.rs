@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use serde::Serialize;
 
-use super::{FolderFits, Series};
+use super::{AngleSeries, FolderFits};
 
 /// A frame without a fitted pin.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -20,7 +20,7 @@ pub struct Skipped {
 
 /// A folder's series in numbers. The JSON keys are part of the interface.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Summary {
+pub struct FluoroSummary {
     /// Frames in the folder.
     pub frames: usize,
     /// Frames with a fitted pin.
@@ -49,12 +49,12 @@ pub struct Summary {
     pub overlay: Option<PathBuf>,
 }
 
-impl Summary {
+impl FluoroSummary {
     /// The summary of `series`, computed from `folder`'s fits, written to `output` (and its
     /// overlays to `overlay`).
     pub fn of(
         folder: &FolderFits,
-        series: &Series,
+        series: &AngleSeries,
         output: PathBuf,
         overlay: Option<PathBuf>,
     ) -> Self {

@@ -25,9 +25,11 @@
 //! simulator, not on design files). A simulated recording keeps its design and scenario as TOML
 //! tables, which the simulator reads back with its own types.
 
+mod protocol;
 pub mod provenance;
 mod truth;
 
+pub use protocol::ProtocolKind;
 pub use provenance::{ImportInfo, ImportSource, Provenance, SimulationInfo};
 /// A ground-truth angle series (`angles.csv`) to compare a recording's estimates with.
 pub use truth::{parse_angles, read_angles, TruthAngles, TruthError};
@@ -365,6 +367,14 @@ impl Rig {
                 .and_then(|s| s.get("protocol"))
                 .and_then(toml::Value::as_str)
         })
+    }
+
+    /// [`Self::protocol`] as a [`ProtocolKind`]: `Ok(None)` when none is stated, `Err(name)`
+    /// for a name that is no protocol.
+    pub fn protocol_kind(&self) -> Result<Option<ProtocolKind>, &str> {
+        self.protocol()
+            .map(|name| ProtocolKind::from_name(name).ok_or(name))
+            .transpose()
     }
 
     /// Where the recording came from.

@@ -8,7 +8,7 @@ use dlw_estimator::EstimatorConfig;
 use serde::Serialize;
 
 use super::{
-    replay, replay_against_truth, Metrics, Replay, ReplayError, TruthMetrics, TruthReplay,
+    replay, replay_against_truth, Replay, ReplayError, TrackerMetrics, TruthMetrics, TruthReplay,
 };
 use crate::analysis::{Analysis, Placement};
 use crate::recording::{Recording, TruthAngles};
@@ -44,7 +44,7 @@ pub enum Estimation {
 pub struct TrackerEstimation {
     /// The comparison.
     #[serde(flatten)]
-    pub metrics: Metrics,
+    pub metrics: TrackerMetrics,
     /// The estimates file, once the caller has written it.
     pub estimates: Option<PathBuf>,
     /// Things the user should know.
@@ -61,7 +61,7 @@ pub struct TruthEstimation {
     /// The comparison with the ground truth.
     pub truth: TruthMetrics,
     /// The comparison with the tracker, `null` for a recording without its angle.
-    pub tracker: Option<Metrics>,
+    pub tracker: Option<TrackerMetrics>,
     /// Samples whose estimate carried any flag.
     pub flagged_samples: usize,
     /// Samples held.

@@ -83,7 +83,7 @@ pub enum ReplayError {
 /// The comparison of the estimates with the recorded angle. The JSON keys are part of the
 /// interface.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Metrics {
+pub struct TrackerMetrics {
     /// Root mean square of `estimate − recorded` (°).
     pub rmse_deg: f64,
     /// Largest `|estimate − recorded|` (°).
@@ -108,7 +108,7 @@ pub struct Replay {
     /// The estimator's flags per sample.
     pub flags: Vec<Flags>,
     /// The comparison with the recorded angle.
-    pub metrics: Metrics,
+    pub metrics: TrackerMetrics,
     /// Things the user should know (a divider that differs from the rig, an unused column).
     pub warnings: Vec<String>,
 }
@@ -132,7 +132,7 @@ pub fn replay(config: &EstimatorConfig, recording: &Recording) -> Result<Replay,
 }
 
 /// The comparison of a run's estimates with the recording's tracker angle, which it must have.
-pub(crate) fn tracker_metrics(run: &Run, recording: &Recording) -> Metrics {
+pub(crate) fn tracker_metrics(run: &Run, recording: &Recording) -> TrackerMetrics {
     let samples = &recording.samples;
     let (mut sum_sq, mut max_abs) = (0.0f64, 0.0f64);
     // Rows the tracker did not measure (`tracker_valid = 0`) are not compared.
@@ -146,7 +146,7 @@ pub(crate) fn tracker_metrics(run: &Run, recording: &Recording) -> Metrics {
         sum_sq += err * err;
         max_abs = max_abs.max(err.abs());
     }
-    Metrics {
+    TrackerMetrics {
         rmse_deg: (sum_sq / n.max(1) as f64).sqrt(),
         max_abs_error_deg: max_abs,
         samples: n,

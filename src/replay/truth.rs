@@ -10,7 +10,7 @@
 use dlw_estimator::{EstimatorConfig, Flags};
 use serde::Serialize;
 
-use super::{estimates_csv, run_estimator, tracker_metrics, Metrics, ReplayError};
+use super::{estimates_csv, run_estimator, tracker_metrics, ReplayError, TrackerMetrics};
 use crate::recording::Recording;
 use crate::recording::TruthAngles;
 
@@ -81,7 +81,7 @@ pub struct TruthReplay {
     /// The comparison with the ground truth.
     pub truth: TruthMetrics,
     /// The comparison with the tracker, `None` for a recording without its angle.
-    pub tracker: Option<Metrics>,
+    pub tracker: Option<TrackerMetrics>,
     /// Samples whose estimate carried any flag.
     pub flagged_samples: usize,
     /// Samples held.

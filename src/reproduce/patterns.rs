@@ -183,8 +183,17 @@ fn missing(what: &str) -> String {
 /// Every pattern of the paper, in the order of its tables and figures.
 #[must_use]
 pub fn patterns(r: &Reproduction) -> Vec<Pattern> {
+    let mut out = table_iv(r);
+    out.push(table_v(r));
+    out.extend(rate_independence(r));
+    out.extend(relaxation_tau(r));
+    out.push(table_vi(r));
+    out
+}
+
+/// Table IV: PI against linear, per joint.
+fn table_iv(r: &Reproduction) -> Vec<Pattern> {
     let mut out = Vec::new();
-    // Table IV: PI against linear.
     for (i, (letter, pi_wins)) in [('A', true), ('B', true), ('C', false)]
         .into_iter()
         .enumerate()
@@ -216,44 +225,50 @@ pub fn patterns(r: &Reproduction) -> Vec<Pattern> {
             _ => pattern(name, false, paper, missing("an estimation")),
         });
     }
-    // Table V: both sensors against each alone.
+    out
+}
+
+/// Table V: both sensors against each alone (Joint C).
+fn table_v(r: &Reproduction) -> Pattern {
     let cfg = "linear, two-sensor config";
     let name = "both sensors beat each sensor alone (Joint C, Table V)";
     let [t, c, b] = TWO_SENSOR_RMSE;
     let paper = &format!("both {b:.2}°, tension {t:.2}°, compression {c:.2}°");
-    out.push(
-        match (
-            rmse(r, 'C', cfg, Sensors::Both),
-            rmse(r, 'C', cfg, TENSION),
-            rmse(r, 'C', cfg, COMPRESSION),
-        ) {
-            (Some(both), Some(t), Some(c)) => {
-                let mut p = pattern(
-                    name,
-                    both < t && both < c,
-                    paper,
-                    format!("both {both:.2}°, tension {t:.2}°, compression {c:.2}°"),
-                );
-                let ratio = t.max(c) / t.min(c);
-                if ratio >= TWO_SENSOR_ERROR_RATIO {
-                    p.cannot_show = Some(format!(
-                        "one sensor alone is {ratio:.2} times as far off as the other (tension \
-                         {t:.2}°, compression {c:.2}°; the paper's {:.2}); Eq. 7 weighs the two \
-                         equally, and an equal-weight average beats the better one only when the \
-                         worse one's error is under √3 = {TWO_SENSOR_ERROR_RATIO:.2} times the \
-                         better one's. The simulated tension sensor carries Table III's PI \
-                         hysteresis, while the compression sensor is simulated linear (the paper \
-                         gives only its linear fit)",
-                        TWO_SENSOR_RMSE[0] / TWO_SENSOR_RMSE[1]
-                    ));
-                }
-                p
+    match (
+        rmse(r, 'C', cfg, Sensors::Both),
+        rmse(r, 'C', cfg, TENSION),
+        rmse(r, 'C', cfg, COMPRESSION),
+    ) {
+        (Some(both), Some(t), Some(c)) => {
+            let mut p = pattern(
+                name,
+                both < t && both < c,
+                paper,
+                format!("both {both:.2}°, tension {t:.2}°, compression {c:.2}°"),
+            );
+            let ratio = t.max(c) / t.min(c);
+            if ratio >= TWO_SENSOR_ERROR_RATIO {
+                p.cannot_show = Some(format!(
+                    "one sensor alone is {ratio:.2} times as far off as the other (tension \
+                     {t:.2}°, compression {c:.2}°; the paper's {:.2}); Eq. 7 weighs the two \
+                     equally, and an equal-weight average beats the better one only when the \
+                     worse one's error is under √3 = {TWO_SENSOR_ERROR_RATIO:.2} times the \
+                     better one's. The simulated tension sensor carries Table III's PI \
+                     hysteresis, while the compression sensor is simulated linear (the paper \
+                     gives only its linear fit)",
+                    TWO_SENSOR_RMSE[0] / TWO_SENSOR_RMSE[1]
+                ));
             }
-            _ => pattern(name, false, paper, missing("the two-sensor estimation")),
-        },
-    );
-    // Fig. 5: no rate dependence in the simulated joints, so GF must not follow the rise time
-    // beyond what noise gives.
+            p
+        }
+        _ => pattern(name, false, paper, missing("the two-sensor estimation")),
+    }
+}
+
+/// Fig. 5: no rate dependence in the simulated joints, so GF must not follow the rise time
+/// beyond what noise gives.
+fn rate_independence(r: &Reproduction) -> Vec<Pattern> {
+    let mut out = Vec::new();
     for j in &r.joints {
         let sensor = j.rate.sensors.first();
         let name = format!(
@@ -287,7 +302,12 @@ pub fn patterns(r: &Reproduction) -> Vec<Pattern> {
             _ => pattern(name, false, paper, missing("the rate correlation")),
         });
     }
-    // Fig. 6: the relaxation time constant comes back.
+    out
+}
+
+/// Fig. 6: the relaxation time constant comes back.
+fn relaxation_tau(r: &Reproduction) -> Vec<Pattern> {
+    let mut out = Vec::new();
     let sims = joints();
     for j in &r.joints {
         let simulated = sims
@@ -311,9 +331,13 @@ pub fn patterns(r: &Reproduction) -> Vec<Pattern> {
             _ => pattern(name, false, paper, missing("the relaxation fit")),
         });
     }
-    // Table VI: closed loop against open loop, on the joint's actual angle.
+    out
+}
+
+/// Table VI: closed loop against open loop, on the joint's actual angle (Joint D).
+fn table_vi(r: &Reproduction) -> Pattern {
     let [open, closed] = &r.control.run.metrics;
-    out.push(pattern(
+    pattern(
         "closed loop beats open loop on actual vs desired (Joint D, Table VI)",
         closed.actual_vs_desired_rmse_deg < open.actual_vs_desired_rmse_deg,
         &format!(
@@ -324,6 +348,5 @@ pub fn patterns(r: &Reproduction) -> Vec<Pattern> {
             "open {:.2}° → closed {:.2}°",
             open.actual_vs_desired_rmse_deg, closed.actual_vs_desired_rmse_deg
         ),
-    ));
-    out
+    )
 }

@@ -58,48 +58,8 @@ pub enum ProtocolError {
     NoProfile,
 }
 
-/// The bench protocols.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ProtocolKind {
-    /// Five cycles of increasing amplitude, repeated (Section IV-A1).
-    Characterization,
-    /// Five equal-amplitude cycles of different speeds, repeated (Section IV-A2).
-    RateDependence,
-    /// Stepwise holds, repeated (Section IV-A3).
-    Relaxation,
-    /// A seeded random pattern, repeated (Section IV-B).
-    Random,
-    /// A stroke profile from a CSV file.
-    Custom,
-}
-
-impl ProtocolKind {
-    /// Every protocol with its name as written in files and on the command line.
-    pub const ALL: [(Self, &'static str); 5] = [
-        (Self::Characterization, "characterization"),
-        (Self::RateDependence, "rate-dependence"),
-        (Self::Relaxation, "relaxation"),
-        (Self::Random, "random"),
-        (Self::Custom, "custom"),
-    ];
-
-    /// The protocol's name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Characterization => "characterization",
-            Self::RateDependence => "rate-dependence",
-            Self::Relaxation => "relaxation",
-            Self::Random => "random",
-            Self::Custom => "custom",
-        }
-    }
-
-    /// The protocol called `name`, if any.
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.iter().find(|(_, n)| *n == name).map(|(k, _)| *k)
-    }
-}
+/// The bench protocols: the recording's own type, which the simulator runs.
+pub use crate::recording::ProtocolKind;
 
 /// Protocol timing and amplitude (`[protocols]` and its sub-tables).
 ///
@@ -280,6 +240,13 @@ pub struct CustomProtocol {
 impl ProtocolParams {
     /// Reports every out-of-range value to `fail(key, value, limit)`.
     pub(crate) fn check(&self, fail: &mut dyn FnMut(String, f64, &'static str)) {
+        self.check_counts(fail);
+        self.check_positive(fail);
+        self.check_timing(fail);
+    }
+
+    /// Counts of cycles, levels and repeats within their limits, and not too many ramps.
+    fn check_counts(&self, fail: &mut dyn FnMut(String, f64, &'static str)) {
         let c = &self.characterization;
         let (r, l, m) = (&self.rate_dependence, &self.relaxation, &self.random);
         let counts = [
@@ -338,6 +305,12 @@ impl ProtocolParams {
                 "must be at least random.repeat_s / 100000 (at most 100000 ramps per repetition)",
             );
         }
+    }
+
+    /// Durations, strains and counts that must be greater than 0.
+    fn check_positive(&self, fail: &mut dyn FnMut(String, f64, &'static str)) {
+        let c = &self.characterization;
+        let (r, l, m) = (&self.rate_dependence, &self.relaxation, &self.random);
         let mut positive = |key: &str, v: f64| {
             if !(v.is_finite() && v > 0.0) {
                 fail(key.to_string(), v, "must be finite and greater than 0");
@@ -365,6 +338,12 @@ impl ProtocolParams {
         positive("random.min_ramp_s", m.min_ramp_s);
         positive("random.repeat_s", m.repeat_s);
         positive("random.repeats", f64::from(m.repeats));
+    }
+
+    /// Rests at least 0, and each protocol's parts fitting in its repetition.
+    fn check_timing(&self, fail: &mut dyn FnMut(String, f64, &'static str)) {
+        let c = &self.characterization;
+        let (r, l, m) = (&self.rate_dependence, &self.relaxation, &self.random);
         if !(self.rest_start_s.is_finite() && self.rest_start_s >= 0.0) {
             fail(
                 "rest_start_s".into(),

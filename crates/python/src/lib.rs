@@ -526,7 +526,7 @@ fn characterize<'py>(
     min_hold_s: f64,
     paper_processing: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use dlw_core::characterize::{CharacterizeRequest, Kind, Options};
+    use dlw_core::characterize::{CharacterizeRequest, AnalysisKind, Options};
     let recording_name = recording
         .extract::<PathBuf>()
         .map_or_else(|_| "recording".to_owned(), |p| p.display().to_string());
@@ -534,7 +534,7 @@ fn characterize<'py>(
     let design = design_arg(design)?;
     let kind = kind
         .map(|k| {
-            Kind::from_name(k).ok_or_else(|| {
+            AnalysisKind::from_name(k).ok_or_else(|| {
                 message(format!(
                     "kind {k:?} is not loops, rate, relaxation or estimation"
                 ))
