@@ -239,15 +239,11 @@ pub fn setup_sheet(plan: &Plan, ctx: &SheetContext<'_>) -> String {
     w(String::new());
     w("1. Dry-run the program with the beam gate disabled and watch the tube and jig: nothing may touch the objective.".into());
     w("2. Run it. Do not touch the tube between operations: the sensor and notches are aligned because they are made in one setup.".into());
-    let settle_before: Vec<&str> = plan
-        .operations
+    let settle_before: Vec<&str> = profile
+        .settle
+        .waits_before(&plan.operations, |op| &op.process)
         .iter()
-        .enumerate()
-        .filter(|(i, op)| {
-            let prev = i.checked_sub(1).map(|j| &plan.operations[j].process);
-            profile.settle.needed(prev, &op.process)
-        })
-        .map(|(_, op)| op.kind.name())
+        .map(|op| op.kind.name())
         .collect();
     if !settle_before.is_empty() {
         let how = match profile.settle.mode {
