@@ -203,111 +203,9 @@ impl MachineProfile {
             value,
             limit,
         };
-        let l = &file.limits;
-        for (key, v) in [
-            ("limits.x_speed_max_mm_s", l.x_speed_max_mm_s),
-            ("limits.a_speed_max_deg_s", l.a_speed_max_deg_s),
-            ("limits.max_power_mw", l.max_power_mw),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(bad(key, v.to_string(), "must be finite and > 0".into()));
-            }
-        }
-        for (key, v) in [
-            ("limits.x_min_mm", l.x_min_mm),
-            ("limits.x_max_mm", l.x_max_mm),
-            ("focus.z_axis_mm", file.focus.z_axis_mm),
-            ("fixture.collet_grip_mm", file.fixture.collet_grip_mm),
-        ] {
-            if !(v.is_finite() && v.abs() <= MAX_ABS_COORDINATE_MM) {
-                return Err(bad(
-                    key,
-                    crate::limits::short(v),
-                    format!("must be finite and within ±{MAX_ABS_COORDINATE_MM} mm (a machine's travel)"),
-                ));
-            }
-        }
-        if !(l.x_min_mm.is_finite() && l.x_max_mm.is_finite() && l.x_min_mm < l.x_max_mm) {
-            return Err(bad(
-                "limits.x_max_mm",
-                l.x_max_mm.to_string(),
-                format!("must be finite and above limits.x_min_mm = {}", l.x_min_mm),
-            ));
-        }
-        if !file.focus.z_axis_mm.is_finite() {
-            return Err(bad(
-                "focus.z_axis_mm",
-                file.focus.z_axis_mm.to_string(),
-                "must be finite".into(),
-            ));
-        }
-        if !(file.fixture.collet_grip_mm.is_finite() && file.fixture.collet_grip_mm >= 0.0) {
-            return Err(bad(
-                "fixture.collet_grip_mm",
-                file.fixture.collet_grip_mm.to_string(),
-                "must be finite and >= 0".into(),
-            ));
-        }
-        file.settle
-            .check()
-            .map_err(|(value, limit)| bad("settle.dwell_s", value, limit))?;
-        let letters = [
-            ("axes.linear", file.axes.linear),
-            ("axes.rotary", file.axes.rotary),
-            ("axes.focus", file.axes.focus),
-        ];
-        for (i, (key, c)) in letters.iter().enumerate() {
-            if !"XYZABCUVW".contains(*c) {
-                return Err(bad(
-                    key,
-                    format!("{c:?}"),
-                    "must be one of X Y Z A B C U V W".into(),
-                ));
-            }
-            if letters[..i].iter().any(|(_, d)| d == c) {
-                return Err(bad(
-                    key,
-                    format!("{c:?}"),
-                    "is already used by another axis".into(),
-                ));
-            }
-        }
-        let template = |key: &str, text: &str, allowed: &[&str], required: bool| {
-            let t = Template::parse(text, allowed)
-                .map_err(|limit| bad(&format!("laser.{key}"), format!("{text:?}"), limit))?;
-            if required && t.is_empty() {
-                return Err(bad(
-                    &format!("laser.{key}"),
-                    format!("{text:?}"),
-                    "must not be empty: the program cannot run without it".into(),
-                ));
-            }
-            Ok(t)
-        };
-        let f = &file.laser;
-        let laser = LaserCommands {
-            beam_on: template("beam_on", &f.beam_on, &[], true)?,
-            beam_off: template("beam_off", &f.beam_off, &[], true)?,
-            power: template(
-                "power",
-                &f.power,
-                &["power_mw", "power_w", "power_percent"],
-                true,
-            )?,
-            pulse_frequency: template(
-                "pulse_frequency",
-                &f.pulse_frequency,
-                &["pulse_frequency_khz", "pulse_frequency_hz"],
-                false,
-            )?,
-            pulse_width: template(
-                "pulse_width",
-                &f.pulse_width,
-                &["pulse_width_fs", "pulse_width_ps"],
-                false,
-            )?,
-            wavelength: template("wavelength", &f.wavelength, &["wavelength_nm"], false)?,
-        };
+        check_numbers(&file, &bad)?;
+        check_axis_letters(&file.axes, &bad)?;
+        let laser = laser_commands(&file.laser, &bad)?;
         Ok(Self {
             source: source.to_string(),
             name: file.name,
@@ -326,6 +224,130 @@ impl MachineProfile {
     pub fn surface_z_mm(&self, outer_radius_mm: f64) -> f64 {
         self.focus.z_axis_mm + outer_radius_mm
     }
+}
+
+/// Builds the error for a key whose value is out of its limit: `(key, value, limit)`.
+type Bad<'a> = &'a dyn Fn(&str, String, String) -> MachineError;
+
+/// Checks the profile's numbers: speeds and power above 0, coordinates within a machine's
+/// travel, the travel the right way round, the collet grip not negative, the settle dwell.
+fn check_numbers(file: &ProfileFile, bad: Bad<'_>) -> Result<(), MachineError> {
+    let l = &file.limits;
+    for (key, v) in [
+        ("limits.x_speed_max_mm_s", l.x_speed_max_mm_s),
+        ("limits.a_speed_max_deg_s", l.a_speed_max_deg_s),
+        ("limits.max_power_mw", l.max_power_mw),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(bad(key, v.to_string(), "must be finite and > 0".into()));
+        }
+    }
+    for (key, v) in [
+        ("limits.x_min_mm", l.x_min_mm),
+        ("limits.x_max_mm", l.x_max_mm),
+        ("focus.z_axis_mm", file.focus.z_axis_mm),
+        ("fixture.collet_grip_mm", file.fixture.collet_grip_mm),
+    ] {
+        if !(v.is_finite() && v.abs() <= MAX_ABS_COORDINATE_MM) {
+            return Err(bad(
+                key,
+                crate::limits::short(v),
+                format!(
+                    "must be finite and within ±{MAX_ABS_COORDINATE_MM} mm (a machine's travel)"
+                ),
+            ));
+        }
+    }
+    if !(l.x_min_mm.is_finite() && l.x_max_mm.is_finite() && l.x_min_mm < l.x_max_mm) {
+        return Err(bad(
+            "limits.x_max_mm",
+            l.x_max_mm.to_string(),
+            format!("must be finite and above limits.x_min_mm = {}", l.x_min_mm),
+        ));
+    }
+    if !file.focus.z_axis_mm.is_finite() {
+        return Err(bad(
+            "focus.z_axis_mm",
+            file.focus.z_axis_mm.to_string(),
+            "must be finite".into(),
+        ));
+    }
+    if !(file.fixture.collet_grip_mm.is_finite() && file.fixture.collet_grip_mm >= 0.0) {
+        return Err(bad(
+            "fixture.collet_grip_mm",
+            file.fixture.collet_grip_mm.to_string(),
+            "must be finite and >= 0".into(),
+        ));
+    }
+    file.settle
+        .check()
+        .map_err(|(value, limit)| bad("settle.dwell_s", value, limit))
+}
+
+/// Checks that each axis letter is a G-code axis word and that no two axes share one.
+fn check_axis_letters(axes: &Axes, bad: Bad<'_>) -> Result<(), MachineError> {
+    let letters = [
+        ("axes.linear", axes.linear),
+        ("axes.rotary", axes.rotary),
+        ("axes.focus", axes.focus),
+    ];
+    for (i, (key, c)) in letters.iter().enumerate() {
+        if !"XYZABCUVW".contains(*c) {
+            return Err(bad(
+                key,
+                format!("{c:?}"),
+                "must be one of X Y Z A B C U V W".into(),
+            ));
+        }
+        if letters[..i].iter().any(|(_, d)| d == c) {
+            return Err(bad(
+                key,
+                format!("{c:?}"),
+                "is already used by another axis".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The laser's command templates, each parsed against the placeholders it may use; the beam
+/// and power commands must not be empty.
+fn laser_commands(f: &LaserFile, bad: Bad<'_>) -> Result<LaserCommands, MachineError> {
+    let template = |key: &str, text: &str, allowed: &[&str], required: bool| {
+        let t = Template::parse(text, allowed)
+            .map_err(|limit| bad(&format!("laser.{key}"), format!("{text:?}"), limit))?;
+        if required && t.is_empty() {
+            return Err(bad(
+                &format!("laser.{key}"),
+                format!("{text:?}"),
+                "must not be empty: the program cannot run without it".into(),
+            ));
+        }
+        Ok(t)
+    };
+    Ok(LaserCommands {
+        beam_on: template("beam_on", &f.beam_on, &[], true)?,
+        beam_off: template("beam_off", &f.beam_off, &[], true)?,
+        power: template(
+            "power",
+            &f.power,
+            &["power_mw", "power_w", "power_percent"],
+            true,
+        )?,
+        pulse_frequency: template(
+            "pulse_frequency",
+            &f.pulse_frequency,
+            &["pulse_frequency_khz", "pulse_frequency_hz"],
+            false,
+        )?,
+        pulse_width: template(
+            "pulse_width",
+            &f.pulse_width,
+            &["pulse_width_fs", "pulse_width_ps"],
+            false,
+        )?,
+        wavelength: template("wavelength", &f.wavelength, &["wavelength_nm"], false)?,
+    })
 }
 
 #[cfg(test)]

@@ -67,6 +67,25 @@ impl Settle {
         })
     }
 
+    /// The operations the program waits before, in program order: each of `operations` whose
+    /// set (`set_of`) [needs](Settle::needed) a wait after the set of the one before it. The
+    /// program header and the setup sheet both list these.
+    pub fn waits_before<'p, T>(
+        &self,
+        operations: &'p [T],
+        set_of: impl Fn(&T) -> &ProcessSet,
+    ) -> Vec<&'p T> {
+        operations
+            .iter()
+            .enumerate()
+            .filter(|(i, op)| {
+                let prev = i.checked_sub(1).map(|j| set_of(&operations[j]));
+                self.needed(prev, set_of(op))
+            })
+            .map(|(_, op)| op)
+            .collect()
+    }
+
     /// Time the wait adds to an estimate (s): the dwell, 0 for stops (they last as long as
     /// the operator takes).
     pub fn estimated_s(&self) -> f64 {
@@ -134,6 +153,27 @@ mod tests {
         };
         assert!(!none.needed(Some(&a), &b));
         assert_eq!(s.estimated_s(), DEFAULT_DWELL_S);
+    }
+
+    #[test]
+    fn lists_the_operations_it_waits_before() {
+        let (a, b) = (set(200.0, 550.0), set(60.0, 215.0));
+        let sets = [a.clone(), b.clone(), b.clone(), a];
+        let waits = Settle::default().waits_before(&sets, |s| s);
+        let at: Vec<usize> = waits
+            .iter()
+            .map(|w| sets.iter().position(|s| std::ptr::eq(s, *w)).unwrap())
+            .collect();
+        assert_eq!(
+            at,
+            vec![1, 3],
+            "not before the first, nor between equal sets"
+        );
+        let none = Settle {
+            mode: SettleMode::None,
+            ..Settle::default()
+        };
+        assert!(none.waits_before(&sets, |s| s).is_empty());
     }
 
     #[test]

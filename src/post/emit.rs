@@ -103,15 +103,11 @@ pub fn header_lines(plan: &Plan, profile: &MachineProfile, post: &dyn Post) -> V
         .map(|t| format!("{} {}", t.kind.name(), format_duration(t.total_s())))
         .collect();
     let total: f64 = times.iter().map(|t| t.total_s()).sum();
-    let settles: Vec<&str> = plan
-        .operations
+    let settles: Vec<&str> = profile
+        .settle
+        .waits_before(&plan.operations, |op| &op.process)
         .iter()
-        .enumerate()
-        .filter(|(i, op)| {
-            let prev = i.checked_sub(1).map(|j| &plan.operations[j].process);
-            profile.settle.needed(prev, &op.process)
-        })
-        .map(|(_, op)| op.kind.name())
+        .map(|op| op.kind.name())
         .collect();
     if !settles.is_empty() {
         h.push(format!(

@@ -44,7 +44,7 @@ mod xdata;
 
 use std::collections::BTreeMap;
 
-use dxf::entities::EntityType;
+use dxf::entities::{Entity, EntityType};
 use dxf::XDataItem;
 use geo::{Coord, LineString, Polygon};
 
@@ -144,17 +144,7 @@ pub fn layout_from_dxf(bytes: &[u8]) -> Result<ImportedDxf, DxfImportError> {
 /// units, outlines that do not close, entity types the convention does not use on a feature
 /// layer, or missing layout numbers.
 pub fn read_dxf(bytes: &[u8], options: &ImportOptions) -> Result<ImportedDxf, DxfImportError> {
-    sniff::sniff(bytes)?;
-    // The `dxf` crate (0.6) panics on some malformed values (a header date out of range, found
-    // by fuzzing): a panic there is a file it cannot read, not a crash of `dlw`.
-    let loaded = std::panic::catch_unwind(|| dxf::Drawing::load(&mut std::io::Cursor::new(bytes)))
-        .map_err(|_| {
-            DxfImportError::Parse(
-                "the DXF reader gave up on a malformed value (for example a header date out of range)"
-                    .to_owned(),
-            )
-        })?;
-    let drawing = loaded.map_err(|e| DxfImportError::Parse(e.to_string()))?;
+    let drawing = load(bytes)?;
     let has_insunits = sniff::has_header_variable(bytes, "$INSUNITS");
     let units = units::resolve(
         drawing.header.default_drawing_units,
@@ -165,176 +155,280 @@ pub fn read_dxf(bytes: &[u8], options: &ImportOptions) -> Result<ImportedDxf, Dx
         k: units.0.mm_per_unit(),
         tol: options.join_tolerance_mm,
     };
-    let mut layer_counts = BTreeMap::new();
-    let mut ignored = BTreeMap::new();
-    let mut numbers = None;
-    let mut notch_pieces: Vec<NotchPiece> = Vec::new();
-    let mut loose: Vec<Vec<Coord>> = Vec::new();
-    let mut traces: Vec<TracePiece> = Vec::new();
-    let mut parting: Vec<(Option<i16>, LineString<f64>)> = Vec::new();
-    let (mut sensor_lines, mut lead_pad_lines) = (Vec::new(), Vec::new());
+    let mut found = Classified::default();
     for entity in drawing.entities() {
+        found.classify(entity, &reader)?;
+    }
+    let numbers_from_xdata = found.numbers.is_some();
+    let numbers = found
+        .numbers
+        .take()
+        .or_else(|| options.numbers.clone())
+        .ok_or_else(|| DxfImportError::Metadata("none found".into()))?;
+    let layer_counts = std::mem::take(&mut found.layer_counts);
+    let ignored = std::mem::take(&mut found.ignored);
+    let assembled = found.assemble(&numbers, reader.tol)?;
+    Ok(ImportedDxf {
+        layout: assembled.layout,
+        clearance_mm: numbers.clearance_mm,
+        layer_counts,
+        untagged: assembled.untagged,
+        ignored,
+        units,
+        numbers_from_xdata,
+        version: format!("{:?}", drawing.header.version),
+        joined_outlines: assembled.joined_outlines,
+    })
+}
+
+/// The drawing in `bytes`, after [`sniff::sniff`] has told an empty, foreign or truncated file
+/// apart from a DXF.
+fn load(bytes: &[u8]) -> Result<dxf::Drawing, DxfImportError> {
+    sniff::sniff(bytes)?;
+    // The `dxf` crate (0.6) panics on some malformed values (a header date out of range, found
+    // by fuzzing): a panic there is a file it cannot read, not a crash of `dlw`.
+    let loaded = std::panic::catch_unwind(|| dxf::Drawing::load(&mut std::io::Cursor::new(bytes)))
+        .map_err(|_| {
+            DxfImportError::Parse(
+                "the DXF reader gave up on a malformed value (for example a header date out of range)"
+                    .to_owned(),
+            )
+        })?;
+    loaded.map_err(|e| DxfImportError::Parse(e.to_string()))
+}
+
+/// The entities of a drawing sorted by what they are, in file order, before anything is joined.
+#[derive(Default)]
+struct Classified {
+    /// Entities per layer, as named in the file.
+    layer_counts: BTreeMap<String, usize>,
+    /// Entities on layers that are not dlw's, per layer.
+    ignored: BTreeMap<String, usize>,
+    /// The layout's numbers from the title's XDATA.
+    numbers: Option<LayoutNumbers>,
+    /// Closed notch outlines, with their tag's (notch, piece) if they had one.
+    notch_pieces: Vec<NotchPiece>,
+    /// Open pieces on `NOTCHES` (LINEs, ARCs, open polylines), to be joined into outlines.
+    loose: Vec<Vec<Coord>>,
+    /// Trace pieces read whole (tagged, or polylines).
+    traces: Vec<TracePiece>,
+    /// Parting-cut pieces, with their tag's piece index if they had one.
+    parting: Vec<(Option<i16>, LineString<f64>)>,
+    /// Untagged LINEs on `SENSOR`, to be chained.
+    sensor_lines: Vec<Vec<Coord>>,
+    /// Untagged LINEs on `LEADS_PADS`, to be chained.
+    lead_pad_lines: Vec<Vec<Coord>>,
+}
+
+/// The layout assembled from a drawing's entities, and what the report counts.
+struct Assembled {
+    layout: Layout,
+    /// Feature entities without `DLW` XDATA.
+    untagged: usize,
+    /// Notch outlines joined from separate pieces.
+    joined_outlines: usize,
+}
+
+impl Classified {
+    /// Counts `entity` on its layer and files it by what that layer holds.
+    fn classify(&mut self, entity: &Entity, reader: &Reader) -> Result<(), DxfImportError> {
         let layer_name = entity.common.layer.clone();
-        *layer_counts.entry(layer_name.clone()).or_insert(0) += 1;
+        *self.layer_counts.entry(layer_name.clone()).or_insert(0) += 1;
         if DLW_LAYERS_NOT_READ
             .iter()
             .any(|l| l.eq_ignore_ascii_case(&layer_name))
         {
-            continue;
+            return Ok(());
         }
         let Some(layer) = Layer::from_name(&layer_name) else {
-            *ignored.entry(layer_name).or_insert(0) += 1;
-            continue;
+            *self.ignored.entry(layer_name).or_insert(0) += 1;
+            return Ok(());
         };
         let tag = dlw_xdata(entity);
         match layer {
             Layer::Annotation => {
                 if let Some(items) = tag.filter(|i| is_tag(i, TAG_LAYOUT)) {
-                    numbers = Some(read_numbers(items)?);
+                    self.numbers = Some(read_numbers(items)?);
                 }
+                Ok(())
             }
-            Layer::Notches => {
-                let expected = "a closed LWPOLYLINE or POLYLINE, or LINEs and ARCs that close";
-                let (mut points, closed) = reader.points(entity, layer, expected, true)?;
-                let closed = closed || (points.len() > 3 && points.first() == points.last());
-                if !closed {
-                    loose.push(points);
-                    continue;
-                }
-                if points.len() > 1 && points.first() == points.last() {
-                    points.pop();
-                }
-                if points.len() < 3 {
-                    return Err(bad(
-                        entity,
-                        layer,
-                        format!("a notch needs at least 3 corners, found {}", points.len()),
-                    ));
-                }
-                let id = tag
-                    .filter(|i| is_tag(i, TAG_NOTCH))
-                    .and_then(|i| Some((int_at(i, 1)?, int_at(i, 2)?)));
-                notch_pieces.push((id, Polygon::new(LineString::new(points), vec![])));
-            }
-            Layer::Sensor | Layer::LeadsPads => {
-                let expected = "an open LWPOLYLINE or POLYLINE, or a LINE";
-                let (points, closed) = reader.points(entity, layer, expected, false)?;
-                if closed {
-                    return Err(bad(
-                        entity,
-                        layer,
-                        "a trace must be open (the closed flag is set)".into(),
-                    ));
-                }
-                if points.len() < 2 {
-                    return Err(bad(
-                        entity,
-                        layer,
-                        format!("a trace needs at least 2 vertices, found {}", points.len()),
-                    ));
-                }
-                let tagged = tag.and_then(|i| {
-                    let kind = match (layer, i.first()) {
-                        (Layer::Sensor, Some(XDataItem::Str(s))) if s == TAG_SENSOR => TAG_SENSOR,
-                        (Layer::LeadsPads, Some(XDataItem::Str(s))) if s == TAG_LEAD => TAG_LEAD,
-                        (Layer::LeadsPads, Some(XDataItem::Str(s))) if s == TAG_PAD => TAG_PAD,
-                        _ => return None,
-                    };
-                    Some((kind, (int_at(i, 1)?, int_at(i, 2)?, int_at(i, 3)?)))
-                });
-                // Untagged LINEs (a polyline exploded in CAD) are chained before they are
-                // classified: one LINE of a spiral is no spiral.
-                if tagged.is_none() && matches!(entity.specific, EntityType::Line(_)) {
-                    let list = if layer == Layer::Sensor {
-                        &mut sensor_lines
-                    } else {
-                        &mut lead_pad_lines
-                    };
-                    list.push(points);
-                    continue;
-                }
-                let line = LineString::new(points);
-                traces.push(match tagged {
-                    Some((kind, ids)) => TracePiece {
-                        kind,
-                        tag: Some(ids),
-                        line,
-                    },
-                    None => TracePiece {
-                        kind: match layer {
-                            Layer::Sensor => TAG_SENSOR,
-                            _ if is_spiral(&line.0) => TAG_PAD,
-                            _ => TAG_LEAD,
-                        },
-                        tag: None,
-                        line,
-                    },
-                });
-            }
-            Layer::Parting => {
-                let expected = "an LWPOLYLINE, a POLYLINE or a LINE";
-                let (points, _) = reader.points(entity, layer, expected, false)?;
-                let piece = tag
-                    .filter(|i| is_tag(i, TAG_PARTING))
-                    .and_then(|i| int_at(i, 1));
-                parting.push((piece, LineString::new(points)));
-            }
+            Layer::Notches => self.notch(entity, tag, reader),
+            Layer::Sensor | Layer::LeadsPads => self.trace(entity, layer, tag, reader),
+            Layer::Parting => self.parting(entity, tag, reader),
         }
     }
-    let numbers_from_xdata = numbers.is_some();
-    let numbers = numbers
-        .or_else(|| options.numbers.clone())
-        .ok_or_else(|| DxfImportError::Metadata("none found".into()))?;
-    let joined = loops::join_loops(loose, Layer::Notches.name(), reader.tol)?;
-    let joined_outlines = joined.len();
-    notch_pieces.extend(
-        joined
-            .into_iter()
-            .map(|ring| (None, Polygon::new(LineString::new(ring), vec![]))),
-    );
-    chain_trace_lines(
-        &mut traces,
-        sensor_lines,
-        lead_pad_lines,
-        &numbers,
-        reader.tol,
-    );
-    let untagged = notch_pieces.iter().filter(|(t, _)| t.is_none()).count()
-        + traces.iter().filter(|t| t.tag.is_none()).count()
-        + parting.iter().filter(|(t, _)| t.is_none()).count();
-    let notches = notches(notch_pieces, &numbers);
-    let bsn = notches.iter().any(|n| n.side == 1);
+
+    /// A `NOTCHES` entity: a closed outline, or a loose piece of one.
+    fn notch(
+        &mut self,
+        entity: &Entity,
+        tag: Option<&[XDataItem]>,
+        reader: &Reader,
+    ) -> Result<(), DxfImportError> {
+        let layer = Layer::Notches;
+        let expected = "a closed LWPOLYLINE or POLYLINE, or LINEs and ARCs that close";
+        let (mut points, closed) = reader.points(entity, layer, expected, true)?;
+        let closed = closed || (points.len() > 3 && points.first() == points.last());
+        if !closed {
+            self.loose.push(points);
+            return Ok(());
+        }
+        if points.len() > 1 && points.first() == points.last() {
+            points.pop();
+        }
+        if points.len() < 3 {
+            return Err(bad(
+                entity,
+                layer,
+                format!("a notch needs at least 3 corners, found {}", points.len()),
+            ));
+        }
+        let id = tag
+            .filter(|i| is_tag(i, TAG_NOTCH))
+            .and_then(|i| Some((int_at(i, 1)?, int_at(i, 2)?)));
+        self.notch_pieces
+            .push((id, Polygon::new(LineString::new(points), vec![])));
+        Ok(())
+    }
+
+    /// A `SENSOR` or `LEADS_PADS` entity: a trace piece, or an untagged LINE to be chained.
+    fn trace(
+        &mut self,
+        entity: &Entity,
+        layer: Layer,
+        tag: Option<&[XDataItem]>,
+        reader: &Reader,
+    ) -> Result<(), DxfImportError> {
+        let expected = "an open LWPOLYLINE or POLYLINE, or a LINE";
+        let (points, closed) = reader.points(entity, layer, expected, false)?;
+        if closed {
+            return Err(bad(
+                entity,
+                layer,
+                "a trace must be open (the closed flag is set)".into(),
+            ));
+        }
+        if points.len() < 2 {
+            return Err(bad(
+                entity,
+                layer,
+                format!("a trace needs at least 2 vertices, found {}", points.len()),
+            ));
+        }
+        let tagged = tag.and_then(|i| {
+            let kind = match (layer, i.first()) {
+                (Layer::Sensor, Some(XDataItem::Str(s))) if s == TAG_SENSOR => TAG_SENSOR,
+                (Layer::LeadsPads, Some(XDataItem::Str(s))) if s == TAG_LEAD => TAG_LEAD,
+                (Layer::LeadsPads, Some(XDataItem::Str(s))) if s == TAG_PAD => TAG_PAD,
+                _ => return None,
+            };
+            Some((kind, (int_at(i, 1)?, int_at(i, 2)?, int_at(i, 3)?)))
+        });
+        // Untagged LINEs (a polyline exploded in CAD) are chained before they are
+        // classified: one LINE of a spiral is no spiral.
+        if tagged.is_none() && matches!(entity.specific, EntityType::Line(_)) {
+            let list = if layer == Layer::Sensor {
+                &mut self.sensor_lines
+            } else {
+                &mut self.lead_pad_lines
+            };
+            list.push(points);
+            return Ok(());
+        }
+        let line = LineString::new(points);
+        self.traces.push(match tagged {
+            Some((kind, ids)) => TracePiece {
+                kind,
+                tag: Some(ids),
+                line,
+            },
+            None => TracePiece {
+                kind: match layer {
+                    Layer::Sensor => TAG_SENSOR,
+                    _ if is_spiral(&line.0) => TAG_PAD,
+                    _ => TAG_LEAD,
+                },
+                tag: None,
+                line,
+            },
+        });
+        Ok(())
+    }
+
+    /// A `PARTING` entity: a piece of the parting cut.
+    fn parting(
+        &mut self,
+        entity: &Entity,
+        tag: Option<&[XDataItem]>,
+        reader: &Reader,
+    ) -> Result<(), DxfImportError> {
+        let expected = "an LWPOLYLINE, a POLYLINE or a LINE";
+        let (points, _) = reader.points(entity, Layer::Parting, expected, false)?;
+        let piece = tag
+            .filter(|i| is_tag(i, TAG_PARTING))
+            .and_then(|i| int_at(i, 1));
+        self.parting.push((piece, LineString::new(points)));
+        Ok(())
+    }
+
+    /// Joins the loose notch pieces and the untagged trace LINEs, then builds the layout:
+    /// notches ranked from their geometry, traces grouped per sensor, the parting cut in piece
+    /// order giving the joint's length.
+    fn assemble(mut self, numbers: &LayoutNumbers, tol: f64) -> Result<Assembled, DxfImportError> {
+        let joined = loops::join_loops(self.loose, Layer::Notches.name(), tol)?;
+        let joined_outlines = joined.len();
+        self.notch_pieces.extend(
+            joined
+                .into_iter()
+                .map(|ring| (None, Polygon::new(LineString::new(ring), vec![]))),
+        );
+        chain_trace_lines(
+            &mut self.traces,
+            self.sensor_lines,
+            self.lead_pad_lines,
+            numbers,
+            tol,
+        );
+        let untagged = self
+            .notch_pieces
+            .iter()
+            .filter(|(t, _)| t.is_none())
+            .count()
+            + self.traces.iter().filter(|t| t.tag.is_none()).count()
+            + self.parting.iter().filter(|(t, _)| t.is_none()).count();
+        let notches = notches(self.notch_pieces, numbers);
+        let bsn = notches.iter().any(|n| n.side == 1);
+        let parting = in_piece_order(self.parting);
+        let length_mm = parting
+            .iter()
+            .flat_map(|l| l.0.iter().map(|c| c.x))
+            .reduce(f64::max)
+            .unwrap_or(numbers.length_mm);
+        let group = |kind: &str| group_traces(&self.traces, kind, bsn, numbers.outer_radius_mm);
+        let layout = Layout {
+            name: numbers.name.clone(),
+            outer_radius_mm: numbers.outer_radius_mm,
+            circumference_mm: numbers.circumference_mm,
+            seam_s_mm: numbers.seam_s_mm,
+            trace_width_mm: numbers.trace_width_mm,
+            kerf_mm: numbers.kerf_mm,
+            length_mm,
+            notches,
+            sensors: group(TAG_SENSOR),
+            leads: group(TAG_LEAD),
+            pads: group(TAG_PAD),
+            parting,
+        };
+        Ok(Assembled {
+            layout,
+            untagged,
+            joined_outlines,
+        })
+    }
+}
+
+/// The parting cut's pieces in their tags' order, untagged ones after in file order.
+fn in_piece_order(mut parting: Vec<(Option<i16>, LineString<f64>)>) -> Vec<LineString<f64>> {
     parting.sort_by_key(|(piece, _)| piece.unwrap_or(i16::MAX));
-    let parting: Vec<LineString<f64>> = parting.into_iter().map(|(_, l)| l).collect();
-    let length_mm = parting
-        .iter()
-        .flat_map(|l| l.0.iter().map(|c| c.x))
-        .reduce(f64::max)
-        .unwrap_or(numbers.length_mm);
-    let group = |kind: &str| group_traces(&traces, kind, bsn, numbers.outer_radius_mm);
-    let layout = Layout {
-        name: numbers.name.clone(),
-        outer_radius_mm: numbers.outer_radius_mm,
-        circumference_mm: numbers.circumference_mm,
-        seam_s_mm: numbers.seam_s_mm,
-        trace_width_mm: numbers.trace_width_mm,
-        kerf_mm: numbers.kerf_mm,
-        length_mm,
-        notches,
-        sensors: group(TAG_SENSOR),
-        leads: group(TAG_LEAD),
-        pads: group(TAG_PAD),
-        parting,
-    };
-    Ok(ImportedDxf {
-        layout,
-        clearance_mm: numbers.clearance_mm,
-        layer_counts,
-        untagged,
-        ignored,
-        units,
-        numbers_from_xdata,
-        version: format!("{:?}", drawing.header.version),
-        joined_outlines,
-    })
+    parting.into_iter().map(|(_, l)| l).collect()
 }

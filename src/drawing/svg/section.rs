@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use dlw_geometry::NotchStyle;
+use dlw_geometry::{CrossSection, NotchStyle};
 
 use super::annotate::{self, Dimension, Overflow, Table, SMALL_MM, TEXT_MM, THIN_MM};
 use super::error::SvgError;
@@ -55,18 +55,32 @@ pub fn section_svg_with(design: &Design, options: &SvgOptions) -> Result<String,
 }
 
 fn draw(design: &Design, scale: f64) -> Drawn {
-    let joint = &design.joint;
-    let sec = joint.section();
-    let (ro, ri) = (sec.outer_radius_mm(), sec.inner_radius_mm());
-    let style = sec.style();
+    let sec = design.joint.section();
     let mut sheet = Sheet::new(scale, &LAYERS);
-    let y_bar = sec.neutral_axis_mm();
-    let y_s = sec.sensor_plane_mm();
-    let phi_n = sec.notch_angle_rad();
-    let phi_s = sec.sensor_angle_rad();
+    draw_material(&mut sheet, sec);
+    draw_centre_lines(&mut sheet, sec.outer_radius_mm());
+    let columns = Columns::place(&sheet, sec);
+    let lowest_plane = draw_planes(&mut sheet, sec, &columns);
+    draw_sensor_arms(&mut sheet, sec, design.file.fabrication.trace_width_mm);
+    draw_arm_labels(&mut sheet, sec);
+    draw_offsets(&mut sheet, sec, columns);
+    let radius_label_end = draw_radii(&mut sheet, sec);
+    draw_numbers(&mut sheet, design, lowest_plane, radius_label_end);
+    let notch_y = draw_notch_name(&mut sheet, sec);
+    // The scale bar under everything.
+    let ((min_x, _), _) = sheet.extent();
+    let bar_y = notch_y + sheet.paper(5.0);
+    annotate::scale_bar(&mut sheet, "labels", (min_x, bar_y));
+    let title = draw_title(&mut sheet, design, scale);
+    sheet.finish(&title, 6.0)
+}
 
-    // Material and the notch cut, as annular sectors [φ0, φ1].
-    let (kept, cut): (Vec<Sector>, Vec<Sector>) = match style {
+/// The material and the notch cut, as annular sectors `[φ0, φ1]`: the cut in pale orange
+/// under the kept material.
+fn draw_material(sheet: &mut Sheet, sec: &CrossSection) {
+    let (ro, ri) = (sec.outer_radius_mm(), sec.inner_radius_mm());
+    let phi_n = sec.notch_angle_rad();
+    let (kept, cut): (Vec<Sector>, Vec<Sector>) = match sec.style() {
         NotchStyle::Uan => {
             let alpha = PI - phi_n / 2.0;
             (vec![(-alpha, alpha)], vec![(alpha, 2.0 * PI - alpha)])
@@ -106,8 +120,10 @@ fn draw(design: &Design, scale: f64) -> Drawn {
             "material",
         );
     }
+}
 
-    // Centre lines and the +y axis.
+/// Centre lines through the tube's axis, and the `+y` axis (`φ = 0`) as an arrow.
+fn draw_centre_lines(sheet: &mut Sheet, ro: f64) {
     let r_ext = ro + sheet.paper(5.0);
     let centre = sheet.pen(palette::GUIDE, THIN_MM, Some(&[6.0, 1.5, 1.0, 1.5]));
     sheet.line("guides", (-r_ext, 0.0), (r_ext, 0.0), &centre);
@@ -137,14 +153,42 @@ fn draw(design: &Design, scale: f64) -> Drawn {
         None,
         "axis",
     );
+}
 
-    // Planes: ȳ, y_s and, for BSN, −y_s; lines run from the left labels to past the dimensions.
-    // Δy's label stands upright right of its line, so Δy^(1,2) goes right of that label.
-    let dy_label = format!("Δy = y_{{s}} − ȳ = {} mm", fixed(sec.offset_mm(), 3));
-    let col1 = ro + sheet.paper(10.0);
-    let col2 = col1
-        + sheet.paper(5.0)
-        + sheet.text_width(&dy_label, TextStyle::new(TEXT_MM, palette::DIMENSION));
+/// Where the offset dimensions stand right of the section. `Δy`'s label stands upright right
+/// of its line, so `Δy^(1,2)` goes right of that label.
+struct Columns {
+    /// `Δy = y_s − ȳ`'s label.
+    dy_label: String,
+    /// x of `Δy`'s dimension line.
+    col1: f64,
+    /// x of `Δy^(1,2)`'s dimension line (BSN).
+    col2: f64,
+}
+
+impl Columns {
+    fn place(sheet: &Sheet, sec: &CrossSection) -> Self {
+        let dy_label = format!("Δy = y_{{s}} − ȳ = {} mm", fixed(sec.offset_mm(), 3));
+        let col1 = sec.outer_radius_mm() + sheet.paper(10.0);
+        let col2 = col1
+            + sheet.paper(5.0)
+            + sheet.text_width(&dy_label, TextStyle::new(TEXT_MM, palette::DIMENSION));
+        Self {
+            dy_label,
+            col1,
+            col2,
+        }
+    }
+}
+
+/// The planes `ȳ`, `y_s` and, for BSN, `−y_s`, as lines running from their labels left of the
+/// section to past the dimensions; returns the lowest plane's sheet y.
+fn draw_planes(sheet: &mut Sheet, sec: &CrossSection, columns: &Columns) -> f64 {
+    let ro = sec.outer_radius_mm();
+    let style = sec.style();
+    let y_bar = sec.neutral_axis_mm();
+    let y_s = sec.sensor_plane_mm();
+    let Columns { col1, col2, .. } = *columns;
     let x_right = match style {
         NotchStyle::Uan => col1,
         NotchStyle::Bsn => col2,
@@ -205,11 +249,20 @@ fn draw(design: &Design, scale: f64) -> Drawn {
         }
         sheet.text("labels", (tx, ty + sheet.paper(0.9)), label, text);
     }
+    planes
+        .iter()
+        .map(|(y, ..)| -y)
+        .fold(f64::NEG_INFINITY, f64::max)
+}
 
-    // Sensor arms on the outer surface.
-    let arm_r = (design.file.fabrication.trace_width_mm / 2.0).max(sheet.paper(0.9));
+/// The sensor arms on the outer surface at `φ = ±φ_s/2` (and `π ± φ_s/2` for BSN), as dots at
+/// least the trace's width across.
+fn draw_sensor_arms(sheet: &mut Sheet, sec: &CrossSection, trace_width_mm: f64) {
+    let ro = sec.outer_radius_mm();
+    let phi_s = sec.sensor_angle_rad();
+    let arm_r = (trace_width_mm / 2.0).max(sheet.paper(0.9));
     let mut arms = vec![-phi_s / 2.0, phi_s / 2.0];
-    if style == NotchStyle::Bsn {
+    if sec.style() == NotchStyle::Bsn {
         arms.extend([PI - phi_s / 2.0, PI + phi_s / 2.0]);
     }
     for phi in &arms {
@@ -222,7 +275,13 @@ fn draw(design: &Design, scale: f64) -> Drawn {
             "sensor-arm",
         );
     }
-    let arm_labels: Vec<(f64, String)> = match style {
+}
+
+/// The sensor arms' labels on leaders, above or below the section.
+fn draw_arm_labels(sheet: &mut Sheet, sec: &CrossSection) {
+    let ro = sec.outer_radius_mm();
+    let phi_s = sec.sensor_angle_rad();
+    let arm_labels: Vec<(f64, String)> = match sec.style() {
         NotchStyle::Uan => vec![(
             phi_s / 2.0,
             format!(
@@ -264,10 +323,19 @@ fn draw(design: &Design, scale: f64) -> Drawn {
             TextStyle::new(TEXT_MM, palette::SENSOR),
         );
     }
+}
 
-    // Δy (and Δy^(1,2)) as dimensions right of the section.
+/// `Δy` (and, for BSN, `Δy^(1,2)`) as dimensions right of the section.
+fn draw_offsets(sheet: &mut Sheet, sec: &CrossSection, columns: Columns) {
+    let y_bar = sec.neutral_axis_mm();
+    let y_s = sec.sensor_plane_mm();
+    let Columns {
+        dy_label,
+        col1,
+        col2,
+    } = columns;
     annotate::vertical(
-        &mut sheet,
+        sheet,
         "dimensions",
         &Dimension {
             ends: (-y_s, -y_bar),
@@ -280,7 +348,7 @@ fn draw(design: &Design, scale: f64) -> Drawn {
     );
     if let Some(dy12) = sec.two_sensor_offset_mm() {
         annotate::vertical(
-            &mut sheet,
+            sheet,
             "dimensions",
             &Dimension {
                 ends: (-y_s, y_s),
@@ -292,8 +360,12 @@ fn draw(design: &Design, scale: f64) -> Drawn {
             },
         );
     }
+}
 
-    // Radii on leaders below the centre line, away from the plane labels.
+/// The radii `r_o` and `r_i` on leaders below the centre line, away from the plane labels;
+/// returns where `r_o`'s label ends (sheet x).
+fn draw_radii(sheet: &mut Sheet, sec: &CrossSection) -> f64 {
+    let (ro, ri) = (sec.outer_radius_mm(), sec.inner_radius_mm());
     let radius_pen = sheet.pen(palette::DIMENSION, THIN_MM, None);
     let mut radius_label_end: f64 = 0.0;
     for (r, phi, label, right) in [
@@ -336,21 +408,24 @@ fn draw(design: &Design, scale: f64) -> Drawn {
         }
         sheet.text("labels", (tx, end.1 + sheet.paper(0.9)), &label, style);
     }
+    radius_label_end
+}
 
-    // The numbers right of the section, below the planes.
-    let table = numbers(design, &sheet);
-    let lowest_plane = planes
-        .iter()
-        .map(|(y, ..)| -y)
-        .fold(f64::NEG_INFINITY, f64::max);
+/// The table of numbers right of the section, below the planes and clear of `r_o`'s label.
+fn draw_numbers(sheet: &mut Sheet, design: &Design, lowest_plane: f64, radius_label_end: f64) {
+    let ro = design.joint.section().outer_radius_mm();
+    let table = numbers(design, sheet);
     let table_x = (ro + sheet.paper(12.0)).max(radius_label_end + sheet.paper(4.0));
     // Bottom-aligned with the section unless the planes reach lower.
-    let (_, table_h) = table.size(&sheet);
+    let (_, table_h) = table.size(sheet);
     let table_y = (lowest_plane + sheet.paper(6.0)).max(ro - table_h);
-    table.draw(&mut sheet, "labels", (table_x, table_y));
+    table.draw(sheet, "labels", (table_x, table_y));
+}
 
-    // The notch, named below the section.
-    let notch_label = match style {
+/// The notch, named below everything drawn so far; returns the name's sheet y.
+fn draw_notch_name(sheet: &mut Sheet, sec: &CrossSection) -> f64 {
+    let phi_n = sec.notch_angle_rad();
+    let notch_label = match sec.style() {
         NotchStyle::Uan => format!(
             "notch (pale orange): s_{{n}} = {} mm, φ_{{n}} = s_{{n}}/r_{{o}} = {:.1}°, centred at φ = 180°",
             fixed(sec.notch_arc_mm(), 2),
@@ -370,16 +445,15 @@ fn draw(design: &Design, scale: f64) -> Drawn {
         &notch_label,
         TextStyle::new(TEXT_MM, palette::NOTCH_EDGE).anchor(Anchor::Middle),
     );
+    notch_y
+}
 
-    // The scale bar under everything.
-    let ((min_x, _), _) = sheet.extent();
-    let bar_y = notch_y + sheet.paper(5.0);
-    annotate::scale_bar(&mut sheet, "labels", (min_x, bar_y));
-
+/// The sheet's title above everything; returns it.
+fn draw_title(sheet: &mut Sheet, design: &Design, scale: f64) -> String {
     let title = format!(
         "{} — section through a notch ({}), scale {}",
         design.file.name,
-        style_name(style),
+        style_name(design.joint.section().style()),
         annotate::scale_ratio(scale)
     );
     let ((min_x, min_y), _) = sheet.extent();
@@ -389,7 +463,7 @@ fn draw(design: &Design, scale: f64) -> Drawn {
         &title,
         TextStyle::new(4.0, palette::OUTLINE).bold(),
     );
-    sheet.finish(&title, 6.0)
+    title
 }
 
 fn numbers(design: &Design, sheet: &Sheet) -> Table {
