@@ -548,32 +548,63 @@ fn persist(shown: &Path, target: &Path, tmp: tempfile::NamedTempFile) -> Result<
     })
 }
 
-/// Reads a text input of at most `limit` bytes: a file past it (or a device that never ends,
-/// such as a link to `/dev/zero`) is refused with the limit named, after reading `limit + 1`
-/// bytes, instead of filling memory. The limits are in [`crate::limits`].
+/// Reads a text input of at most `limit` bytes, through [`read_limited_bytes`] (a regular file,
+/// or a pipe with data within [`crate::limits::PIPE_WAIT_MS`]); a UTF-8 byte-order mark before
+/// the text is dropped.
 ///
 /// # Errors
-/// The file cannot be read, is past the limit, or is not UTF-8.
+/// As [`read_limited_bytes`], or the file is not UTF-8.
 pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<String> {
     let bytes = read_limited_bytes(path, limit)?;
-    String::from_utf8(bytes).map_err(|e| {
+    let mut text = String::from_utf8(bytes).map_err(|e| {
         std::io::Error::new(
             std::io::ErrorKind::InvalidData,
             format!("{} is not UTF-8 text ({e})", path.display()),
         )
-    })
+    })?;
+    if text.starts_with(UTF8_BOM) {
+        text.drain(..UTF8_BOM.len());
+    }
+    Ok(text)
 }
 
-/// [`read_limited`] for a binary input.
+/// The byte-order mark some Windows programs write before UTF-8 text.
+pub const UTF8_BOM: &str = "\u{feff}";
+
+/// The one bounded reader every input of `dlw` goes through. It reads a **regular file** of at
+/// most `limit` bytes (one past it is refused with the limit named, after reading `limit + 1`
+/// bytes), or a **pipe** (a FIFO, a shell's `<(...)`) that has data within
+/// [`crate::limits::PIPE_WAIT_MS`]; anything else (a device such as `/dev/zero`, a folder, a
+/// socket) is refused naming what it is, and a pipe with no data (a FIFO no program writes) is
+/// refused after the wait instead of blocking forever. The limits are in [`crate::limits`].
 ///
 /// # Errors
-/// The file cannot be read or is past the limit.
+/// The file cannot be opened or read, is not a regular file or a pipe with data, or is past
+/// the limit.
 pub fn read_limited_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     use std::io::Read;
+    let refuse = |what: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, what);
+    let file = open_for_reading(path)?;
+    let kind = file.metadata()?.file_type();
+    if !kind.is_file() {
+        match file_kind(&kind) {
+            Some("a pipe") => wait_for_data(&file, path)?,
+            Some(what) => {
+                return Err(refuse(format!(
+                    "{} is {what}, not a regular file: dlw reads files (or a pipe with data)",
+                    path.display()
+                )))
+            }
+            None => {
+                return Err(refuse(format!(
+                    "{} is not a regular file: dlw reads files (or a pipe with data)",
+                    path.display()
+                )))
+            }
+        }
+    }
     let mut bytes = Vec::new();
-    std::fs::File::open(path)?
-        .take(limit + 1)
-        .read_to_end(&mut bytes)?;
+    (&file).take(limit + 1).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > limit {
         return Err(std::io::Error::new(
             std::io::ErrorKind::InvalidData,
@@ -585,6 +616,91 @@ pub fn read_limited_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
         ));
     }
     Ok(bytes)
+}
+
+/// Opens `path` for reading without blocking on a FIFO that has no writer (`open(2)` would wait
+/// for one), then makes reads blocking again.
+fn open_for_reading(path: &Path) -> std::io::Result<std::fs::File> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        use std::os::unix::io::AsRawFd;
+        let file = std::fs::OpenOptions::new()
+            .read(true)
+            .custom_flags(libc::O_NONBLOCK)
+            .open(path)?;
+        // SAFETY: F_GETFL/F_SETFL on a descriptor this function owns.
+        unsafe {
+            let fd = file.as_raw_fd();
+            let flags = libc::fcntl(fd, libc::F_GETFL);
+            if flags >= 0 {
+                libc::fcntl(fd, libc::F_SETFL, flags & !libc::O_NONBLOCK);
+            }
+        }
+        Ok(file)
+    }
+    #[cfg(not(unix))]
+    {
+        std::fs::File::open(path)
+    }
+}
+
+/// What a file that is not a regular file is, in words.
+fn file_kind(kind: &std::fs::FileType) -> Option<&'static str> {
+    if kind.is_dir() {
+        return Some("a folder");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return Some("a pipe");
+        }
+        if kind.is_char_device() {
+            return Some("a character device");
+        }
+        if kind.is_block_device() {
+            return Some("a block device");
+        }
+        if kind.is_socket() {
+            return Some("a socket");
+        }
+    }
+    None
+}
+
+/// Waits up to [`crate::limits::PIPE_WAIT_MS`] for a pipe to have data (or to be closed by its
+/// writer, which reads as an empty file).
+fn wait_for_data(file: &std::fs::File, path: &Path) -> std::io::Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::io::AsRawFd;
+        let mut poll = libc::pollfd {
+            fd: file.as_raw_fd(),
+            events: libc::POLLIN,
+            revents: 0,
+        };
+        let wait_ms = i32::try_from(crate::limits::PIPE_WAIT_MS).unwrap_or(i32::MAX);
+        // SAFETY: one pollfd, owned here, for the duration of the call.
+        let ready = unsafe { libc::poll(&mut poll, 1, wait_ms) };
+        if ready < 0 {
+            return Err(std::io::Error::last_os_error());
+        }
+        if ready == 0 {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::TimedOut,
+                format!(
+                    "{} is a pipe with no data within {} ms (does a program write to it?); dlw \
+                     reads files, or a pipe that has data",
+                    path.display(),
+                    crate::limits::PIPE_WAIT_MS
+                ),
+            ));
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = (file, path);
+    Ok(())
 }
 
 /// A byte count as a person reads it: `64 MiB`, `4 GiB`, `1000 bytes`.
