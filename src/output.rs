@@ -57,6 +57,12 @@ pub enum OutputError {
         /// The second output.
         second: PathBuf,
     },
+    /// A folder was to be written to `-`.
+    #[error("output {path} means standard output, which cannot hold a folder; give a folder's path (./- for a folder named -)")]
+    FolderToStdout {
+        /// The output as given.
+        path: PathBuf,
+    },
     /// Something appeared at the output while the command ran.
     #[error("output {path} appeared while this run was writing it (another run?); nothing was replaced, run again or pass --force")]
     Appeared {
@@ -145,6 +151,24 @@ pub fn claim<P: AsRef<Path>>(
         .get_or_insert_with(HashSet::new)
         .insert(out);
     Ok(())
+}
+
+/// [`claim`] for an output **folder**: `-` (standard output, which cannot hold a folder) is
+/// refused with [`OutputError::FolderToStdout`] instead of making a folder named `-`.
+///
+/// # Errors
+/// As [`claim`], and [`OutputError::FolderToStdout`].
+pub fn claim_folder<P: AsRef<Path>>(
+    output: &Path,
+    inputs: impl IntoIterator<Item = P>,
+    force: bool,
+) -> Result<(), OutputError> {
+    if is_stdout(output) {
+        return Err(OutputError::FolderToStdout {
+            path: output.to_path_buf(),
+        });
+    }
+    claim(output, inputs, force)
 }
 
 /// Lets this process replace `path` (a library caller's explicit `replace`, the same as a
@@ -301,6 +325,11 @@ pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError>
 /// [`OutputError::Io`] naming the path for anything else. `dir` is then as it was.
 pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
     install_signal_cleanup();
+    if is_stdout(dir) {
+        return Err(OutputError::FolderToStdout {
+            path: dir.to_path_buf(),
+        });
+    }
     let io = |path: &Path| {
         let path = path.to_path_buf();
         move |source| OutputError::Io { path, source }

@@ -67,7 +67,7 @@ struct Report<'a, T: Serialize> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(
+    dlw::output::claim_folder(
         &args.output,
         [&args.design, &args.recording]
             .into_iter()
