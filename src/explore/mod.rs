@@ -37,7 +37,7 @@ pub use evaluate::{evaluate, Constraint, Metrics, Model};
 /// The candidate space.
 pub use grid::{Grid, Params};
 /// The Pareto front.
-pub use pareto::{dominates, front};
+pub use pareto::{dominates, front, front_with_ties, tied, TIE_RELATIVE};
 /// The output folder's files and the `--json` summary.
 pub use report::{files, Files, Row, Summary};
 /// The spec file.
@@ -465,28 +465,35 @@ impl Exploration {
             .iter()
             .map(|c| signed.iter().map(|&(m, s)| s * c.metrics.get(m)).collect())
             .collect();
-        front(&points)
+        front_with_ties(&points, TIE_RELATIVE)
     }
 
     /// The best `k` of the front: ordered by the first objective (best first), then the next.
     pub fn best(&self, feasible: &[Candidate], front: &[usize], k: usize) -> Vec<usize> {
         let signed = self.spec.objectives.signed();
-        let mut order = front.to_vec();
+        // Ordered by the tied objectives, so that designs equal in one are ordered by the next.
+        let points: Vec<Vec<f64>> = front
+            .iter()
+            .map(|&i| {
+                signed
+                    .iter()
+                    .map(|&(m, s)| s * feasible[i].metrics.get(m))
+                    .collect()
+            })
+            .collect();
+        let points = tied(&points, TIE_RELATIVE);
+        let mut order: Vec<usize> = (0..front.len()).collect();
         order.sort_by(|&a, &b| {
-            for &(m, s) in &signed {
-                let (x, y) = (
-                    s * feasible[a].metrics.get(m),
-                    s * feasible[b].metrics.get(m),
-                );
-                match y.total_cmp(&x) {
+            for (x, y) in points[a].iter().zip(&points[b]) {
+                match y.total_cmp(x) {
                     std::cmp::Ordering::Equal => continue,
                     o => return o,
                 }
             }
-            feasible[a].index.cmp(&feasible[b].index)
+            feasible[front[a]].index.cmp(&feasible[front[b]].index)
         });
         order.truncate(k);
-        order
+        order.into_iter().map(|p| front[p]).collect()
     }
 }
 
