@@ -324,37 +324,51 @@ pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError>
 /// made in it; [`OutputError::Exists`] or [`OutputError::Appeared`] for an occupied `dir`;
 /// [`OutputError::Io`] naming the path for anything else. `dir` is then as it was.
 pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
+    stage_folder(dir, files)?.commit()
+}
+
+/// A whole output folder written into its staging folder beside the destination, not yet in
+/// place: [`StagedFolder::commit`] puts it there, dropping it removes it. A command with
+/// several outputs stages them all before committing any, so that a failure to write one
+/// leaves none (`import-recording`'s recording and `--report`).
+#[derive(Debug)]
+pub struct StagedFolder {
+    staging: Staged,
+    /// The destination, a symlink followed.
+    dir: PathBuf,
+    /// The destination as the user gave it.
+    shown: PathBuf,
+}
+
+/// Writes `files` (names relative to `dir`) into a staging folder beside `dir`, to be put in
+/// its place by [`StagedFolder::commit`].
+///
+/// # Errors
+/// [`OutputError::FolderToStdout`] for `-`; [`OutputError::Staging`] naming the parent folder
+/// and why the staging folder could not be made in it; [`OutputError::Io`] naming the path.
+pub fn stage_folder(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<StagedFolder, OutputError> {
     install_signal_cleanup();
     if is_stdout(dir) {
         return Err(OutputError::FolderToStdout {
             path: dir.to_path_buf(),
         });
     }
-    let io = |path: &Path| {
-        let path = path.to_path_buf();
-        move |source| OutputError::Io { path, source }
-    };
     let dir_target = match std::fs::read_link(dir) {
         Ok(_) => std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf()),
         Err(_) => dir.to_path_buf(),
     };
-    let dir_shown = dir;
-    let dir = dir_target.as_path();
-    let parent = folder_of(dir);
-    let staging_err = |what: &'static str| {
-        move |reason| OutputError::Staging {
-            what,
-            parent: parent.to_path_buf(),
-            dir: dir_shown.to_path_buf(),
-            reason,
-        }
-    };
+    let parent = folder_of(&dir_target);
     sweep_stale(parent);
     let staging = Staged::new(
         tempfile::Builder::new()
             .prefix(&staging_prefix())
             .tempdir_in(parent)
-            .map_err(staging_err("staging"))?,
+            .map_err(|reason| OutputError::Staging {
+                what: "staging",
+                parent: parent.to_path_buf(),
+                dir: dir.to_path_buf(),
+                reason,
+            })?,
     );
     for (name, bytes) in files {
         write_atomic(&staging.path().join(name), bytes)?;
@@ -363,61 +377,106 @@ pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<()
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755))
-            .map_err(io(dir))?;
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755)).map_err(
+            |source| OutputError::Io {
+                path: dir.to_path_buf(),
+                source,
+            },
+        )?;
     }
-    let occupied = match std::fs::read_dir(dir) {
-        Ok(mut entries) => entries.next().is_some(),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
-        Err(_) => true,
-    };
-    if !occupied || !may_replace(dir) {
-        if occupied {
-            return Err(OutputError::Exists {
-                path: dir_shown.to_path_buf(),
-                what: " and is not empty",
-            });
-        }
-        // rename(2) replaces only an empty folder: anything that appeared meanwhile makes it
-        // fail instead of being lost.
-        return match std::fs::rename(staging.path(), dir) {
-            Ok(()) => {
-                staging.keep();
-                Ok(())
-            }
-            Err(e)
-                if matches!(
-                    e.raw_os_error(),
-                    Some(libc::ENOTEMPTY | libc::EEXIST | libc::ENOTDIR | libc::EISDIR)
-                ) =>
-            {
-                Err(OutputError::Appeared {
-                    path: dir_shown.to_path_buf(),
-                })
-            }
-            Err(e) => Err(io(dir_shown)(e)),
+    Ok(StagedFolder {
+        staging,
+        dir: dir_target,
+        shown: dir.to_path_buf(),
+    })
+}
+
+impl StagedFolder {
+    /// The staging folder, holding the files as they will be (to read them back before
+    /// committing).
+    pub fn path(&self) -> &Path {
+        self.staging.path()
+    }
+
+    /// Puts the staged folder in the destination's place. A missing or empty destination is
+    /// taken with a rename that fails if anything appeared in it meanwhile; a non-empty one is
+    /// replaced only if it was [`claim`]ed with `--force`.
+    ///
+    /// # Errors
+    /// [`OutputError::Exists`] or [`OutputError::Appeared`] for an occupied destination;
+    /// [`OutputError::Staging`] or [`OutputError::Io`] otherwise. The destination is then as
+    /// it was.
+    pub fn commit(self) -> Result<(), OutputError> {
+        let StagedFolder {
+            staging,
+            dir,
+            shown,
+        } = self;
+        let dir = dir.as_path();
+        let io = |source| OutputError::Io {
+            path: shown.clone(),
+            source,
         };
+        let occupied = match std::fs::read_dir(dir) {
+            Ok(mut entries) => entries.next().is_some(),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
+            Err(_) => true,
+        };
+        if !occupied || !may_replace(dir) {
+            if occupied {
+                return Err(OutputError::Exists {
+                    path: shown.clone(),
+                    what: " and is not empty",
+                });
+            }
+            // rename(2) replaces only an empty folder: anything that appeared meanwhile makes
+            // it fail instead of being lost.
+            return match std::fs::rename(staging.path(), dir) {
+                Ok(()) => {
+                    staging.keep();
+                    Ok(())
+                }
+                Err(e)
+                    if matches!(
+                        e.raw_os_error(),
+                        Some(libc::ENOTEMPTY | libc::EEXIST | libc::ENOTDIR | libc::EISDIR)
+                    ) =>
+                {
+                    Err(OutputError::Appeared {
+                        path: shown.clone(),
+                    })
+                }
+                Err(e) => Err(io(e)),
+            };
+        }
+        // rename cannot replace a non-empty folder: move the old one aside first, and back if
+        // the new one cannot take its place.
+        let parent = folder_of(dir);
+        let old = Staged::new(
+            tempfile::Builder::new()
+                .prefix(&staging_prefix())
+                .tempdir_in(parent)
+                .map_err(|reason| OutputError::Staging {
+                    what: "set-aside",
+                    parent: parent.to_path_buf(),
+                    dir: shown.clone(),
+                    reason,
+                })?,
+        );
+        let aside = old.path().join("old");
+        std::fs::rename(dir, &aside).map_err(io)?;
+        if let Err(source) = std::fs::rename(staging.path(), dir) {
+            let _ = std::fs::rename(&aside, dir);
+            old.keep_if_restore_failed(&aside);
+            return Err(io(source));
+        }
+        staging.keep();
+        Ok(())
     }
-    // rename cannot replace a non-empty folder: move the old one aside first, and back if the
-    // new one cannot take its place.
-    let old = Staged::new(
-        tempfile::Builder::new()
-            .prefix(&staging_prefix())
-            .tempdir_in(parent)
-            .map_err(staging_err("set-aside"))?,
-    );
-    let aside = old.path().join("old");
-    std::fs::rename(dir, &aside).map_err(io(dir_shown))?;
-    if let Err(source) = std::fs::rename(staging.path(), dir) {
-        let _ = std::fs::rename(&aside, dir);
-        old.keep_if_restore_failed(&aside);
-        return Err(io(dir_shown)(source));
-    }
-    staging.keep();
-    Ok(())
 }
 
 /// A staging folder registered for removal on a signal, removed when dropped unless kept.
+#[derive(Debug)]
 struct Staged {
     dir: Option<tempfile::TempDir>,
     path: PathBuf,

@@ -1,0 +1,1 @@
+//! `dlw daq-info`: what a DAQ file or a tracker log holds, before importing it.
