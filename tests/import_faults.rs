@@ -119,6 +119,12 @@ fn a_daq_that_dropped_a_second_is_aligned_per_stretch() {
     rewrite(dir.path(), "daq.csv", |i, l| {
         (i == 0 || !(120.0..121.0).contains(&daq_time(l))).then(|| l.to_string())
     });
+    // The samples counted at a stated rate disagree with the time column: refused as such.
+    refused(
+        dir.path(),
+        &import(dir.path(), &["--daq-rate-hz", "500"]),
+        &["lost samples", "--daq-rate-hz 500"],
+    );
     let j = accepted(&import(dir.path(), &[]));
     let stretches = j["alignment"]["stretches"].as_array().expect("stretches");
     assert_eq!(stretches.len(), 2, "{j}");

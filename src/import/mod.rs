@@ -360,6 +360,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         source,
     })?;
     values::check_daq(req, &daq, &names)?;
+    values::check_rate(req, &daq)?;
     let stretches = stretch::stretches(&daq.time_s)?;
     let mut tools = vec![req.tool];
     tools.extend(req.reference_tool);

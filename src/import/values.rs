@@ -122,3 +122,25 @@ pub fn check_daq(
     }
     Ok(())
 }
+
+/// With `--daq-rate-hz` given, the DAQ's sample count must agree with its time: a time column
+/// that spans more than its samples at that rate do shows samples the DAQ lost (an uneven
+/// clock, found before it is aligned as if even).
+///
+/// # Errors
+/// [`ImportError::Value`] naming both spans.
+pub fn check_rate(req: &ImportRequest<'_>, daq: &DaqTable) -> Result<(), ImportError> {
+    let Some(hz) = req.daq_rate_hz else {
+        return Ok(());
+    };
+    let n = daq.time_s.len();
+    let span_s = daq.time_s[n - 1] - daq.time_s[0];
+    let counted_s = (n - 1) as f64 / hz;
+    if (span_s - counted_s).abs() > super::align::JUMP_PERIODS / hz {
+        return Err(ImportError::Value(format!(
+            "the DAQ's time spans {span_s:.4} s, but its {n} samples at --daq-rate-hz {} span {counted_s:.4} s: the DAQ lost samples (or the rate is wrong); leave out --daq-rate-hz to align by the time column, stretch by stretch",
+            short(hz)
+        )));
+    }
+    Ok(())
+}
