@@ -146,7 +146,10 @@ fn a_lab_logger_layout_imports_through_a_map() {
     // Without a map, the reader says what to do.
     let o = import(dir.path(), "lab.csv", &[]);
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("--tracker-map"), "{err}");
+    assert!(
+        !o.status.success() && err.contains("--tracker-map"),
+        "{err}"
+    );
 
     let o = import(dir.path(), "lab.csv", &["--tracker-map", &map]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -200,7 +203,14 @@ fn a_lab_logger_layout_imports_through_a_map() {
     let o = import(
         dir.path(),
         "lab.csv",
-        &["--tracker-map", &map, "--tool", "3", "-o", &arg(&dir.path().join("c"))],
+        &[
+            "--tracker-map",
+            &map,
+            "--tool",
+            "3",
+            "-o",
+            &arg(&dir.path().join("c")),
+        ],
     );
     assert!(!o.status.success());
     assert!(!dir.path().join("c").exists());
@@ -245,7 +255,11 @@ fn a_map_that_does_not_fit_the_log_is_refused_naming_the_column() {
     for (from, to, says) in [
         ("\"qxa\"", "\"QXA_\"", "QXA_"),
         ("[\"ms\", \"ms\"]", "[\"ms\", \"jiffies\"]", "jiffies"),
-        ("header_line = 5", "header_line = 4", "no \"Sample:\" column"),
+        (
+            "header_line = 5",
+            "header_line = 4",
+            "no \"Sample:\" column",
+        ),
     ] {
         let map = dir.path().join("bad.toml");
         std::fs::write(&map, LAB_MAP.replacen(from, to, 1)).unwrap();

@@ -553,17 +553,33 @@ fn provenance(
 fn read_daq(req: &ImportRequest<'_>, names: &[&str]) -> Result<DaqTable, DaqError> {
     let (time_column, rate_hz) = (req.time_column.as_deref(), req.daq_rate_hz);
     Ok(match req.daq_format {
-        DaqFormat::Csv => DaqTable::parse(text(req.daq.1)?, names, time_column, rate_hz)?,
+        DaqFormat::Csv => DaqTable::parse(&text(req.daq.1)?, names, time_column, rate_hz)?,
         DaqFormat::Tdms => tdms::daq_table(req.daq.1, names, time_column, rate_hz)?,
-        DaqFormat::Lvm => lvm::daq_table(text(req.daq.1)?, names, time_column, rate_hz)?,
+        DaqFormat::Lvm => lvm::daq_table(&text(req.daq.1)?, names, time_column, rate_hz)?,
     })
 }
 
 /// A text DAQ file's bytes as text, without a UTF-8 byte-order mark (which Windows programs
 /// write before the header).
-fn text(bytes: &[u8]) -> Result<&str, DaqError> {
-    let text = std::str::from_utf8(bytes).map_err(DaqError::NotText)?;
-    Ok(text.strip_prefix(crate::output::UTF8_BOM).unwrap_or(text))
+pub(crate) fn text(bytes: &[u8]) -> Result<std::borrow::Cow<'_, str>, DaqError> {
+    match std::str::from_utf8(bytes) {
+        Ok(text) => Ok(std::borrow::Cow::Borrowed(
+            text.strip_prefix(crate::output::UTF8_BOM).unwrap_or(text),
+        )),
+        // LabVIEW on Windows writes the system's code page (a µ, a ° in a comment): read as
+        // Latin-1, one character per byte, when the file is plain ASCII text but for a few
+        // bytes; the numbers are ASCII either way.
+        Err(e) => {
+            let ascii = bytes.iter().filter(|b| b.is_ascii()).count();
+            if ascii * 100 >= bytes.len() * 99 && !bytes.contains(&0) {
+                Ok(std::borrow::Cow::Owned(
+                    bytes.iter().map(|&b| char::from(b)).collect(),
+                ))
+            } else {
+                Err(DaqError::NotText(e))
+            }
+        }
+    }
 }
 
 /// The clocks, by the request's method: `--sync auto` aligns each stretch of the DAQ's clock

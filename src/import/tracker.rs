@@ -202,7 +202,7 @@ pub struct TrackerLog {
     pub rate_hz: f64,
     /// Where the rate came from.
     pub rate_source: RateSource,
-    /// The tools the map lists.
+    /// The tools the map lists (the log's tools).
     pub tool_count: usize,
     /// The header's columns.
     pub header: Vec<String>,
@@ -303,6 +303,7 @@ impl TrackerLog {
 
 /// The resolved columns of a map against a header.
 struct Reader {
+    map_tools: usize,
     frame: Option<usize>,
     time: Vec<(usize, f64)>,
     tools: Vec<(usize, ToolAt)>,
@@ -403,6 +404,7 @@ impl Reader {
             })
             .transpose()?;
         Ok(Self {
+            map_tools: map.tools.len(),
             frame,
             time,
             tools,
@@ -666,7 +668,7 @@ impl Reader {
             }
             (None, None) => return Err(TrackerError::NoClock),
         }
-        log.tool_count = self.tools.len();
+        log.tool_count = self.map_tools;
         Ok(())
     }
 }
