@@ -270,3 +270,107 @@ fn a_map_that_does_not_fit_the_log_is_refused_naming_the_column() {
         assert!(!dir.path().join("rec").exists());
     }
 }
+
+/// `dlw daq-info --tracker` (issue 30, section 4) lists what the lab's log holds, counted here
+/// from the bench's own NDI log: the frames (the cut line dropped with a warning), each tool's
+/// frames without it (the tip's `Missing` frames, tool c never seen, tool d lost 4 frames in
+/// 97), the span and the rate the host clock gives; the NDI log itself through the built-in
+/// map; and the DAQ side's columns.
+#[test]
+fn daq_info_lists_what_the_logs_hold() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench(dir.path(), STILL_5DOF);
+    write_lab_log(dir.path());
+    let ndi = std::fs::read_to_string(dir.path().join("aurora.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = ndi
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    let whole = rows.len() - 1;
+    let tip_missing = rows[..whole].iter().filter(|f| f[5] == "Missing").count();
+    let reference_missing = rows[..whole].iter().filter(|f| f[17] == "Missing").count();
+    assert!(tip_missing > 0);
+
+    let info = |args: &[&str]| -> serde_json::Value {
+        let mut all = vec!["daq-info", "--json"];
+        all.extend(args);
+        let o = dlw(&all);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let lab = arg(&dir.path().join("lab.csv"));
+    let map = arg(&dir.path().join("lab-map.toml"));
+    let j = info(&["--tracker", &lab, "--tracker-map", &map]);
+    assert_eq!(j["format"], "map");
+    assert_eq!(j["frames"].as_u64(), Some(whole as u64), "{j}");
+    let missing: Vec<u64> = j["tools"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["missing"].as_u64().unwrap())
+        .collect();
+    let lost_d = (0..whole).filter(|k| k % 97 < 4).count() as u64;
+    assert_eq!(
+        missing,
+        vec![
+            tip_missing as u64,
+            reference_missing as u64,
+            whole as u64,
+            lost_d
+        ],
+        "{j}"
+    );
+    let rate = j["rate_hz"].as_f64().unwrap();
+    assert!((rate - TRACKER_HZ).abs() < 0.01, "rate {rate} Hz");
+    assert_eq!(j["rate_source"], "measured");
+    let span = j["span_s"].as_f64().unwrap();
+    let want = (whole - 1) as f64 / TRACKER_HZ;
+    assert!((span - want).abs() < 0.01, "span {span} s, want {want} s");
+    assert!(j["warnings"].to_string().contains("truncated"), "{j}");
+    assert_eq!(j["gaps"].as_array().map(Vec::len), Some(0), "{j}");
+
+    // A hole of 400 frames cut from the NDI log is listed as a gap.
+    let mut holed = String::new();
+    for (k, line) in ndi.lines().enumerate() {
+        if !(2001..2401).contains(&k) {
+            holed.push_str(line);
+            holed.push('\n');
+        }
+    }
+    std::fs::write(dir.path().join("holed.csv"), holed).unwrap();
+    let j = info(&["--tracker", &arg(&dir.path().join("holed.csv"))]);
+    assert_eq!(j["format"], "ndi");
+    assert_eq!(j["frames"].as_u64(), Some((rows.len() - 400) as u64), "{j}");
+    let gaps = j["gaps"].as_array().unwrap();
+    assert_eq!(gaps.len(), 1, "{j}");
+    assert!(
+        (gaps[0]["frames"].as_f64().unwrap() - 400.0).abs() < 0.5,
+        "{j}"
+    );
+    assert!(
+        (gaps[0]["seconds"].as_f64().unwrap() - 401.0 / TRACKER_HZ).abs() < 1e-3,
+        "{j}"
+    );
+    assert_eq!(j["tools"].as_array().unwrap().len(), 2, "{j}");
+
+    // The DAQ side: its columns, lengths, first and last values, sample interval.
+    let daq = std::fs::read_to_string(dir.path().join("daq.csv")).unwrap();
+    let lines: Vec<&str> = daq.lines().collect();
+    let j = info(&[&arg(&dir.path().join("daq.csv"))]);
+    assert_eq!(j["format"], "csv");
+    let names: Vec<&str> = j["channels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["Time", "AI0", "AI1", "AI2", "AI3"]);
+    let ai0 = &j["channels"][1];
+    assert_eq!(ai0["length"].as_u64(), Some(lines.len() as u64 - 1));
+    let field = |line: &str| line.split(',').nth(1).unwrap().parse::<f64>().unwrap();
+    assert_eq!(ai0["first"][0].as_f64(), Some(field(lines[1])));
+    assert_eq!(ai0["last"][1].as_f64(), Some(field(lines[lines.len() - 1])));
+    assert!((ai0["increment_s"].as_f64().unwrap() - 1.0 / DAQ_HZ).abs() < 1e-9);
+    assert_eq!(j["warnings"].as_array().map(Vec::len), Some(0), "{j}");
+}

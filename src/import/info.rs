@@ -34,7 +34,7 @@ pub struct ChannelInfo {
     pub kind: Option<String>,
     /// Its values.
     pub length: usize,
-    /// Its unit (TDMS `unit_string`), when the file states one.
+    /// Its unit (TDMS `unit_string`, LVM `Y_Unit_Label`), when the file states one.
     pub unit: Option<String>,
     /// Its sample interval (s): TDMS `wf_increment`, or the median step of the time base.
     pub increment_s: Option<f64>,
@@ -402,12 +402,14 @@ fn time_checks(time_s: &[f64], warnings: &mut Vec<String>) {
 
 fn lvm_info(text: &str) -> Result<DaqInfo, DaqError> {
     let names = lvm::channel_names(text)?;
+    let units = lvm::units(text)?;
     let mut warnings = Vec::new();
     // Each channel on its own, as an import asking for it reads it (a channel of empty fields
     // does not stop the others).
     let channels = names
         .iter()
-        .map(|name| {
+        .enumerate()
+        .map(|(k, name)| {
             let (shown, increment_s) = match lvm::read(text, &[name.as_str()], None, None) {
                 Ok(t) => {
                     if t.time_s.len() > 1 {
@@ -426,7 +428,7 @@ fn lvm_info(text: &str) -> Result<DaqInfo, DaqError> {
                 name: name.clone(),
                 kind: Some("number".to_owned()),
                 length: shown.len(),
-                unit: None,
+                unit: units.get(k).cloned().flatten(),
                 increment_s,
                 first,
                 last,

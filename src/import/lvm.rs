@@ -190,6 +190,39 @@ pub fn channel_names(text: &str) -> Result<Vec<String>, LvmError> {
         .collect())
 }
 
+/// The units the first segment header gives the channels of [`channel_names`], in its order
+/// (`Y_Unit_Label`, whose fields stand above the columns they describe, an `X_Value` column's
+/// empty; `None` for an empty field or a file without the line).
+///
+/// # Errors
+/// [`LvmError`] for a file header that cannot be read.
+pub fn units(text: &str) -> Result<Vec<Option<String>>, LvmError> {
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
+    let format = file_header(&mut lines)?;
+    let mut labels: Vec<&str> = Vec::new();
+    for (_, l) in lines {
+        let fields: Vec<&str> = l.split(format.separator).map(str::trim).collect();
+        match fields[0] {
+            "Y_Unit_Label" => labels = fields,
+            X_VALUE => {
+                return Ok(fields
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, n)| !n.is_empty() && **n != X_VALUE && **n != COMMENT)
+                    .map(|(p, _)| {
+                        labels
+                            .get(p)
+                            .filter(|u| !u.is_empty() && p > 0)
+                            .map(|u| (*u).to_owned())
+                    })
+                    .collect())
+            }
+            _ => {}
+        }
+    }
+    Ok(Vec::new())
+}
+
 /// The channels asked for from the LVM text `text`, on one time base starting at 0.
 ///
 /// # Errors
