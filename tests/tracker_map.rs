@@ -58,7 +58,7 @@ fn write_lab_log(dir: &Path) {
         write!(out, ",X{t},Y{t},Z{t},qo{t},qx{t},qy{t},qz{t}").unwrap();
     }
     out.push('\n');
-    let mut rng = Rng(0x1ab_10c_5eed);
+    let mut rng = Rng(0x001a_b10c_5eed);
     let block = |f: &[&str]| -> String {
         // NDI's block: PortHandle, Face#, TransformStatus, Q0, Qx, Qy, Qz, Tx, Ty, Tz, Error.
         if f[2] == "Missing" {
@@ -84,9 +84,9 @@ fn write_lab_log(dir: &Path) {
             host_ms % 1000,
         );
         let lost_d = k % 97 < 4;
-        write!(
+        writeln!(
             out,
-            "{}, {h} , {m} , {s}, {ms},{}, {}, 0, 0, 0, 0, 0, 0, 0, {}, \n",
+            "{}, {h} , {m} , {s}, {ms},{}, {}, 0, 0, 0, 0, 0, 0, 0, {}, ",
             k + 1,
             block(&f[3..14]),
             block(&f[15..26]),
