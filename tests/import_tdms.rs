@@ -468,6 +468,9 @@ fn text_raw(w: &mut Writer, strings: &[&str]) -> u64 {
     (w.bytes.len() - start) as u64
 }
 
+/// Each channel of a hand-made file and the values written to it.
+type Truth = Vec<(&'static str, Vec<String>)>;
+
 /// The layouts LabVIEW writes, built by hand from NI's "TDMS File Format Internal Structure":
 /// **incremental metadata** (a later segment without `kTocNewObjList` that lists only a new
 /// channel and an old one "as before", then a segment with no metadata, then one where a
@@ -485,7 +488,7 @@ fn labview_layouts_built_by_hand_read_as_nptdms_reads_them() {
             w.u32(3).i32(k);
         }
     };
-    let mut files: Vec<(&str, Vec<u8>, Vec<(&str, Vec<String>)>)> = Vec::new();
+    let mut files: Vec<(&str, Vec<u8>, Truth)> = Vec::new();
 
     // Incremental metadata with NI_ArrayColumn, little-endian.
     {
