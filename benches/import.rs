@@ -103,11 +103,13 @@ fn bench(c: &mut Criterion) {
         time_column: None,
         daq_rate_hz: None,
         tracker: ("aurora.csv", &ndi),
+        tracker_map: None,
         tool: 1,
         reference_tool: None,
-        tracker_hz: TRACKER_HZ,
+        tracker_hz: Some(TRACKER_HZ),
         rest_s: 2.0,
         sync: SyncMethod::Auto,
+        max_offset_s: dlw::import::align::MAX_OFFSET_S,
         rate_hz: None,
     };
     let (recording, summary) = import(&request).expect("the bench imports");

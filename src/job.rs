@@ -43,6 +43,23 @@ pub fn program_file_name(stem: &str, profile: &MachineProfile) -> String {
     format!("{stem}.{}", post_for(profile.dialect).extension())
 }
 
+/// Every file a job for the design at `design_path` reads: the design, the process sets it
+/// names from the `process/` folder beside it, and the machine profile (`machine`, or the
+/// default) from `machines/` or a path. A command claims its outputs against all of them, so
+/// that no output replaces a file the design includes (`docs/outputs.md`). A design that
+/// cannot be read yields itself alone (reading it later gives the error).
+pub fn input_files(
+    design_path: &std::path::Path,
+    machine: Option<&str>,
+) -> Vec<std::path::PathBuf> {
+    let mut files = vec![design_path.to_path_buf()];
+    if let Ok(design) = crate::design::DesignFile::read(design_path) {
+        files.extend(crate::process::ProcessLibrary::beside(design_path).files(&design.process));
+    }
+    files.extend(crate::machine::MachineLibrary::beside(design_path).file(machine));
+    files
+}
+
 /// Why a job could not be made.
 #[derive(Debug, thiserror::Error)]
 pub enum JobError {

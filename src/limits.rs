@@ -24,6 +24,10 @@ pub const MAX_DRAWING_BYTES: u64 = 512 << 20;
 /// The largest image frame read (`fluoro`), in bytes: 256 MiB (a 16-bit 8k × 8k frame is
 /// 128 MiB).
 pub const MAX_FRAME_BYTES: u64 = 256 << 20;
+/// How long the bounded reader waits for a pipe to have data before refusing it (ms): a
+/// program feeding dlw (`<(zcat log.gz)`) writes its first bytes well within it; a FIFO that
+/// nothing writes would otherwise block forever.
+pub const PIPE_WAIT_MS: u64 = 1000;
 /// The most characters of a user's input an error message quotes.
 pub const MAX_QUOTED_CHARS: usize = 200;
 /// The longest line of an error message `dlw` prints, in characters: a message longer than

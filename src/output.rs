@@ -57,6 +57,12 @@ pub enum OutputError {
         /// The second output.
         second: PathBuf,
     },
+    /// A folder was to be written to `-`.
+    #[error("output {path} means standard output, which cannot hold a folder; give a folder's path (./- for a folder named -)")]
+    FolderToStdout {
+        /// The output as given.
+        path: PathBuf,
+    },
     /// Something appeared at the output while the command ran.
     #[error("output {path} appeared while this run was writing it (another run?); nothing was replaced, run again or pass --force")]
     Appeared {
@@ -145,6 +151,24 @@ pub fn claim<P: AsRef<Path>>(
         .get_or_insert_with(HashSet::new)
         .insert(out);
     Ok(())
+}
+
+/// [`claim`] for an output **folder**: `-` (standard output, which cannot hold a folder) is
+/// refused with [`OutputError::FolderToStdout`] instead of making a folder named `-`.
+///
+/// # Errors
+/// As [`claim`], and [`OutputError::FolderToStdout`].
+pub fn claim_folder<P: AsRef<Path>>(
+    output: &Path,
+    inputs: impl IntoIterator<Item = P>,
+    force: bool,
+) -> Result<(), OutputError> {
+    if is_stdout(output) {
+        return Err(OutputError::FolderToStdout {
+            path: output.to_path_buf(),
+        });
+    }
+    claim(output, inputs, force)
 }
 
 /// Lets this process replace `path` (a library caller's explicit `replace`, the same as a
@@ -300,32 +324,51 @@ pub fn write_all_atomic(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError>
 /// made in it; [`OutputError::Exists`] or [`OutputError::Appeared`] for an occupied `dir`;
 /// [`OutputError::Io`] naming the path for anything else. `dir` is then as it was.
 pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
+    stage_folder(dir, files)?.commit()
+}
+
+/// A whole output folder written into its staging folder beside the destination, not yet in
+/// place: [`StagedFolder::commit`] puts it there, dropping it removes it. A command with
+/// several outputs stages them all before committing any, so that a failure to write one
+/// leaves none (`import-recording`'s recording and `--report`).
+#[derive(Debug)]
+pub struct StagedFolder {
+    staging: Staged,
+    /// The destination, a symlink followed.
+    dir: PathBuf,
+    /// The destination as the user gave it.
+    shown: PathBuf,
+}
+
+/// Writes `files` (names relative to `dir`) into a staging folder beside `dir`, to be put in
+/// its place by [`StagedFolder::commit`].
+///
+/// # Errors
+/// [`OutputError::FolderToStdout`] for `-`; [`OutputError::Staging`] naming the parent folder
+/// and why the staging folder could not be made in it; [`OutputError::Io`] naming the path.
+pub fn stage_folder(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<StagedFolder, OutputError> {
     install_signal_cleanup();
-    let io = |path: &Path| {
-        let path = path.to_path_buf();
-        move |source| OutputError::Io { path, source }
-    };
+    if is_stdout(dir) {
+        return Err(OutputError::FolderToStdout {
+            path: dir.to_path_buf(),
+        });
+    }
     let dir_target = match std::fs::read_link(dir) {
         Ok(_) => std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf()),
         Err(_) => dir.to_path_buf(),
     };
-    let dir_shown = dir;
-    let dir = dir_target.as_path();
-    let parent = folder_of(dir);
-    let staging_err = |what: &'static str| {
-        move |reason| OutputError::Staging {
-            what,
-            parent: parent.to_path_buf(),
-            dir: dir_shown.to_path_buf(),
-            reason,
-        }
-    };
+    let parent = folder_of(&dir_target);
     sweep_stale(parent);
     let staging = Staged::new(
         tempfile::Builder::new()
             .prefix(&staging_prefix())
             .tempdir_in(parent)
-            .map_err(staging_err("staging"))?,
+            .map_err(|reason| OutputError::Staging {
+                what: "staging",
+                parent: parent.to_path_buf(),
+                dir: dir.to_path_buf(),
+                reason,
+            })?,
     );
     for (name, bytes) in files {
         write_atomic(&staging.path().join(name), bytes)?;
@@ -334,61 +377,106 @@ pub fn write_folder_atomic(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<()
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755))
-            .map_err(io(dir))?;
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(0o755)).map_err(
+            |source| OutputError::Io {
+                path: dir.to_path_buf(),
+                source,
+            },
+        )?;
     }
-    let occupied = match std::fs::read_dir(dir) {
-        Ok(mut entries) => entries.next().is_some(),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
-        Err(_) => true,
-    };
-    if !occupied || !may_replace(dir) {
-        if occupied {
-            return Err(OutputError::Exists {
-                path: dir_shown.to_path_buf(),
-                what: " and is not empty",
-            });
-        }
-        // rename(2) replaces only an empty folder: anything that appeared meanwhile makes it
-        // fail instead of being lost.
-        return match std::fs::rename(staging.path(), dir) {
-            Ok(()) => {
-                staging.keep();
-                Ok(())
-            }
-            Err(e)
-                if matches!(
-                    e.raw_os_error(),
-                    Some(libc::ENOTEMPTY | libc::EEXIST | libc::ENOTDIR | libc::EISDIR)
-                ) =>
-            {
-                Err(OutputError::Appeared {
-                    path: dir_shown.to_path_buf(),
-                })
-            }
-            Err(e) => Err(io(dir_shown)(e)),
+    Ok(StagedFolder {
+        staging,
+        dir: dir_target,
+        shown: dir.to_path_buf(),
+    })
+}
+
+impl StagedFolder {
+    /// The staging folder, holding the files as they will be (to read them back before
+    /// committing).
+    pub fn path(&self) -> &Path {
+        self.staging.path()
+    }
+
+    /// Puts the staged folder in the destination's place. A missing or empty destination is
+    /// taken with a rename that fails if anything appeared in it meanwhile; a non-empty one is
+    /// replaced only if it was [`claim`]ed with `--force`.
+    ///
+    /// # Errors
+    /// [`OutputError::Exists`] or [`OutputError::Appeared`] for an occupied destination;
+    /// [`OutputError::Staging`] or [`OutputError::Io`] otherwise. The destination is then as
+    /// it was.
+    pub fn commit(self) -> Result<(), OutputError> {
+        let StagedFolder {
+            staging,
+            dir,
+            shown,
+        } = self;
+        let dir = dir.as_path();
+        let io = |source| OutputError::Io {
+            path: shown.clone(),
+            source,
         };
+        let occupied = match std::fs::read_dir(dir) {
+            Ok(mut entries) => entries.next().is_some(),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
+            Err(_) => true,
+        };
+        if !occupied || !may_replace(dir) {
+            if occupied {
+                return Err(OutputError::Exists {
+                    path: shown.clone(),
+                    what: " and is not empty",
+                });
+            }
+            // rename(2) replaces only an empty folder: anything that appeared meanwhile makes
+            // it fail instead of being lost.
+            return match std::fs::rename(staging.path(), dir) {
+                Ok(()) => {
+                    staging.keep();
+                    Ok(())
+                }
+                Err(e)
+                    if matches!(
+                        e.raw_os_error(),
+                        Some(libc::ENOTEMPTY | libc::EEXIST | libc::ENOTDIR | libc::EISDIR)
+                    ) =>
+                {
+                    Err(OutputError::Appeared {
+                        path: shown.clone(),
+                    })
+                }
+                Err(e) => Err(io(e)),
+            };
+        }
+        // rename cannot replace a non-empty folder: move the old one aside first, and back if
+        // the new one cannot take its place.
+        let parent = folder_of(dir);
+        let old = Staged::new(
+            tempfile::Builder::new()
+                .prefix(&staging_prefix())
+                .tempdir_in(parent)
+                .map_err(|reason| OutputError::Staging {
+                    what: "set-aside",
+                    parent: parent.to_path_buf(),
+                    dir: shown.clone(),
+                    reason,
+                })?,
+        );
+        let aside = old.path().join("old");
+        std::fs::rename(dir, &aside).map_err(io)?;
+        if let Err(source) = std::fs::rename(staging.path(), dir) {
+            let _ = std::fs::rename(&aside, dir);
+            old.keep_if_restore_failed(&aside);
+            return Err(io(source));
+        }
+        staging.keep();
+        Ok(())
     }
-    // rename cannot replace a non-empty folder: move the old one aside first, and back if the
-    // new one cannot take its place.
-    let old = Staged::new(
-        tempfile::Builder::new()
-            .prefix(&staging_prefix())
-            .tempdir_in(parent)
-            .map_err(staging_err("set-aside"))?,
-    );
-    let aside = old.path().join("old");
-    std::fs::rename(dir, &aside).map_err(io(dir_shown))?;
-    if let Err(source) = std::fs::rename(staging.path(), dir) {
-        let _ = std::fs::rename(&aside, dir);
-        old.keep_if_restore_failed(&aside);
-        return Err(io(dir_shown)(source));
-    }
-    staging.keep();
-    Ok(())
 }
 
 /// A staging folder registered for removal on a signal, removed when dropped unless kept.
+#[derive(Debug)]
 struct Staged {
     dir: Option<tempfile::TempDir>,
     path: PathBuf,
@@ -548,32 +636,63 @@ fn persist(shown: &Path, target: &Path, tmp: tempfile::NamedTempFile) -> Result<
     })
 }
 
-/// Reads a text input of at most `limit` bytes: a file past it (or a device that never ends,
-/// such as a link to `/dev/zero`) is refused with the limit named, after reading `limit + 1`
-/// bytes, instead of filling memory. The limits are in [`crate::limits`].
+/// Reads a text input of at most `limit` bytes, through [`read_limited_bytes`] (a regular file,
+/// or a pipe with data within [`crate::limits::PIPE_WAIT_MS`]); a UTF-8 byte-order mark before
+/// the text is dropped.
 ///
 /// # Errors
-/// The file cannot be read, is past the limit, or is not UTF-8.
+/// As [`read_limited_bytes`], or the file is not UTF-8.
 pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<String> {
     let bytes = read_limited_bytes(path, limit)?;
-    String::from_utf8(bytes).map_err(|e| {
+    let mut text = String::from_utf8(bytes).map_err(|e| {
         std::io::Error::new(
             std::io::ErrorKind::InvalidData,
             format!("{} is not UTF-8 text ({e})", path.display()),
         )
-    })
+    })?;
+    if text.starts_with(UTF8_BOM) {
+        text.drain(..UTF8_BOM.len());
+    }
+    Ok(text)
 }
 
-/// [`read_limited`] for a binary input.
+/// The byte-order mark some Windows programs write before UTF-8 text.
+pub const UTF8_BOM: &str = "\u{feff}";
+
+/// The one bounded reader every input of `dlw` goes through. It reads a **regular file** of at
+/// most `limit` bytes (one past it is refused with the limit named, after reading `limit + 1`
+/// bytes), or a **pipe** (a FIFO, a shell's `<(...)`) that has data within
+/// [`crate::limits::PIPE_WAIT_MS`]; anything else (a device such as `/dev/zero`, a folder, a
+/// socket) is refused naming what it is, and a pipe with no data (a FIFO no program writes) is
+/// refused after the wait instead of blocking forever. The limits are in [`crate::limits`].
 ///
 /// # Errors
-/// The file cannot be read or is past the limit.
+/// The file cannot be opened or read, is not a regular file or a pipe with data, or is past
+/// the limit.
 pub fn read_limited_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     use std::io::Read;
+    let refuse = |what: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, what);
+    let file = open_for_reading(path)?;
+    let kind = file.metadata()?.file_type();
+    if !kind.is_file() {
+        match file_kind(&kind) {
+            Some("a pipe") => wait_for_data(&file, path)?,
+            Some(what) => {
+                return Err(refuse(format!(
+                    "{} is {what}, not a regular file: dlw reads files (or a pipe with data)",
+                    path.display()
+                )))
+            }
+            None => {
+                return Err(refuse(format!(
+                    "{} is not a regular file: dlw reads files (or a pipe with data)",
+                    path.display()
+                )))
+            }
+        }
+    }
     let mut bytes = Vec::new();
-    std::fs::File::open(path)?
-        .take(limit + 1)
-        .read_to_end(&mut bytes)?;
+    (&file).take(limit + 1).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > limit {
         return Err(std::io::Error::new(
             std::io::ErrorKind::InvalidData,
@@ -585,6 +704,91 @@ pub fn read_limited_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
         ));
     }
     Ok(bytes)
+}
+
+/// Opens `path` for reading without blocking on a FIFO that has no writer (`open(2)` would wait
+/// for one), then makes reads blocking again.
+fn open_for_reading(path: &Path) -> std::io::Result<std::fs::File> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        use std::os::unix::io::AsRawFd;
+        let file = std::fs::OpenOptions::new()
+            .read(true)
+            .custom_flags(libc::O_NONBLOCK)
+            .open(path)?;
+        // SAFETY: F_GETFL/F_SETFL on a descriptor this function owns.
+        unsafe {
+            let fd = file.as_raw_fd();
+            let flags = libc::fcntl(fd, libc::F_GETFL);
+            if flags >= 0 {
+                libc::fcntl(fd, libc::F_SETFL, flags & !libc::O_NONBLOCK);
+            }
+        }
+        Ok(file)
+    }
+    #[cfg(not(unix))]
+    {
+        std::fs::File::open(path)
+    }
+}
+
+/// What a file that is not a regular file is, in words.
+fn file_kind(kind: &std::fs::FileType) -> Option<&'static str> {
+    if kind.is_dir() {
+        return Some("a folder");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return Some("a pipe");
+        }
+        if kind.is_char_device() {
+            return Some("a character device");
+        }
+        if kind.is_block_device() {
+            return Some("a block device");
+        }
+        if kind.is_socket() {
+            return Some("a socket");
+        }
+    }
+    None
+}
+
+/// Waits up to [`crate::limits::PIPE_WAIT_MS`] for a pipe to have data (or to be closed by its
+/// writer, which reads as an empty file).
+fn wait_for_data(file: &std::fs::File, path: &Path) -> std::io::Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::io::AsRawFd;
+        let mut poll = libc::pollfd {
+            fd: file.as_raw_fd(),
+            events: libc::POLLIN,
+            revents: 0,
+        };
+        let wait_ms = i32::try_from(crate::limits::PIPE_WAIT_MS).unwrap_or(i32::MAX);
+        // SAFETY: one pollfd, owned here, for the duration of the call.
+        let ready = unsafe { libc::poll(&mut poll, 1, wait_ms) };
+        if ready < 0 {
+            return Err(std::io::Error::last_os_error());
+        }
+        if ready == 0 {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::TimedOut,
+                format!(
+                    "{} is a pipe with no data within {} ms (does a program write to it?); dlw \
+                     reads files, or a pipe that has data",
+                    path.display(),
+                    crate::limits::PIPE_WAIT_MS
+                ),
+            ));
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = (file, path);
+    Ok(())
 }
 
 /// A byte count as a person reads it: `64 MiB`, `4 GiB`, `1000 bytes`.

@@ -74,12 +74,23 @@ fn endless_and_oversized_inputs_are_refused_naming_the_limit() {
     let out = dir.path().join("out");
     refused(
         &["inspect", &arg(&zero)],
-        &["zero.toml", "64 MiB limit"],
+        &["zero.toml", "not a regular file"],
         &out,
     );
     refused(
         &["build", &arg(&zero), "-o", &arg(&out)],
-        &["zero.toml", "64 MiB limit"],
+        &["zero.toml", "not a regular file"],
+        &out,
+    );
+    // A regular file past the limit (sparse: 65 MiB of zeros on no disk space).
+    let big = dir.path().join("big.toml");
+    std::fs::File::create(&big)
+        .unwrap()
+        .set_len(65 << 20)
+        .unwrap();
+    refused(
+        &["inspect", &arg(&big)],
+        &["big.toml", "64 MiB limit"],
         &out,
     );
 
@@ -305,4 +316,101 @@ fn a_config_for_another_design_draws_a_warning_naming_both() {
     );
     let right = estimate(&config("joint-c.toml", "c.toml"), "c.csv");
     assert!(!right.contains("joint is not"), "{right}");
+}
+
+/// Runs `dlw args` with a deadline: `None` when it had not finished after `seconds` (then it is
+/// killed), else its output.
+fn dlw_within(args: &[&str], seconds: u64) -> Option<std::process::Output> {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_dlw"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while start.elapsed() < std::time::Duration::from_secs(seconds) {
+        if child.try_wait().unwrap().is_some() {
+            return Some(child.wait_with_output().unwrap());
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let _ = child.kill();
+    let _ = child.wait();
+    None
+}
+
+/// Issue 30: `--daq /dev/zero`, `--tracker /dev/zero` and `dlw explore /dev/zero` read gigabytes
+/// before failing on memory, and a FIFO with no writer blocked forever. Every reader refuses
+/// anything that is not a regular file, or a pipe that has data within a second, naming it.
+#[test]
+fn devices_and_silent_pipes_are_refused_by_every_reader() {
+    let dir = tempfile::tempdir().unwrap();
+    let bench = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/bench");
+    let (daq, aurora) = (arg(&bench.join("daq.csv")), arg(&bench.join("aurora.csv")));
+    let rec = dir.path().join("rec");
+    let import = |daq: &str, tracker: &str| {
+        vec![
+            "import-recording".to_string(),
+            "--daq".into(),
+            daq.into(),
+            "--voltage".into(),
+            "AI0".into(),
+            "--divider-ohm".into(),
+            "99.6e3".into(),
+            "--supply-v".into(),
+            "5".into(),
+            "--stroke".into(),
+            "AI2".into(),
+            "--stroke-mm-per-v".into(),
+            "0.5".into(),
+            "--tracker".into(),
+            tracker.into(),
+            "-o".into(),
+            arg(&rec),
+        ]
+    };
+    let out = dir.path().join("out");
+    let fifo = dir.path().join("silent.fifo");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap();
+    assert!(made.success());
+    let fifo = arg(&fifo);
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (import("/dev/zero", &aurora), "/dev/zero"),
+        (import(&daq, "/dev/zero"), "/dev/zero"),
+        (
+            vec!["explore".into(), "/dev/zero".into(), "-o".into(), arg(&out)],
+            "/dev/zero",
+        ),
+        (vec!["inspect".into(), "/dev/zero".into()], "/dev/zero"),
+        (import(&fifo, &aurora), "silent.fifo"),
+        (import(&daq, &fifo), "silent.fifo"),
+        (vec!["inspect".into(), fifo.clone()], "silent.fifo"),
+    ];
+    for (args, names) in cases {
+        let a: Vec<&str> = args.iter().map(String::as_str).collect();
+        let started = std::time::Instant::now();
+        let o = dlw_within(&a, 20).unwrap_or_else(|| panic!("{a:?} still reading after 20 s"));
+        let err = String::from_utf8_lossy(&o.stderr);
+        eprintln!("{:.1} s: {err}", started.elapsed().as_secs_f64());
+        assert!(!o.status.success(), "{a:?} succeeded");
+        assert!(!err.contains("panicked"), "{a:?}: {err}");
+        assert!(err.contains(names), "{a:?}: {err}");
+        assert!(
+            err.contains("not a regular file") || err.contains("no data within"),
+            "{a:?}: {err}"
+        );
+        assert!(!rec.exists() && !out.exists(), "{a:?} wrote");
+    }
+    // A pipe that has data is read: a design through a FIFO with a writer.
+    let design = std::fs::read_to_string(shipped_design("joint-a.toml")).unwrap();
+    let writer = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::write(fifo, design).unwrap())
+    };
+    let o = dlw_within(&["inspect", &fifo], 20).expect("inspect through a FIFO finished");
+    writer.join().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }

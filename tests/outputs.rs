@@ -43,6 +43,13 @@ fn fixture() -> Fixture {
     // Long enough for `fit` to see the resistance rise with strain (the first cycle).
     let o = dlw(&simulate_args(&design, &recording, "60"));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // The example bench's DAQ export and tracker log, for import-recording.
+    let bench = root.path().join("bench");
+    std::fs::create_dir(&bench).unwrap();
+    for name in ["daq.csv", "aurora.csv"] {
+        let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/bench");
+        std::fs::copy(shipped.join(name), bench.join(name)).unwrap();
+    }
     let config = root.path().join("c.toml");
     let mut a = vec!["estimator-config".to_string(), arg(&design)];
     a.extend(common::JOINT_C_TABLE_V.iter().map(|s| s.to_string()));
@@ -220,6 +227,33 @@ fn commands() -> Vec<Row> {
             input: |f| f.config.clone(),
         },
         Row {
+            name: "import-recording",
+            kind: Kind::Folder,
+            args: |f, out| {
+                let bench = f.design.with_file_name("bench");
+                strings(&[
+                    "import-recording",
+                    "--daq",
+                    &arg(&bench.join("daq.csv")),
+                    "--voltage",
+                    "AI0",
+                    "--divider-ohm",
+                    "99.6e3",
+                    "--supply-v",
+                    "5",
+                    "--stroke",
+                    "AI2",
+                    "--stroke-mm-per-v",
+                    "0.5",
+                    "--tracker",
+                    &arg(&bench.join("aurora.csv")),
+                    "-o",
+                    out,
+                ])
+            },
+            input: |f| f.design.with_file_name("bench").join("aurora.csv"),
+        },
+        Row {
             name: "draw",
             kind: Kind::File,
             args: |f, out| strings(&["draw", &arg(&f.design), "--dxf", out]),
@@ -335,6 +369,8 @@ fn every_command_follows_the_output_policy() {
 
         if row.kind == Kind::File {
             file_cases(&row, &f, w);
+        } else {
+            folder_to_stdout_case(&row, &f, w);
         }
         read_only_case(&row, &f, w);
 
@@ -404,6 +440,19 @@ fn read_only_case(row: &Row, f: &Fixture, w: &Path) {
     }
     std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o755)).unwrap();
     std::fs::remove_dir_all(&ro).unwrap();
+}
+
+/// `-o -` for a command that writes a folder: refused with a message (issue 30: it made a
+/// folder named `-`), run in `w` so that such a folder would show.
+fn folder_to_stdout_case(row: &Row, f: &Fixture, w: &Path) {
+    let before = snapshot(w);
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_dlw"))
+        .args((row.args)(f, "-"))
+        .current_dir(w)
+        .output()
+        .unwrap();
+    refused(row, &o, "cannot hold a folder");
+    assert_eq!(snapshot(w), before, "{}: wrote into the folder", row.name);
 }
 
 /// `-o -`, a symlink and a FIFO, for commands that write one file.
@@ -587,4 +636,79 @@ fn program_refuses_a_sheet_over_the_program() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("same file"));
     assert_eq!(std::fs::read_dir(work.path()).unwrap().count(), 0);
+}
+
+/// Issue 30: `dlw explore SPEC -o D --force`, with the spec's `base` design and `tubes`
+/// catalogue inside `D`, deleted both; `dlw build` and `dlw program` replaced the process sets
+/// a design includes from its `process/` folder. Every file a command reads is an input the
+/// output policy protects, even with --force.
+#[test]
+fn files_a_spec_or_a_design_names_are_inputs_too() {
+    let work = tempfile::tempdir().unwrap();
+    let w = work.path();
+    let d = w.join("D");
+    std::fs::create_dir(&d).unwrap();
+    std::fs::copy(shipped_design("joint-c.toml"), d.join("joint-c.toml")).unwrap();
+    std::fs::copy(shipped_design("tubes.toml"), d.join("tubes.toml")).unwrap();
+    let spec = w.join("spec.toml");
+    std::fs::write(
+        &spec,
+        "base = \"D/joint-c.toml\"\ntubes = \"D/tubes.toml\"\ngauge_factor = 5.0\nr0_ohm = 1e5\n\
+         [vary]\ntube = [\"paper-2.5\"]\nnotch_count = [8, 10]\n\
+         [objectives]\nmaximize = [\"range_deg\"]\n",
+    )
+    .unwrap();
+    let before = snapshot(w);
+    for (what, args) in [
+        (
+            "base",
+            vec!["explore", &arg(&spec), "-o", &arg(&d), "--force"],
+        ),
+        (
+            "tubes",
+            vec![
+                "explore",
+                &arg(&spec),
+                "-o",
+                &arg(&d.join("tubes.toml")),
+                "--force",
+            ],
+        ),
+    ] {
+        let o = dlw(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{what}: accepted");
+        assert!(err.contains("refused even with --force"), "{what}: {err}");
+        assert_eq!(snapshot(w), before, "{what}: an input changed");
+    }
+    // A design's process sets: `process/NAME.toml` beside it.
+    let process = d.join("process");
+    std::fs::create_dir(&process).unwrap();
+    let sensor = std::fs::read_to_string(format!(
+        "{}/designs/process/sensor.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    std::fs::write(process.join("sensor.toml"), &sensor).unwrap();
+    let design = arg(&d.join("joint-c.toml"));
+    let before = snapshot(w);
+    for args in [
+        vec!["build", &design, "-o", &arg(&process), "--force"],
+        vec![
+            "program",
+            &design,
+            "-o",
+            &arg(&process.join("sensor.toml")),
+            "--force",
+        ],
+    ] {
+        let o = dlw(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?}: accepted");
+        assert!(
+            err.contains("refused even with --force") && err.contains("sensor.toml"),
+            "{args:?}: {err}"
+        );
+        assert_eq!(snapshot(w), before, "{args:?}: an input changed");
+    }
 }

@@ -32,7 +32,8 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.design], args.force)?;
+    let read = dlw::job::input_files(&args.design, args.machine.as_deref());
+    dlw::output::claim_folder(&args.output, &read, args.force)?;
     let inputs = resolve_inputs(&args.design, None, args.machine.as_deref())?;
     for w in &inputs.warnings {
         eprintln!("warning: {w}");

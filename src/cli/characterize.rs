@@ -53,7 +53,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(
+    dlw::output::claim_folder(
         &args.output,
         [&args.design, &args.recording]
             .into_iter()

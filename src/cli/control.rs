@@ -68,7 +68,7 @@ fn parse_gains(s: &str) -> Result<Gains, String> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(
+    dlw::output::claim_folder(
         &args.output,
         [&args.design, &args.config]
             .into_iter()

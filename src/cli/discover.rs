@@ -40,7 +40,7 @@ pub struct Args {
 
 /// Runs `dlw discover`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(
+    dlw::output::claim_folder(
         &args.output,
         [&args.design, &args.recording]
             .into_iter()

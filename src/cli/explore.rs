@@ -26,8 +26,11 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.spec], args.force)?;
+    // Claimed twice: against the spec before reading anything, then against every file the
+    // spec names (its base design, tube catalogue, process sets) once they are known.
+    dlw::output::claim_folder(&args.output, [&args.spec], args.force)?;
     let x = Exploration::load(&args.spec, &args.output.join("best-1.toml"))?;
+    dlw::output::claim_folder(&args.output, &x.inputs, args.force)?;
     let bar = progress(x.candidate_count(), "scoring");
     let screen = x.screen(&|n| bar.inc(n));
     bar.finish_and_clear();

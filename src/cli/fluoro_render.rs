@@ -48,7 +48,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.recording], args.force)?;
+    dlw::output::claim_folder(&args.output, [&args.recording], args.force)?;
     dlw::limits::within(
         "--fps",
         args.fps,

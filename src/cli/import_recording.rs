@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use dlw::import::report::report_page;
-use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod};
+use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod, TrackerMap};
 
 /// Arguments of `dlw import-recording`.
 #[derive(Debug, clap::Args)]
@@ -41,18 +41,24 @@ pub struct Args {
     /// The DAQ's sample rate, when the file has no time column (Hz).
     #[arg(long)]
     daq_rate_hz: Option<f64>,
-    /// The NDI tracker log (CSV, as NDI Track or the Combined API sample writes it).
+    /// The tracker log (CSV): NDI's own layout (NDI Track, the Combined API sample), or any
+    /// lab's logger with --tracker-map.
     #[arg(long)]
     tracker: PathBuf,
+    /// How to read a tracker log that is not in NDI's layout: a TOML file naming its header
+    /// line, time columns, frame counter and each tool's quaternion columns (docs/import.md).
+    #[arg(long, value_name = "MAP.toml")]
+    tracker_map: Option<PathBuf>,
     /// The tip tool: the n-th tool block of the log (1-based).
     #[arg(long, default_value_t = 1)]
     tool: usize,
     /// A reference tool on the base: the angle is taken relative to it.
     #[arg(long)]
     reference_tool: Option<usize>,
-    /// The tracker's frame rate (Hz).
-    #[arg(long, default_value_t = 40.0)]
-    tracker_hz: f64,
+    /// The tracker's frame rate (Hz; default: measured from the log's time columns against its
+    /// frame counter, else 40).
+    #[arg(long)]
+    tracker_hz: Option<f64>,
     /// The still start the rest axis is averaged over (s).
     #[arg(long, default_value_t = 2.0)]
     rest_s: f64,
@@ -63,6 +69,9 @@ pub struct Args {
     /// With --sync CH: the tracker log's column holding the same TTL level per frame.
     #[arg(long)]
     tracker_sync_column: Option<String>,
+    /// The largest offset between the clocks --sync auto searches (s).
+    #[arg(long, default_value_t = dlw::import::align::MAX_OFFSET_S)]
+    max_offset_s: f64,
     /// The recording's sample rate (Hz; default: the DAQ's): the DAQ's channels are averaged
     /// down to it, or interpolated up (at most 10 times the DAQ's rate).
     #[arg(long)]
@@ -88,7 +97,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .chain(&args.report)
         .map(|p| p.as_path())
         .collect();
-    dlw::output::claim_all(&outputs, [&args.daq, &args.tracker], args.force)?;
+    let inputs: Vec<&PathBuf> = [&args.daq, &args.tracker]
+        .into_iter()
+        .chain(&args.tracker_map)
+        .collect();
+    for folder in &outputs {
+        dlw::output::claim_folder(folder, &inputs, args.force)?;
+    }
+    dlw::output::claim_all(&outputs, &inputs, args.force)?;
     let daq_format = match &args.daq_format {
         Some(name) => DaqFormat::from_name(name)?,
         None => DaqFormat::from_path(&args.daq),
@@ -106,6 +122,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             "--sync {channel:?} needs --tracker-sync-column NAME: the tracker log's column holding the same TTL pulse (NDI's own logs have none; docs/import.md)"
         ),
     };
+    let map = args
+        .tracker_map
+        .as_ref()
+        .map(|path| -> anyhow::Result<TrackerMap> {
+            let text = dlw::output::read_limited(path, dlw::limits::MAX_TEXT_INPUT_BYTES)
+                .with_context(|| format!("reading {}", path.display()))?;
+            TrackerMap::from_toml(&text).with_context(|| format!("{}", path.display()))
+        })
+        .transpose()?;
     let daq_bytes = dlw::output::read_limited_bytes(&args.daq, MAX_INPUT_BYTES)
         .with_context(|| format!("reading {}", args.daq.display()))?;
     let tracker_text = dlw::output::read_limited(&args.tracker, MAX_INPUT_BYTES)
@@ -124,11 +149,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         time_column: args.time_column.clone(),
         daq_rate_hz: args.daq_rate_hz,
         tracker: (&tracker_path, &tracker_text),
+        tracker_map: map.as_ref(),
         tool: args.tool,
         reference_tool: args.reference_tool,
         tracker_hz: args.tracker_hz,
         rest_s: args.rest_s,
         sync,
+        max_offset_s: args.max_offset_s,
         rate_hz: args.rate_hz,
     };
     let (recording, summary) = import(&request)?;
@@ -139,13 +166,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .map(|_| report_page(&recording, &summary).files())
         .transpose()
         .context("drawing the report")?;
-    // Everything is computed: now write, the recording last so a failed report leaves none.
-    if let (Some(dir), Some(files)) = (&args.report, report) {
-        dlw::output::write_folder_atomic(dir, &files)?;
-    }
-    recording
-        .write(&args.output, args.force)
+    // Everything is computed: both folders are staged (the recording read back through the
+    // recording's reader) before either is put in place, so a failure leaves neither.
+    let staged = recording
+        .stage_checked(&args.output, args.force)
         .with_context(|| format!("writing recording {}", args.output.display()))?;
+    let staged_report = match (&args.report, report) {
+        (Some(dir), Some(files)) => Some(dlw::output::stage_folder(dir, &files)?),
+        _ => None,
+    };
+    staged
+        .commit()
+        .with_context(|| format!("writing recording {}", args.output.display()))?;
+    if let Some(report) = staged_report {
+        report.commit().with_context(|| {
+            format!(
+                "the recording {} is written, but not the report",
+                args.output.display()
+            )
+        })?;
+    }
     for w in &summary.warnings {
         eprintln!("warning: {w}");
     }
@@ -156,7 +196,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         let a = &summary.alignment;
         println!(
-            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm ({}); tracker: {} frames, {} missing, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)",
+            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm ({}{}); checked in {} windows (worst {:.2}° RMS, limit {:.2}°); tracker: {} frames, {} missing, {} gaps, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)",
             args.output.display(),
             summary.samples,
             summary.duration_s,
@@ -169,8 +209,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 (None, Some(n)) => format!("{n} sync edges"),
                 (None, None) => String::new(),
             },
+            if a.stretches.len() > 1 {
+                format!(
+                    "; {} stretches of the DAQ's clock, each aligned on its own",
+                    a.stretches.len()
+                )
+            } else {
+                String::new()
+            },
+            summary.check.windows,
+            summary.check.worst.rms_deg,
+            summary.check.worst.limit_deg,
             summary.tracker.frames,
             summary.tracker.missing_frames,
+            summary.tracker.gaps,
             summary.tracker.out_of_plane_rms_deg,
             summary.invalid_rows
         );

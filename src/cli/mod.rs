@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 mod build;
 mod characterize;
 mod control;
+mod daq_info;
 mod discover;
 mod draw;
 mod estimate;
@@ -61,6 +62,8 @@ enum Command {
     FluoroRender(fluoro_render::Args),
     /// Import a bench's DAQ export and EM-tracker log as one recording, clocks aligned.
     ImportRecording(import_recording::Args),
+    /// List what a DAQ file (TDMS, LVM, CSV) or a tracker log holds, before importing it.
+    DaqInfo(daq_info::Args),
     /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI).
     Control(control::Args),
     /// Run one of the paper's characterization analyses on a recording (Section IV-A, IV-B).
@@ -86,6 +89,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Fluoro(args) => fluoro::run(args),
         Command::FluoroRender(args) => fluoro_render::run(args),
         Command::ImportRecording(args) => import_recording::run(args),
+        Command::DaqInfo(args) => daq_info::run(args),
         Command::Control(args) => control::run(args),
         Command::Characterize(args) => characterize::run(args),
         Command::Reproduce(args) => reproduce::run(args),

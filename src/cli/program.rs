@@ -112,14 +112,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .chain(&args.sheet)
         .map(|p| p.as_path())
         .collect();
-    dlw::output::claim_all(
-        &outputs,
-        args.design
-            .iter()
-            .chain(&args.design_flag)
-            .chain(&args.from_dxf),
-        args.force,
-    )?;
+    let read: Vec<PathBuf> = args
+        .design
+        .iter()
+        .chain(&args.design_flag)
+        .flat_map(|d| dlw::job::input_files(d, args.machine.as_deref()))
+        .chain(args.from_dxf.iter().cloned())
+        .collect();
+    dlw::output::claim_all(&outputs, &read, args.force)?;
     if args.from_dxf.is_none() && args.drawing.units.is_some() {
         bail!("--units is for reading a drawing: give it with --from-dxf DRAWING.dxf");
     }

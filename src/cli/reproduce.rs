@@ -31,7 +31,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.output; 0], args.force)?;
+    dlw::output::claim_folder(&args.output, [&args.output; 0], args.force)?;
     let start = Instant::now();
     let settings = Settings {
         duration_scale: if args.short {

@@ -44,7 +44,7 @@ enum NoisePreset {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(
+    dlw::output::claim_folder(
         &args.output,
         std::iter::once(&args.design)
             .chain(&args.scenario.scenario)

@@ -37,7 +37,7 @@ pub use evaluate::{evaluate, Constraint, DesignMetrics, Model};
 /// The candidate space.
 pub use grid::{Grid, Params};
 /// The Pareto front.
-pub use pareto::{dominates, front};
+pub use pareto::{dominates, front, front_with_ties, tied, TIE_RELATIVE};
 /// The output folder's files and the `--json` summary.
 pub use report::{files, ExploreSummary, Files, Row};
 /// The spec file.
@@ -192,6 +192,10 @@ pub struct Exploration {
     pub model: Model,
     /// The cutting sets a written design resolves to (for the wall rule).
     pub sets: ProcessSets,
+    /// Every file the exploration read: the spec, its base design, its tube catalogue, and the
+    /// process sets found beside a written design. No output may replace one
+    /// (`docs/outputs.md`).
+    pub inputs: Vec<PathBuf>,
 }
 
 impl Exploration {
@@ -207,8 +211,14 @@ impl Exploration {
         let base = DesignFile::read(&base_path)?;
         // The base must pass the rules itself; its checked form is not needed.
         rules::check_file(base.clone())?;
-        let sets = ProcessLibrary::beside(written_design).resolve(&base.process)?;
+        let library = ProcessLibrary::beside(written_design);
+        let sets = library.resolve(&base.process)?;
         let grid = Self::grid(&spec, dir, &base)?;
+        let mut inputs = vec![spec_path.to_path_buf(), base_path];
+        if spec.vary.tube.is_some() {
+            inputs.push(Self::catalogue_path(&spec, dir));
+        }
+        inputs.extend(library.files(&base.process));
         let count = grid.len().unwrap_or(u64::MAX);
         if count > MAX_CANDIDATES {
             return Err(ExploreError::TooMany {
@@ -239,7 +249,13 @@ impl Exploration {
             grid,
             model,
             sets,
+            inputs,
         })
+    }
+
+    /// The tube catalogue a spec names (default `tubes.toml` beside it).
+    fn catalogue_path(spec: &SpecFile, dir: &Path) -> PathBuf {
+        dir.join(spec.tubes.as_deref().unwrap_or(Path::new("tubes.toml")))
     }
 
     /// The grid: each varied axis, or the base design's value.
@@ -247,7 +263,7 @@ impl Exploration {
         let v = &spec.vary;
         let tubes = match &v.tube {
             Some(ids) => {
-                let path = dir.join(spec.tubes.as_deref().unwrap_or(Path::new("tubes.toml")));
+                let path = Self::catalogue_path(spec, dir);
                 Catalogue::read(&path)?.pick(ids, &path)?
             }
             None => vec![Tube {
@@ -449,28 +465,35 @@ impl Exploration {
             .iter()
             .map(|c| signed.iter().map(|&(m, s)| s * c.metrics.get(m)).collect())
             .collect();
-        front(&points)
+        front_with_ties(&points, TIE_RELATIVE)
     }
 
     /// The best `k` of the front: ordered by the first objective (best first), then the next.
     pub fn best(&self, feasible: &[Candidate], front: &[usize], k: usize) -> Vec<usize> {
         let signed = self.spec.objectives.signed();
-        let mut order = front.to_vec();
+        // Ordered by the tied objectives, so that designs equal in one are ordered by the next.
+        let points: Vec<Vec<f64>> = front
+            .iter()
+            .map(|&i| {
+                signed
+                    .iter()
+                    .map(|&(m, s)| s * feasible[i].metrics.get(m))
+                    .collect()
+            })
+            .collect();
+        let points = tied(&points, TIE_RELATIVE);
+        let mut order: Vec<usize> = (0..front.len()).collect();
         order.sort_by(|&a, &b| {
-            for &(m, s) in &signed {
-                let (x, y) = (
-                    s * feasible[a].metrics.get(m),
-                    s * feasible[b].metrics.get(m),
-                );
-                match y.total_cmp(&x) {
+            for (x, y) in points[a].iter().zip(&points[b]) {
+                match y.total_cmp(x) {
                     std::cmp::Ordering::Equal => continue,
                     o => return o,
                 }
             }
-            feasible[a].index.cmp(&feasible[b].index)
+            feasible[front[a]].index.cmp(&feasible[front[b]].index)
         });
         order.truncate(k);
-        order
+        order.into_iter().map(|p| front[p]).collect()
     }
 }
 

@@ -212,12 +212,15 @@ pub enum SpecError {
     },
 }
 
-/// Reads a TOML file of at most 1 MiB into `T`.
+/// Reads a TOML file (through the bounded reader, at most
+/// [`crate::limits::MAX_TEXT_INPUT_BYTES`]) into `T`.
 pub(crate) fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, SpecError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SpecError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
+        |source| SpecError::Read {
+            path: path.to_path_buf(),
+            source,
+        },
+    )?;
     toml::from_str(&text).map_err(|e| SpecError::Parse {
         path: path.to_path_buf(),
         message: e.to_string().trim_end().to_string(),

@@ -22,6 +22,51 @@ pub enum AlignError {
         /// Needed.
         min: f64,
     },
+    /// The best lag lies at the edge of the range searched.
+    #[error("the best lag between the clocks, {lag_s:.2} s, lies at the edge of the ±{max_s} s searched: the clocks may differ by more; pass --max-offset-s {wider} to search wider")]
+    Edge {
+        /// The lag found (s).
+        lag_s: f64,
+        /// The range searched (s).
+        max_s: f64,
+        /// A range that would hold it (s).
+        wider: f64,
+    },
+    /// Most windows' best lags lie at the edge of their search around the whole recording's
+    /// lag.
+    #[error("{edges} of the {windows} windows that correlate do so best at the edge of the ±{half_s:.2} s searched around the whole recording's lag of {whole_s:.3} s (the window around tracker time {centre_s:.1} s at {lag_s:.3} s): over the recording the lag moves by more than a drift of ±{MAX_DRIFT_PPM} ppm allows (did the DAQ or the tracker lose samples, or are these files of two runs?)")]
+    WindowEdge {
+        /// Windows at the edge.
+        edges: usize,
+        /// Windows that correlate.
+        windows: usize,
+        /// The window's centre (s of tracker time).
+        centre_s: f64,
+        /// Its best lag (s).
+        lag_s: f64,
+        /// The half-width searched (s).
+        half_s: f64,
+        /// The whole recording's lag (s).
+        whole_s: f64,
+    },
+    /// A window correlates best the other way round.
+    #[error("the window around tracker time {centre_s:.1} s correlates best at r = {r:.2} (negative), against {whole_r:+.2} over the whole recording: sensor 1 answers the angle the other way there (a channel re-wired or swapped mid-recording?), so no one alignment fits")]
+    Negative {
+        /// The window's centre (s of tracker time).
+        centre_s: f64,
+        /// Its best correlation, signed as the whole recording's.
+        r: f64,
+        /// The whole recording's.
+        whole_r: f64,
+    },
+    /// The drift found is beyond any clock's.
+    #[error("the clocks' drift comes out {ppm:.0} ppm (± {se_ppm:.0}); more than ±{MAX_DRIFT_PPM} ppm is not a clock's drift: are both files of one run, and is the DAQ's rate right?")]
+    Drift {
+        /// The drift found (ppm).
+        ppm: f64,
+        /// Its standard error (ppm).
+        se_ppm: f64,
+    },
     /// Too few windows to fit a line.
     #[error("only {windows} windows of the recording correlate well enough to measure the lag; the drift needs at least {min} (a longer recording with motion throughout)")]
     Windows {
@@ -32,12 +77,19 @@ pub enum AlignError {
     },
 }
 
-/// The largest clock offset searched (s).
+/// The largest clock offset searched by default (s); `--max-offset-s` widens it.
 pub const MAX_OFFSET_S: f64 = 10.0;
+/// The largest drift accepted (ppm), as for a sync pulse: a quartz clock drifts tens of ppm,
+/// a cheap one a few hundred; beyond this, the lags are not a clock's.
+pub const MAX_DRIFT_PPM: f64 = super::sync::MAX_DRIFT_PPM;
+/// A step of the DAQ's time column longer than this many sample periods is a jump: no value is
+/// interpolated across it.
+pub const JUMP_PERIODS: f64 = 1.5;
 /// The coarse grid of the whole-recording search (s).
 pub const COARSE_STEP_S: f64 = 0.01;
-/// How far around the coarse lag each window searches (s): more than a drift of 1000 ppm
-/// moves the lag over 300 s.
+/// How far around the coarse lag each window searches, at least (s); over a long recording,
+/// the half-width grows to 1.5 times what a drift of [`MAX_DRIFT_PPM`] moves the lag over half
+/// the recording, so that only a drift beyond the limit puts a window's lag at the edge.
 pub const WINDOW_SEARCH_S: f64 = 0.4;
 /// Windows along the recording.
 pub const WINDOWS: usize = 20;
@@ -79,16 +131,50 @@ pub struct Alignment {
     pub lags: Vec<(f64, f64)>,
 }
 
-/// `signal` (uniformly sampled from `t = 0` at `dt_s`) at time `t`, linearly interpolated;
-/// `None` outside.
-fn at(signal: &[f64], dt_s: f64, t: f64) -> Option<f64> {
-    let x = t / dt_s;
-    if x.is_nan() || x < 0.0 {
-        return None;
+/// A DAQ signal: its samples at the times of the DAQ's time column, `period_s` apart for the
+/// most part.
+#[derive(Debug, Clone, Copy)]
+pub struct Signal<'a> {
+    /// Each sample's time (s of DAQ time), increasing.
+    pub time_s: &'a [f64],
+    /// The samples.
+    pub values: &'a [f64],
+    /// The sample period (s): the time column's median step.
+    pub period_s: f64,
+}
+
+impl Signal<'_> {
+    /// The signal at DAQ time `t`, linearly between the samples around it, found by the time
+    /// column (not by counting samples, so an uneven clock is read as it is); `None` outside
+    /// the samples or across a step longer than [`JUMP_PERIODS`] periods.
+    pub fn at(&self, t: f64) -> Option<f64> {
+        let time = self.time_s;
+        let n = time.len().min(self.values.len());
+        if n < 2 || !(t >= time[0] && t <= time[n - 1]) {
+            return None;
+        }
+        // Where an even clock puts it, then a few steps; a binary search if that fails.
+        let guess = ((t - time[0]) / self.period_s) as usize;
+        let mut i = guess.min(n - 2);
+        for _ in 0..4 {
+            if time[i] > t && i > 0 {
+                i -= 1;
+            } else if time[i + 1] < t && i + 2 < n {
+                i += 1;
+            } else {
+                break;
+            }
+        }
+        if !(time[i] <= t && t <= time[i + 1]) {
+            i = time[..n].partition_point(|&x| x <= t).clamp(1, n - 1) - 1;
+        }
+        let (t0, t1) = (time[i], time[i + 1]);
+        if t1 - t0 > JUMP_PERIODS * self.period_s {
+            return None;
+        }
+        let f = (t - t0) / (t1 - t0);
+        Some(self.values[i] * (1.0 - f) + self.values[i + 1] * f)
     }
-    let i = x.floor() as usize;
-    let f = x - i as f64;
-    Some(signal.get(i)? * (1.0 - f) + signal.get(i + 1)? * f)
 }
 
 /// How well the signal at `τ + lag` explains the angle frames in `frames`: the square root of
@@ -99,8 +185,7 @@ fn correlation(
     tau_s: &[f64],
     angle: &[Option<f64>],
     frames: std::ops::Range<usize>,
-    signal: &[f64],
-    dt_s: f64,
+    signal: &Signal<'_>,
     lag_s: &dyn Fn(f64) -> f64,
 ) -> f64 {
     // Moments about the first point, for conditioning.
@@ -109,7 +194,7 @@ fn correlation(
     let (mut n, mut sy, mut syy) = (0.0, 0.0, 0.0);
     let mut centre = None;
     for k in frames {
-        let (Some(y), Some(x)) = (angle[k], at(signal, dt_s, tau_s[k] + lag_s(tau_s[k]))) else {
+        let (Some(y), Some(x)) = (angle[k], signal.at(tau_s[k] + lag_s(tau_s[k]))) else {
             continue;
         };
         let x = x - *centre.get_or_insert(x);
@@ -144,7 +229,7 @@ fn correlation(
 }
 
 /// Solves the 3×3 system `m·x = b` (Cramer's rule); `None` when singular.
-fn solve3(m: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+pub(crate) fn solve3(m: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
     let det = |a: [[f64; 3]; 3]| {
         a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
             - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
@@ -163,12 +248,6 @@ fn solve3(m: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
         *xc = det(a) / d;
     }
     Some(x)
-}
-
-/// The best lag on `grid` by `sign·r`, refined by a parabola through the peak; with its r.
-fn best_lag(grid: &[f64], r_of: &dyn Fn(f64) -> f64, sign: f64) -> (f64, f64) {
-    let rs: Vec<f64> = grid.iter().map(|&l| r_of(l)).collect();
-    peak(grid, &rs, sign)
 }
 
 /// Every k-th frame's time and angle, k the least that keeps at most `most` frames.
@@ -202,20 +281,22 @@ fn peak(grid: &[f64], r: &[f64], sign: f64) -> (f64, f64) {
     (grid[i] + shift * (grid[i + 1] - grid[i]), r)
 }
 
-/// Aligns the tracker's `angle` (per frame, at the tracker's `tau_s`) with the DAQ's `signal`
-/// (sampled every `dt_s` from 0).
+/// Aligns the tracker's `angle` (per frame, at the tracker's `tau_s`) with the DAQ's `signal`,
+/// searching lags within ±`max_offset_s`.
 ///
 /// # Errors
-/// [`AlignError`].
+/// [`AlignError`]: no lag correlates, the best lag at the edge of the search (overall or in a
+/// window), a window that correlates the other way, a drift beyond [`MAX_DRIFT_PPM`], too few
+/// windows.
 pub fn auto(
     tau_s: &[f64],
     angle: &[Option<f64>],
-    signal: &[f64],
-    dt_s: f64,
+    signal: &Signal<'_>,
+    max_offset_s: f64,
 ) -> Result<Alignment, AlignError> {
-    let all = 0..tau_s.len();
+    let dt_s = signal.period_s;
     let coarse: Vec<f64> = {
-        let steps = (MAX_OFFSET_S / COARSE_STEP_S).round() as i64;
+        let steps = (max_offset_s / COARSE_STEP_S).round() as i64;
         (-steps..=steps).map(|k| k as f64 * COARSE_STEP_S).collect()
     };
     let (sparse_tau, sparse_angle) = every_kth(tau_s, angle, COARSE_FRAMES);
@@ -223,7 +304,7 @@ pub fn auto(
         .iter()
         .map(|&lag| {
             let frames = 0..sparse_tau.len();
-            correlation(&sparse_tau, &sparse_angle, frames, signal, dt_s, &|_| lag)
+            correlation(&sparse_tau, &sparse_angle, frames, signal, &|_| lag)
         })
         .collect();
     // The sign of the sensor's response (a sensor on −y_s reads less when the joint bends).
@@ -237,30 +318,87 @@ pub fn auto(
     if r0.is_nan() || r0 < MIN_CORRELATION {
         return Err(AlignError::Weak {
             r: r0.max(0.0),
-            max_s: MAX_OFFSET_S,
+            max_s: max_offset_s,
             min: MIN_CORRELATION,
         });
     }
+    if lag0.abs() > max_offset_s - 1.5 * COARSE_STEP_S {
+        return Err(AlignError::Edge {
+            lag_s: lag0,
+            max_s: max_offset_s,
+            wider: (2.0 * max_offset_s).max(lag0.abs().ceil() + 10.0),
+        });
+    }
+    // The windows: over the frames that fall on the DAQ's samples at that lag.
+    let (t_first, t_last) = (signal.time_s[0], signal.time_s[signal.time_s.len() - 1]);
+    let inside: Vec<usize> = (0..tau_s.len())
+        .filter(|&k| (t_first..=t_last).contains(&(tau_s[k] + lag0)))
+        .collect();
+    let (lo, hi) = match (inside.first(), inside.last()) {
+        (Some(&lo), Some(&hi)) => (lo, hi + 1),
+        _ => (0, 0),
+    };
+    let span_s = if hi > lo {
+        tau_s[hi - 1] - tau_s[lo]
+    } else {
+        0.0
+    };
+    let half_s = WINDOW_SEARCH_S.max(1.5 * MAX_DRIFT_PPM * 1e-6 * span_s / 2.0);
     let step = WINDOW_COARSE_STEP_S.max(dt_s);
-    let steps = (WINDOW_SEARCH_S / step).ceil() as i64;
+    let steps = (half_s / step).ceil() as i64;
     let first: Vec<f64> = (-steps..=steps).map(|k| lag0 + k as f64 * step).collect();
     let near = (step / dt_s).ceil() as i64;
-    let per = tau_s.len() / WINDOWS;
+    let per = (hi - lo) / WINDOWS;
     let mut points = Vec::new();
+    let mut edges = Vec::new();
     for w in 0..WINDOWS {
-        let frames = w * per..if w + 1 == WINDOWS {
-            tau_s.len()
+        let frames = lo + w * per..if w + 1 == WINDOWS {
+            hi
         } else {
-            (w + 1) * per
+            lo + (w + 1) * per
         };
-        let r_w = |lag: f64| correlation(tau_s, angle, frames.clone(), signal, dt_s, &|_| lag);
-        let (rough, _) = best_lag(&first, &r_w, sign);
+        if frames.is_empty() {
+            continue;
+        }
+        let centre = frames.clone().map(|k| tau_s[k]).sum::<f64>() / frames.len() as f64;
+        let r_w = |lag: f64| correlation(tau_s, angle, frames.clone(), signal, &|_| lag);
+        let rs: Vec<f64> = first.iter().map(|&l| r_w(l)).collect();
+        let (rough, r_rough) = peak(&first, &rs, sign);
+        let (_, r_other) = peak(&first, &rs, -sign);
+        if r_other >= MIN_CORRELATION && r_other > r_rough {
+            return Err(AlignError::Negative {
+                centre_s: centre,
+                r: -r_other,
+                whole_r: r0,
+            });
+        }
+        if r_rough < MIN_CORRELATION {
+            continue;
+        }
+        if (rough - lag0).abs() > half_s - 0.5 * step {
+            // A window whose best lag is at the edge of its search is left out, as one that
+            // does not correlate: a monotonic stretch correlates at any lag. Most windows at
+            // the edge is a refusal (below).
+            edges.push((centre, rough));
+            continue;
+        }
         let fine: Vec<f64> = (-near..=near).map(|k| rough + k as f64 * dt_s).collect();
-        let (lag, r) = best_lag(&fine, &r_w, sign);
+        let rs: Vec<f64> = fine.iter().map(|&l| r_w(l)).collect();
+        let (lag, r) = peak(&fine, &rs, sign);
         if r >= MIN_CORRELATION {
-            let centre = frames.clone().map(|k| tau_s[k]).sum::<f64>() / frames.len() as f64;
             points.push((centre, lag));
         }
+    }
+    if edges.len() > points.len() {
+        let (centre_s, lag_s) = edges[edges.len() / 2];
+        return Err(AlignError::WindowEdge {
+            centre_s,
+            lag_s,
+            half_s,
+            whole_s: lag0,
+            edges: edges.len(),
+            windows: edges.len() + points.len(),
+        });
     }
     if points.len() < MIN_WINDOWS {
         return Err(AlignError::Windows {
@@ -288,9 +426,7 @@ pub fn auto(
     // around the best point, tightens it (the windows' lags scatter by milliseconds; the whole
     // recording pins the line down further).
     let r_line = |offset: f64, slope: f64| {
-        sign * correlation(tau_s, angle, all.clone(), signal, dt_s, &|tau| {
-            offset + slope * tau
-        })
+        sign * correlation(tau_s, angle, lo..hi, signal, &|tau| offset + slope * tau)
     };
     let (mut best_offset, mut best_slope) = (offset, slope);
     let (mut half_o, mut half_s) = (
@@ -313,6 +449,14 @@ pub fn auto(
         best_slope = best.2;
         half_o /= f64::from(REFINE_STEPS);
         half_s /= f64::from(REFINE_STEPS);
+    }
+    // Only the final drift is held to the limit: on a short recording the windows' line is
+    // loose (±2300 ppm on 60 s) and the fit on every frame pins it.
+    if (best_slope * 1e6).abs() > MAX_DRIFT_PPM {
+        return Err(AlignError::Drift {
+            ppm: best_slope * 1e6,
+            se_ppm: drift_se * 1e6,
+        });
     }
     Ok(Alignment {
         offset_s: best_offset,

@@ -5,7 +5,7 @@
 //! the base, the tip's axis is taken in the reference tool's frame, so that motion of the whole
 //! setup cancels.
 
-use super::ndi::ToolFrame;
+use super::tracker::ToolFrame;
 
 /// Why no angle could be found.
 #[derive(Debug, thiserror::Error)]
@@ -20,6 +20,24 @@ pub enum AngleError {
         /// Needed.
         min: usize,
     },
+    /// The rest window runs past the end of the log.
+    #[error("--rest-s {rest_s} runs past the tracker log, whose frames span {span_s:.3} s: the rest window must lie inside the log")]
+    RestPastLog {
+        /// The rest window (s).
+        rest_s: f64,
+        /// The log's span (s).
+        span_s: f64,
+    },
+    /// The rest window is not still.
+    #[error("--rest-s {rest_s}: the tip is not still over the rest window: its axis spreads {spread_deg:.2}° RMS about its mean there (still means at most {MAX_REST_SPREAD_DEG}°); the log is still for the first {still_s:.1} s only: pass --rest-s {still_s:.1} or less")]
+    NotStill {
+        /// The rest window (s).
+        rest_s: f64,
+        /// The spread over it (°, RMS).
+        spread_deg: f64,
+        /// How long the still start is (s).
+        still_s: f64,
+    },
     /// The joint never leaves its rest axis.
     #[error(
         "the tip never bends away from its rest axis by more than {max_deg:.3}°: no bending plane"
@@ -32,6 +50,10 @@ pub enum AngleError {
 
 /// The fewest frames the rest axis is averaged over.
 pub const MIN_REST_FRAMES: usize = 10;
+/// The largest RMS spread (°) of the tip's axis about its mean over the rest window: about 1.5
+/// times NDI's stated 0.30° RMS orientation accuracy of a 5-DOF Aurora sensor, so a still tip
+/// passes, and a joint that moves by more shifts every angle by about what it moved.
+pub const MAX_REST_SPREAD_DEG: f64 = 0.5;
 /// The smallest bending (°) from which a plane is found.
 pub const MIN_BENDING_DEG: f64 = 1.0;
 
@@ -108,16 +130,49 @@ fn into_frame(q: [f64; 4], v: V3) -> V3 {
     ]
 }
 
+/// The RMS angle (°) of unit vectors about their mean direction, from their sum `sum` and
+/// count `n`: the mean squared chord to the mean direction is `2 − 2·|sum|/n`, and a chord is
+/// the angle (in radians) to within 1 % below 14°.
+fn spread_deg(sum: V3, n: usize) -> f64 {
+    let m = dot(sum, sum).sqrt() / n as f64;
+    (2.0 - 2.0 * m).max(0.0).sqrt().to_degrees()
+}
+
+/// The still start: the tracker time (s) of the first frame whose axis lies more than
+/// [`MAX_REST_SPREAD_DEG`] from the mean of the frames before it (0 if one of the first
+/// [`MIN_REST_FRAMES`] does).
+fn still_start_s(axes: &[Option<V3>], tau_s: &[f64]) -> f64 {
+    let (mut sum, mut n) = ([0.0; 3], 0usize);
+    let limit = MAX_REST_SPREAD_DEG.to_radians().cos();
+    for (a, &tau) in axes.iter().zip(tau_s) {
+        let Some(a) = a else { continue };
+        if n > 0 && dot(*a, unit(sum)) < limit {
+            return if n >= MIN_REST_FRAMES { tau } else { 0.0 };
+        }
+        sum = [sum[0] + a[0], sum[1] + a[1], sum[2] + a[2]];
+        n += 1;
+    }
+    tau_s.last().copied().unwrap_or(0.0)
+}
+
 /// The bending angles of `tip`, relative to `reference` when given (a frame counts only when
-/// both tools are seen), with the rest axis averaged over the first `rest_frames` frames.
+/// both tools are seen), with the rest axis averaged over the frames of the first `rest_s`
+/// seconds of tracker time `tau_s`. The rest window must lie inside the log and be still: the
+/// tip's axis within [`MAX_REST_SPREAD_DEG`] RMS of its mean.
 ///
 /// # Errors
 /// [`AngleError`].
 pub fn bending_angles(
     tip: &[Option<ToolFrame>],
     reference: Option<&[Option<ToolFrame>]>,
-    rest_frames: usize,
+    tau_s: &[f64],
+    rest_s: f64,
 ) -> Result<BendingAngles, AngleError> {
+    let span_s = tau_s.last().copied().unwrap_or(0.0);
+    if rest_s.is_nan() || rest_s > span_s {
+        return Err(AngleError::RestPastLog { rest_s, span_s });
+    }
+    let rest_frames = tau_s.partition_point(|&t| t < rest_s);
     let axes: Vec<Option<V3>> = tip
         .iter()
         .enumerate()
@@ -140,6 +195,14 @@ pub fn bending_angles(
     let sum = rest
         .iter()
         .fold([0.0; 3], |a, v| [a[0] + v[0], a[1] + v[1], a[2] + v[2]]);
+    let spread = spread_deg(sum, rest.len());
+    if spread > MAX_REST_SPREAD_DEG {
+        return Err(AngleError::NotStill {
+            rest_s,
+            spread_deg: spread,
+            still_s: still_start_s(&axes, tau_s),
+        });
+    }
     let r = unit(sum);
     // An orthonormal pair (u, v) across the rest axis, and the deviations in it.
     let helper = if r[0].abs() < 0.9 {

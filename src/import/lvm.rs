@@ -20,6 +20,18 @@ const MAGIC: &str = "LabVIEW Measurement";
 const END_OF_HEADER: &str = "***End_of_Header***";
 /// The name of a time column.
 const X_VALUE: &str = "X_Value";
+/// The keys that can open a segment header (NI's LVM description: `Notes`, `Test_Name`, …
+/// may come before `Channels`; LabVIEW writes `Notes` there).
+const SEGMENT_KEYS: [&str; 8] = [
+    "Channels",
+    "Notes",
+    "Test_Name",
+    "Test_Numbers",
+    "Test_Series",
+    "UUT_Name",
+    "UUT_M/N",
+    "UUT_S/N",
+];
 /// The name of LabVIEW's comment column.
 const COMMENT: &str = "Comment";
 
@@ -159,11 +171,83 @@ struct Columns {
     time: Option<usize>,
 }
 
+/// The channels of the LVM text `text`, in the order of its first row of column names
+/// (without `X_Value` and `Comment` columns).
+///
+/// # Errors
+/// [`LvmError`] for a file header that cannot be read, or no row of column names.
+pub fn channel_names(text: &str) -> Result<Vec<String>, LvmError> {
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
+    let format = file_header(&mut lines)?;
+    let (_, row) = lines
+        .find(|(_, l)| l.split(format.separator).next().map(str::trim) == Some(X_VALUE))
+        .ok_or(LvmError::NoColumns { line: 1 })?;
+    Ok(row
+        .split(format.separator)
+        .map(str::trim)
+        .filter(|n| !n.is_empty() && *n != X_VALUE && *n != COMMENT)
+        .map(str::to_owned)
+        .collect())
+}
+
+/// The units the first segment header gives the channels of [`channel_names`], in its order
+/// (`Y_Unit_Label`, whose fields stand above the columns they describe, an `X_Value` column's
+/// empty; `None` for an empty field or a file without the line).
+///
+/// # Errors
+/// [`LvmError`] for a file header that cannot be read.
+pub fn units(text: &str) -> Result<Vec<Option<String>>, LvmError> {
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
+    let format = file_header(&mut lines)?;
+    let mut labels: Vec<&str> = Vec::new();
+    for (_, l) in lines {
+        let fields: Vec<&str> = l.split(format.separator).map(str::trim).collect();
+        match fields[0] {
+            "Y_Unit_Label" => labels = fields,
+            X_VALUE => {
+                return Ok(fields
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, n)| !n.is_empty() && **n != X_VALUE && **n != COMMENT)
+                    .map(|(p, _)| {
+                        labels
+                            .get(p)
+                            .filter(|u| !u.is_empty() && p > 0)
+                            .map(|u| (*u).to_owned())
+                    })
+                    .collect())
+            }
+            _ => {}
+        }
+    }
+    Ok(Vec::new())
+}
+
 /// The channels asked for from the LVM text `text`, on one time base starting at 0.
 ///
 /// # Errors
 /// [`LvmError`] naming the line, the column and the value.
 pub fn daq_table(
+    text: &str,
+    channels: &[&str],
+    time_column: Option<&str>,
+    rate_hz: Option<f64>,
+) -> Result<DaqTable, LvmError> {
+    let table = read(text, channels, time_column, rate_hz)?;
+    if table.time_s.len() < MIN_ROWS {
+        return Err(LvmError::TooShort {
+            rows: table.time_s.len(),
+            min: MIN_ROWS,
+        });
+    }
+    Ok(table)
+}
+
+/// [`daq_table`] without the import's least number of rows (for `dlw daq-info`).
+///
+/// # Errors
+/// As [`daq_table`].
+pub fn read(
     text: &str,
     channels: &[&str],
     time_column: Option<&str>,
@@ -196,7 +280,7 @@ pub fn daq_table(
         if fields.iter().all(|f| f.trim().is_empty()) {
             continue;
         }
-        if first == "Channels" {
+        if SEGMENT_KEYS.contains(&first) {
             timing = segment_header(&mut lines, &format, line)?;
             let (names_line, names) =
                 next_nonempty(&mut lines).ok_or(LvmError::NoColumns { line })?;
@@ -241,13 +325,9 @@ pub fn daq_table(
         table.time_s.push(t);
         row_in_segment += 1;
     }
-    if table.time_s.len() < MIN_ROWS {
-        return Err(LvmError::TooShort {
-            rows: table.time_s.len(),
-            min: MIN_ROWS,
-        });
-    }
-    let t0 = raw_time[0].1;
+    let Some(&(_, t0)) = raw_time.first() else {
+        return Ok(table);
+    };
     for (i, &(line, t)) in raw_time.iter().enumerate() {
         table.time_s[i] = t - t0;
         if i > 0 && table.time_s[i] <= table.time_s[i - 1] {

@@ -1,33 +1,48 @@
-//! Importing real bench files (issue 18): a DAQ's file (a CSV export, [`daq_csv`], NI's TDMS,
-//! [`tdms`], or a LabVIEW measurement file, [`lvm`]) and an NDI Aurora tracker log ([`ndi`]) become one recording on the DAQ's clock: the bending angle from the
-//! tip tool's orientation ([`angle`]), the clocks aligned ([`align`]), the angle resampled onto
-//! the DAQ's samples (never across a gap of more than [`MAX_GAP_FRAMES`] missing frames: such
-//! rows are written with `tracker_valid = 0`), and an `[import]` table saying where it all came
-//! from (`docs/import.md`).
+//! Importing real bench files (issues 18 and 30): a DAQ's file (a CSV export, [`daq_csv`], NI's
+//! TDMS, [`tdms`], or a LabVIEW measurement file, [`lvm`]) and a tracker log (NDI's own layout
+//! or a lab's logger described by a [`map::TrackerMap`], [`tracker`]) become one recording on
+//! the DAQ's clock: the bending angle from the tip tool's orientation ([`angle`]), the clocks
+//! aligned ([`align`], per stretch of the DAQ's clock, [`stretch`]) and the alignment checked
+//! ([`check`]), the angle placed on the DAQ's samples ([`place`]: never across more than
+//! [`MAX_GAP_FRAMES`] missing frames, nor across frames absent from the log; such rows are
+//! written with `tracker_valid = 0`), every value checked by the recording's own rules before
+//! anything is written ([`values`]), and an `[import]` table saying where it all came from
+//! (`docs/import.md`). What the import cannot vouch for is refused, saying where and by how
+//! much. [`info`] lists what a file holds before importing it (`dlw daq-info`).
 
 pub mod align;
 pub mod angle;
+pub mod check;
 pub mod daq_csv;
+pub mod info;
 pub mod lvm;
-pub mod ndi;
+pub mod map;
+pub mod place;
 pub mod report;
 pub mod resample;
+pub mod stretch;
 pub mod sync;
 pub mod tdms;
+pub mod tracker;
+pub mod values;
 
-pub use ndi::{NdiError, ToolFrame, TrackerLog};
+pub use map::TrackerMap;
+pub use place::MAX_GAP_FRAMES;
+pub use tracker::{ToolFrame, TrackerError, TrackerLog};
 
 use sha2::{Digest, Sha256};
 
-use crate::recording::{ImportInfo, ImportSource, Recording, Rig, Samples};
-use align::AlignError;
+use crate::recording::{
+    ImportInfo, ImportSource, ImportStretch, Recording, RecordingError, Rig, Samples,
+};
+use align::{AlignError, Signal};
 use angle::{AngleError, BendingAngles};
+use check::{AlignmentCheck, CheckError};
 use daq_csv::{DaqCsvError, DaqTable};
+use stretch::{StretchError, Stretches};
 use sync::SyncError;
 use tdms::TdmsError;
 
-/// The most missing tracker frames interpolated across.
-pub const MAX_GAP_FRAMES: usize = 3;
 /// The out-of-plane share of the in-plane range above which a warning is given.
 pub const OUT_OF_PLANE_WARNING: f64 = 0.05;
 
@@ -102,7 +117,27 @@ pub enum ImportError {
         /// The file.
         path: String,
         /// Why.
-        source: NdiError,
+        source: TrackerError,
+    },
+    /// A value in the DAQ file that the recording's readers refuse.
+    #[error("{0}")]
+    Value(String),
+    /// The DAQ's clock: a stretch between jumps too short to align.
+    #[error(transparent)]
+    Stretch(#[from] StretchError),
+    /// The tracker's clock jumps by more than the whole recording.
+    #[error("{path} line {line}: the tracker's clock jumps by {seconds:.1} s ({frames:.0} frames absent), longer than the DAQ's whole recording ({duration_s:.1} s): not a gap in one run (a logger restarted, a counter that wrapped, two runs in one file?); cut the log at that line")]
+    Jump {
+        /// The tracker log.
+        path: String,
+        /// The line after the jump.
+        line: usize,
+        /// The jump (s).
+        seconds: f64,
+        /// Frames absent.
+        frames: f64,
+        /// The DAQ's duration (s).
+        duration_s: f64,
     },
     /// The bending angle.
     #[error(transparent)]
@@ -113,9 +148,15 @@ pub enum ImportError {
     /// The clocks (`--sync CH`).
     #[error(transparent)]
     Sync(#[from] SyncError),
+    /// The check after the alignment.
+    #[error(transparent)]
+    Check(#[from] CheckError),
     /// `--rate-hz`.
     #[error(transparent)]
     Resample(#[from] resample::ResampleError),
+    /// The recording to be written breaks its readers' rules.
+    #[error("the recording to be written would be refused by its readers: {0}")]
+    Recording(#[from] RecordingError),
     /// Bad options.
     #[error("{0}")]
     Options(String),
@@ -142,16 +183,21 @@ pub struct ImportRequest<'a> {
     pub daq_rate_hz: Option<f64>,
     /// The tracker log's path and text.
     pub tracker: (&'a str, &'a str),
+    /// How to read the tracker log (`None`: NDI's own layout).
+    pub tracker_map: Option<&'a TrackerMap>,
     /// The tip tool (1-based, in the log's order).
     pub tool: usize,
     /// A reference tool on the base.
     pub reference_tool: Option<usize>,
-    /// The tracker's frame rate (Hz).
-    pub tracker_hz: f64,
+    /// The tracker's frame rate (Hz), when given; else measured from the log's time columns,
+    /// else [`tracker::DEFAULT_TRACKER_HZ`].
+    pub tracker_hz: Option<f64>,
     /// The still start the rest axis is averaged over (s of tracker time).
     pub rest_s: f64,
     /// How the clocks are aligned.
     pub sync: SyncMethod,
+    /// The largest clock offset `--sync auto` searches (s).
+    pub max_offset_s: f64,
     /// The recording's rate, when not the DAQ's (Hz).
     pub rate_hz: Option<f64>,
 }
@@ -167,6 +213,8 @@ pub struct ImportSummary {
     pub alignment: AlignmentJson,
     /// The tracker.
     pub tracker: TrackerJson,
+    /// The check after the alignment.
+    pub check: AlignmentCheck,
     /// Rows whose angle is not a tracker measurement (`tracker_valid = 0`).
     pub invalid_rows: usize,
     /// Warnings.
@@ -204,10 +252,47 @@ pub struct AlignmentJson {
     /// `pulse`: the sync edges paired.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sync_edges: Option<usize>,
-    /// The measured lags `t_daq − τ` (s) against `τ` (s) the line was fitted through: the
+    /// The stretches of the DAQ's clock, each aligned on its own (one when the DAQ's time
+    /// column never jumps); the figures above are the longest stretch's.
+    pub stretches: Vec<StretchJson>,
+    /// The measured lags `t_daq − τ` (s) against `τ` (s) the lines were fitted through: the
     /// windows (`auto`) or the edge pairs (`pulse`). For the report, not in the JSON.
     #[serde(skip)]
     pub lags: Vec<(f64, f64)>,
+}
+
+/// One stretch of the DAQ's clock and its alignment, in the JSON.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct StretchJson {
+    /// Its first sample's DAQ time (s).
+    pub from_s: f64,
+    /// Its last sample's DAQ time (s).
+    pub to_s: f64,
+    /// `t_daq = offset_s + τ·(1 + drift_ppm·10⁻⁶)` in this stretch.
+    pub offset_s: f64,
+    /// Drift (ppm).
+    pub drift_ppm: f64,
+    /// Standard error (s).
+    pub offset_uncertainty_s: f64,
+    /// Standard error (ppm).
+    pub drift_uncertainty_ppm: f64,
+}
+
+impl StretchJson {
+    /// The DAQ time of tracker time `tau_s` by this stretch's clocks.
+    pub fn daq_time(&self, tau_s: f64) -> f64 {
+        self.offset_s + tau_s * (1.0 + self.drift_ppm * 1e-6)
+    }
+
+    /// The tracker time of DAQ time `t_s` by this stretch's clocks.
+    pub fn tracker_time(&self, t_s: f64) -> f64 {
+        (t_s - self.offset_s) / (1.0 + self.drift_ppm * 1e-6)
+    }
+
+    /// Whether DAQ time `t_s` lies in this stretch.
+    pub fn holds(&self, t_s: f64) -> bool {
+        (self.from_s..=self.to_s).contains(&t_s)
+    }
 }
 
 /// How the clocks are aligned.
@@ -231,6 +316,12 @@ pub struct TrackerJson {
     pub frames: usize,
     /// Frames with the tool (or the reference) missing.
     pub missing_frames: usize,
+    /// Steps of the log where frames are absent (more than 1.5 frame periods).
+    pub gaps: usize,
+    /// Frames absent in them.
+    pub absent_frames: f64,
+    /// The tracker's frame rate used (Hz).
+    pub rate_hz: f64,
     /// Out-of-plane RMS (°).
     pub out_of_plane_rms_deg: f64,
     /// Out-of-plane maximum (°).
@@ -244,37 +335,73 @@ fn sha256(bytes: &[u8]) -> String {
         .collect()
 }
 
-/// Runs an import: the recording (not yet written) and its summary.
+/// Runs an import: the recording (not yet written, every value checked by its readers' rules)
+/// and its summary.
 ///
 /// # Errors
 /// [`ImportError`].
 pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), ImportError> {
-    check_options(req)?;
+    values::check_options(req)?;
     let mut names: Vec<&str> = req.voltage_channels.iter().map(String::as_str).collect();
     let stroke_at = names.len();
     names.push(&req.stroke.0);
-    if let SyncMethod::Pulse { daq_channel, .. } = &req.sync {
-        names.push(daq_channel);
-    }
+    let sync_column = match &req.sync {
+        SyncMethod::Pulse {
+            daq_channel,
+            tracker_column,
+        } => {
+            names.push(daq_channel);
+            Some(tracker_column.as_str())
+        }
+        SyncMethod::Auto => None,
+    };
     let daq = read_daq(req, &names).map_err(|source| ImportError::Daq {
         path: req.daq.0.to_owned(),
         source,
     })?;
+    values::check_daq(req, &daq, &names)?;
+    values::check_rate(req, &daq)?;
+    let stretches = stretch::stretches(&daq.time_s)?;
     let mut tools = vec![req.tool];
     tools.extend(req.reference_tool);
-    let log = TrackerLog::parse(req.tracker.1, &tools, req.tracker_hz).map_err(|source| {
-        ImportError::Tracker {
-            path: req.tracker.0.to_owned(),
-            source,
-        }
+    let log = TrackerLog::parse(
+        req.tracker.1,
+        req.tracker_map,
+        &tracker::ReadOptions {
+            tools: &tools,
+            frame_hz: req.tracker_hz,
+            extra_column: sync_column,
+        },
+    )
+    .map_err(|source| ImportError::Tracker {
+        path: req.tracker.0.to_owned(),
+        source,
     })?;
-    let rest_frames = (req.rest_s * req.tracker_hz).round().max(1.0) as usize;
+    let duration_s = daq.time_s[daq.time_s.len() - 1];
+    if let Some(g) = log.gaps.iter().find(|g| g.seconds > duration_s) {
+        return Err(ImportError::Jump {
+            path: req.tracker.0.to_owned(),
+            line: g.line,
+            seconds: g.seconds,
+            frames: g.frames,
+            duration_s,
+        });
+    }
     let angles: BendingAngles = angle::bending_angles(
         &log.tools[0],
         log.tools.get(1).map(Vec::as_slice),
-        rest_frames,
+        &log.tau_s,
+        req.rest_s,
     )?;
-    let alignment = clocks(req, &log, &angles, &daq)?;
+    let alignment = clocks(req, &log, &angles, &daq, &stretches)?;
+    let check = check::check(
+        &place::aligned_frames(&log, &angles, &alignment.stretches),
+        &Signal {
+            time_s: &daq.time_s,
+            values: &daq.channels[0],
+            period_s: stretches.period_s,
+        },
+    )?;
     let (daq, rate_hz) = match req.rate_hz {
         Some(hz) => (resample::resample(&daq, hz)?, hz),
         None => {
@@ -282,7 +409,8 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
             (daq, hz)
         }
     };
-    let (mut angle_deg, valid) = angle_on_daq(&daq.time_s, &log.tau_s, &angles, &alignment);
+    let (mut angle_deg, valid) =
+        place::angle_on_daq(&daq.time_s, &log, &angles, &alignment.stretches);
     let stroke_mm: Vec<f64> = daq.channels[stroke_at]
         .iter()
         .map(|v| v * req.stroke.1)
@@ -297,6 +425,8 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
     let missing = angles.angle_deg.iter().filter(|a| a.is_none()).count();
     let invalid_rows = valid.iter().filter(|v| !**v).count();
     let n = daq.time_s.len();
+    let mut warnings = log.warnings.clone();
+    warnings.extend(out_of_plane_warning(&angles));
     let summary = ImportSummary {
         samples: n,
         duration_s: daq.time_s[n - 1],
@@ -304,11 +434,15 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         tracker: TrackerJson {
             frames,
             missing_frames: missing,
+            gaps: log.gaps.len(),
+            absent_frames: log.gaps.iter().fold(0.0, |n, g| n + g.frames),
+            rate_hz: log.rate_hz,
             out_of_plane_rms_deg: angles.out_of_plane_rms_deg,
             out_of_plane_max_deg: angles.out_of_plane_max_deg,
         },
+        check,
         invalid_rows,
-        warnings: out_of_plane_warning(&angles).into_iter().collect(),
+        warnings,
         trace: ImportTrace {
             tau_s: log.tau_s.clone(),
             angle_deg: angles
@@ -336,71 +470,9 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         angle_deg,
         tracker_valid: if invalid_rows > 0 { valid } else { Vec::new() },
     };
-    Ok((Recording { rig, samples }, summary))
-}
-
-/// Checks the options that need no file.
-fn check_options(req: &ImportRequest<'_>) -> Result<(), ImportError> {
-    let bad = |message: String| Err(ImportError::Options(message));
-    if req.voltage_channels.is_empty() || req.voltage_channels.len() > 2 {
-        return bad(format!(
-            "--voltage names {} channels; a joint has 1 or 2 sensors",
-            req.voltage_channels.len()
-        ));
-    }
-    if req.divider_ohm.len() != req.voltage_channels.len() {
-        return bad(format!(
-            "--divider-ohm gives {} resistors for {} voltage channels",
-            req.divider_ohm.len(),
-            req.voltage_channels.len()
-        ));
-    }
-    if !(req.supply_v.is_finite() && req.supply_v > 0.0) {
-        return bad(format!(
-            "--supply-v {} is not a supply voltage (finite and above 0)",
-            req.supply_v
-        ));
-    }
-    if !(req.stroke.1.is_finite() && req.stroke.1 != 0.0) {
-        return bad(format!(
-            "--stroke-mm-per-v {} is not a scale (finite and not 0)",
-            req.stroke.1
-        ));
-    }
-    Ok(())
-}
-
-/// The tracker's angle at each DAQ time `time_s`, linearly between the frames around it, and
-/// whether it is a measurement: not past the log's ends, nor across more than
-/// [`MAX_GAP_FRAMES`] missing frames (such rows get 0°, marked invalid).
-fn angle_on_daq(
-    time_s: &[f64],
-    tau_s: &[f64],
-    angles: &BendingAngles,
-    alignment: &AlignmentJson,
-) -> (Vec<f64>, Vec<bool>) {
-    let frames = tau_s.len();
-    let scale = 1.0 + alignment.drift_ppm * 1e-6;
-    let seen = |i: usize| angles.angle_deg[i].is_some();
-    let at = |t: f64| {
-        let tau = (t - alignment.offset_s) / scale;
-        let k = tau_s.partition_point(|&x| x <= tau);
-        if k == 0 || k >= frames {
-            return None;
-        }
-        let p = (0..k).rev().find(|&i| seen(i))?;
-        let q = (k..frames).find(|&i| seen(i))?;
-        if q - p - 1 > MAX_GAP_FRAMES {
-            return None;
-        }
-        let (a, b) = (angles.angle_deg[p]?, angles.angle_deg[q]?);
-        let f = (tau - tau_s[p]) / (tau_s[q] - tau_s[p]);
-        Some(a + (b - a) * f.clamp(0.0, 1.0))
-    };
-    time_s
-        .iter()
-        .map(|&t| at(t).map_or((0.0, false), |a| (a, true)))
-        .unzip()
+    let recording = Recording { rig, samples };
+    recording.check()?;
+    Ok((recording, summary))
 }
 
 /// Whether the angle rises with the stroke over the valid rows (pulling the tendon bends
@@ -429,7 +501,8 @@ fn out_of_plane_warning(angles: &BendingAngles) -> Option<String> {
     })
 }
 
-/// The `[import]` table: the sources with their SHA-256, the tools, the clocks, the frames.
+/// The `[import]` table: the sources with their SHA-256, the tools, the clocks (the longest
+/// stretch's, and every stretch when there are several), the frames.
 fn provenance(
     req: &ImportRequest<'_>,
     alignment: &AlignmentJson,
@@ -459,6 +532,20 @@ fn provenance(
         drift_uncertainty_ppm: alignment.drift_uncertainty_ppm,
         tracker_frames: frames as u64,
         missing_frames: missing as u64,
+        stretches: if alignment.stretches.len() > 1 {
+            alignment
+                .stretches
+                .iter()
+                .map(|s| ImportStretch {
+                    from_s: s.from_s,
+                    to_s: s.to_s,
+                    offset_s: s.offset_s,
+                    drift_ppm: s.drift_ppm,
+                })
+                .collect()
+        } else {
+            Vec::new()
+        },
     }
 }
 
@@ -466,29 +553,78 @@ fn provenance(
 fn read_daq(req: &ImportRequest<'_>, names: &[&str]) -> Result<DaqTable, DaqError> {
     let (time_column, rate_hz) = (req.time_column.as_deref(), req.daq_rate_hz);
     Ok(match req.daq_format {
-        DaqFormat::Csv => {
-            let text = std::str::from_utf8(req.daq.1).map_err(DaqError::NotText)?;
-            DaqTable::parse(text, names, time_column, rate_hz)?
-        }
+        DaqFormat::Csv => DaqTable::parse(&text(req.daq.1)?, names, time_column, rate_hz)?,
         DaqFormat::Tdms => tdms::daq_table(req.daq.1, names, time_column, rate_hz)?,
-        DaqFormat::Lvm => {
-            let text = std::str::from_utf8(req.daq.1).map_err(DaqError::NotText)?;
-            lvm::daq_table(text, names, time_column, rate_hz)?
-        }
+        DaqFormat::Lvm => lvm::daq_table(&text(req.daq.1)?, names, time_column, rate_hz)?,
     })
 }
 
-/// The clocks, by the request's method: the sync channel is the DAQ table's last.
+/// A text DAQ file's bytes as text, without a UTF-8 byte-order mark (which Windows programs
+/// write before the header).
+pub(crate) fn text(bytes: &[u8]) -> Result<std::borrow::Cow<'_, str>, DaqError> {
+    match std::str::from_utf8(bytes) {
+        Ok(text) => Ok(std::borrow::Cow::Borrowed(
+            text.strip_prefix(crate::output::UTF8_BOM).unwrap_or(text),
+        )),
+        // LabVIEW on Windows writes the system's code page (a µ, a ° in a comment): read as
+        // Latin-1, one character per byte, when the file is plain ASCII text but for a few
+        // bytes; the numbers are ASCII either way.
+        Err(e) => {
+            let ascii = bytes.iter().filter(|b| b.is_ascii()).count();
+            if ascii * 100 >= bytes.len() * 99 && !bytes.contains(&0) {
+                Ok(std::borrow::Cow::Owned(
+                    bytes.iter().map(|&b| char::from(b)).collect(),
+                ))
+            } else {
+                Err(DaqError::NotText(e))
+            }
+        }
+    }
+}
+
+/// The clocks, by the request's method: `--sync auto` aligns each stretch of the DAQ's clock
+/// on its own; a sync pulse gives one alignment (its edges are timed on the DAQ's time column
+/// as it is), which every stretch shares. The sync channel is the DAQ table's last.
 fn clocks(
     req: &ImportRequest<'_>,
     log: &TrackerLog,
     angles: &BendingAngles,
     daq: &DaqTable,
+    stretches: &Stretches,
 ) -> Result<AlignmentJson, ImportError> {
-    let dt_s = 1.0 / daq.rate_hz();
+    let span = |rows: &std::ops::Range<usize>| (daq.time_s[rows.start], daq.time_s[rows.end - 1]);
     match &req.sync {
         SyncMethod::Auto => {
-            let a = align::auto(&log.tau_s, &angles.angle_deg, &daq.channels[0], dt_s)?;
+            let mut parts = Vec::with_capacity(stretches.rows.len());
+            let mut lags = Vec::new();
+            let mut main: Option<(f64, align::Alignment)> = None;
+            for rows in &stretches.rows {
+                let signal = Signal {
+                    time_s: &daq.time_s[rows.clone()],
+                    values: &daq.channels[0][rows.clone()],
+                    period_s: stretches.period_s,
+                };
+                let a = align::auto(&log.tau_s, &angles.angle_deg, &signal, req.max_offset_s)?;
+                let (from_s, to_s) = span(rows);
+                parts.push(StretchJson {
+                    from_s,
+                    to_s,
+                    offset_s: a.offset_s,
+                    drift_ppm: a.drift_ppm,
+                    offset_uncertainty_s: a.offset_uncertainty_s,
+                    drift_uncertainty_ppm: a.drift_uncertainty_ppm,
+                });
+                lags.extend(a.lags.iter().copied());
+                if main
+                    .as_ref()
+                    .map_or(true, |(length, _)| to_s - from_s > *length)
+                {
+                    main = Some((to_s - from_s, a));
+                }
+            }
+            let Some((_, a)) = main else {
+                unreachable!("a DAQ table has at least one stretch")
+            };
             Ok(AlignmentJson {
                 offset_s: a.offset_s,
                 drift_ppm: a.drift_ppm,
@@ -497,15 +633,30 @@ fn clocks(
                 method: "auto",
                 correlation: Some(a.correlation),
                 sync_edges: None,
-                lags: a.lags,
+                stretches: parts,
+                lags,
             })
         }
-        SyncMethod::Pulse { tracker_column, .. } => {
-            let levels = sync::tracker_column(req.tracker.1, tracker_column)?;
+        SyncMethod::Pulse { .. } => {
             let daq_levels = daq.channels.last().map_or(&[][..], Vec::as_slice);
             let daq_edges = sync::rising_edges(&daq.time_s, daq_levels, "DAQ")?;
-            let tracker_edges = sync::rising_edges(&log.tau_s, &levels, "tracker")?;
-            let a = sync::align(&daq_edges, &tracker_edges, 1.0 / req.tracker_hz)?;
+            let tracker_edges = sync::rising_edges(&log.tau_s, &log.extra, "tracker")?;
+            let a = sync::align(&daq_edges, &tracker_edges, 1.0 / log.rate_hz)?;
+            let parts = stretches
+                .rows
+                .iter()
+                .map(|rows| {
+                    let (from_s, to_s) = span(rows);
+                    StretchJson {
+                        from_s,
+                        to_s,
+                        offset_s: a.offset_s,
+                        drift_ppm: a.drift_ppm,
+                        offset_uncertainty_s: a.offset_uncertainty_s,
+                        drift_uncertainty_ppm: a.drift_uncertainty_ppm,
+                    }
+                })
+                .collect();
             Ok(AlignmentJson {
                 offset_s: a.offset_s,
                 drift_ppm: a.drift_ppm,
@@ -514,6 +665,7 @@ fn clocks(
                 method: "pulse",
                 correlation: None,
                 sync_edges: Some(a.edges),
+                stretches: parts,
                 lags: a.lags,
             })
         }

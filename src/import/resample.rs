@@ -9,10 +9,13 @@
 //!   between the DAQ samples around each output time; nothing is measured there that was not
 //!   measured before.
 
+use super::align::JUMP_PERIODS;
 use super::daq_csv::{DaqTable, MIN_ROWS};
 
 /// The most an output rate may exceed the DAQ's: beyond it, interpolation only adds rows.
 pub const MAX_UPSAMPLING: f64 = 10.0;
+/// The relative rounding allowed when comparing a rate with [`MAX_UPSAMPLING`] times the DAQ's.
+pub const RATE_ROUNDING: f64 = 1e-9;
 
 /// Why the DAQ could not be resampled.
 #[derive(Debug, thiserror::Error)]
@@ -54,7 +57,9 @@ pub fn resample(table: &DaqTable, rate_hz: f64) -> Result<DaqTable, ResampleErro
         return Err(ResampleError::Rate { hz: rate_hz });
     }
     let daq_hz = table.rate_hz();
-    if rate_hz > MAX_UPSAMPLING * daq_hz {
+    // Exactly 10 times is allowed: the rate measured from the time column's median step is
+    // off by rounding (500.00000000001 Hz from steps written to 0.1 ms).
+    if rate_hz > MAX_UPSAMPLING * daq_hz * (1.0 + RATE_ROUNDING) {
         return Err(ResampleError::TooHigh {
             hz: rate_hz,
             daq_hz,
@@ -71,7 +76,16 @@ pub fn resample(table: &DaqTable, rate_hz: f64) -> Result<DaqTable, ResampleErro
             duration_s,
         });
     }
-    let time_s: Vec<f64> = (0..rows).map(|j| j as f64 / rate_hz).collect();
+    // No output sample inside a jump of the DAQ's clock: nothing was recorded there.
+    let jump = JUMP_PERIODS / daq_hz;
+    let recorded = |t: f64| {
+        let k = table.time_s.partition_point(|&x| x <= t);
+        k == 0 || k >= table.time_s.len() || table.time_s[k] - table.time_s[k - 1] <= jump
+    };
+    let time_s: Vec<f64> = (0..rows)
+        .map(|j| j as f64 / rate_hz)
+        .filter(|&t| recorded(t))
+        .collect();
     let down = rate_hz < daq_hz;
     let channels = table
         .channels
@@ -138,6 +152,7 @@ mod tests {
         for hz in [0.0, -5.0, f64::NAN, f64::INFINITY] {
             assert!(matches!(resample(&t, hz), Err(ResampleError::Rate { .. })));
         }
+        assert!(resample(&t, 5000.0).is_ok(), "exactly 10 times");
         let err = resample(&t, 6000.0).unwrap_err().to_string();
         assert!(err.contains("6000") && err.contains("at most 10"), "{err}");
         let err = resample(&t, 10.0).unwrap_err().to_string();

@@ -23,24 +23,6 @@ pub const MAX_DRIFT_PPM: f64 = 1000.0;
 /// Why the clocks could not be aligned on the sync pulse.
 #[derive(Debug, thiserror::Error)]
 pub enum SyncError {
-    /// The tracker log has no such column.
-    #[error("tracker log header has no sync column {column:?} (found: {found})")]
-    NoColumn {
-        /// The column asked for.
-        column: String,
-        /// The header.
-        found: String,
-    },
-    /// A field that is not a number.
-    #[error("tracker log row {row}: sync column {column} = {text:?} is not a number")]
-    Number {
-        /// The data row (1-based).
-        row: usize,
-        /// The column.
-        column: String,
-        /// The field, at most 200 characters.
-        text: String,
-    },
     /// A signal that never changes.
     #[error("the {what} sync signal stays at {level}: no edge to align on")]
     Flat {
@@ -90,42 +72,6 @@ pub struct PulseAlignment {
     pub edges: usize,
     /// Each edge pair's tracker time `τ` (s) and lag `t_daq − τ` (s).
     pub lags: Vec<(f64, f64)>,
-}
-
-/// The sync column `column` of the tracker log `text`, one value per data row.
-///
-/// # Errors
-/// [`SyncError::NoColumn`], [`SyncError::Number`].
-pub fn tracker_column(text: &str, column: &str) -> Result<Vec<f64>, SyncError> {
-    // The rows as `ndi::TrackerLog::parse` counts them: every non-blank line after the header.
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-    let header: Vec<&str> = lines
-        .next()
-        .unwrap_or("")
-        .split(',')
-        .map(str::trim)
-        .collect();
-    let at = header
-        .iter()
-        .position(|h| h.eq_ignore_ascii_case(column))
-        .ok_or_else(|| SyncError::NoColumn {
-            column: column.to_owned(),
-            found: header.join(","),
-        })?;
-    lines
-        .enumerate()
-        .map(|(r, line)| {
-            let text = line.split(',').nth(at).unwrap_or("").trim();
-            text.parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| SyncError::Number {
-                    row: r + 1,
-                    column: header[at].to_owned(),
-                    text: text.chars().take(200).collect(),
-                })
-        })
-        .collect()
 }
 
 /// The times of `level`'s rising edges through its mid level, sampled at `time`.
@@ -248,20 +194,5 @@ mod tests {
             align(&daq[..1], &tau, 0.025),
             Err(SyncError::TooFew { daq: 1, .. })
         ));
-    }
-
-    #[test]
-    fn the_tracker_column_is_found_by_name() {
-        let log = "Frame#,Sync,Q0\n1,0,1\n\n2,1,1\n";
-        assert_eq!(tracker_column(log, "sync").unwrap(), [0.0, 1.0]);
-        let err = tracker_column(log, "TTL").unwrap_err().to_string();
-        assert!(
-            err.contains("TTL") && err.contains("Frame#,Sync,Q0"),
-            "{err}"
-        );
-        let err = tracker_column("Sync\nhigh\n", "Sync")
-            .unwrap_err()
-            .to_string();
-        assert!(err.contains("row 1") && err.contains("high"), "{err}");
     }
 }

@@ -37,6 +37,19 @@ impl MachineLibrary {
         Self::new(vec![dir.join("machines")])
     }
 
+    /// The file [`find`](Self::find) reads for `spec` (`None` for a built-in profile): an input
+    /// that no output may replace.
+    pub fn file(&self, spec: Option<&str>) -> Option<PathBuf> {
+        let spec = spec.unwrap_or(DEFAULT_PROFILE);
+        if spec.contains('/') || spec.contains('\\') || spec.ends_with(".toml") {
+            return Some(PathBuf::from(spec));
+        }
+        self.dirs
+            .iter()
+            .map(|dir| dir.join(format!("{spec}.toml")))
+            .find(|path| path.is_file())
+    }
+
     /// Finds a profile by path or name; `None` means the default, [`DEFAULT_PROFILE`].
     ///
     /// # Errors

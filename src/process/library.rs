@@ -78,6 +78,28 @@ impl ProcessLibrary {
         }
     }
 
+    /// The files [`resolve`](Self::resolve) reads for `choice` (sets found in the searched
+    /// folders; a built-in set has none): inputs that no output may replace.
+    pub fn files(&self, choice: &ProcessChoice) -> Vec<PathBuf> {
+        let names = [
+            Some(&choice.sensor),
+            Some(&choice.notches),
+            choice.parting.as_ref(),
+        ];
+        let mut files: Vec<PathBuf> = names
+            .into_iter()
+            .flatten()
+            .filter_map(|name| {
+                self.dirs
+                    .iter()
+                    .map(|dir| dir.join(format!("{name}.toml")))
+                    .find(|path| path.is_file())
+            })
+            .collect();
+        files.dedup();
+        files
+    }
+
     /// Resolves a design's `[process]` choice into the three sets.
     ///
     /// # Errors

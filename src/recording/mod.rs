@@ -30,7 +30,7 @@ pub mod provenance;
 mod truth;
 
 pub use protocol::ProtocolKind;
-pub use provenance::{ImportInfo, ImportSource, Provenance, SimulationInfo};
+pub use provenance::{ImportInfo, ImportSource, ImportStretch, Provenance, SimulationInfo};
 /// A ground-truth angle series (`angles.csv`) to compare a recording's estimates with.
 pub use truth::{parse_angles, read_angles, TruthAngles, TruthError};
 
@@ -39,7 +39,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::fixed::push_fixed;
-use crate::output::{write_folder_atomic, OutputError};
+use crate::output::{stage_folder, OutputError, StagedFolder};
 
 /// The data file's name inside a recording.
 pub const DATA_FILE: &str = "data.csv";
@@ -226,6 +226,17 @@ pub enum RecordingError {
     /// A file or folder could not be written.
     #[error(transparent)]
     Output(#[from] OutputError),
+    /// The recording, written, does not read back (a value the fixed decimals of `data.csv`
+    /// round onto a rail, or two times onto one): nothing was committed.
+    #[error(
+        "the recording for {dest}, written, does not read back ({reason}); nothing was written"
+    )]
+    ReadBack {
+        /// The destination.
+        dest: PathBuf,
+        /// The reader's message (it names the staging folder's file and line).
+        reason: String,
+    },
 }
 
 /// `rig.toml`: how the bench was set up.
@@ -478,6 +489,100 @@ impl Recording {
     /// # Errors
     /// [`RecordingError::Exists`], or an I/O error naming the path; `dest` is then untouched.
     pub fn write(&self, dest: &Path, replace: bool) -> Result<(), RecordingError> {
+        self.stage(dest, replace)?.commit()?;
+        Ok(())
+    }
+
+    /// Checks every value with the rules [`Recording::read`] applies (the rig's values, the
+    /// time increasing, each column's magnitude limit, every voltage strictly between the rails),
+    /// naming the row (as the `data.csv` line it would be written on) and the column.
+    ///
+    /// # Errors
+    /// The [`RecordingError`] that reading the written recording would give.
+    pub fn check(&self) -> Result<(), RecordingError> {
+        let data = Path::new(DATA_FILE);
+        self.rig.check(Path::new(RIG_FILE))?;
+        let s = &self.samples;
+        let channels = self.rig.divider_ohm.len();
+        if s.volts.len() != channels {
+            return Err(RecordingError::Header {
+                path: data.to_path_buf(),
+                found: header(s.volts.len()),
+                expected: header(channels),
+                channels,
+            });
+        }
+        if s.is_empty() {
+            return Err(RecordingError::NoRows {
+                path: data.to_path_buf(),
+            });
+        }
+        for i in 0..s.len() {
+            let line = i + 2;
+            let mut columns = vec![("time_s".to_string(), s.time_s[i])];
+            columns.push(("stroke_mm".to_string(), s.stroke_mm[i]));
+            if let Some(&a) = s.angle_deg.get(i) {
+                columns.push(("angle_deg".to_string(), a));
+            }
+            for (c, v) in s.volts.iter().enumerate() {
+                columns.push((format!("v{}_V", c + 1), v[i]));
+            }
+            for (column, value) in &columns {
+                check_value(*value, line, column, data)?;
+            }
+            if i > 0 && s.time_s[i] <= s.time_s[i - 1] {
+                return Err(RecordingError::TimeNotIncreasing {
+                    path: data.to_path_buf(),
+                    line,
+                    time_s: s.time_s[i],
+                    previous_s: s.time_s[i - 1],
+                });
+            }
+            for (c, v) in s.volts.iter().enumerate() {
+                if !within_rails(v[i], self.rig.supply_v) {
+                    return Err(RecordingError::Rail {
+                        path: data.to_path_buf(),
+                        line,
+                        column: format!("v{}_V", c + 1),
+                        volts: v[i],
+                        supply_v: self.rig.supply_v,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// [`check`](Self::check)s the recording, writes it into a staging folder beside `dest`
+    /// and reads it back through [`Recording::read`] (or, without a tracker angle,
+    /// [`Recording::read_allowing_empty_angle`]): what is committed is what every command will
+    /// read. [`StagedFolder::commit`] puts it in place.
+    ///
+    /// # Errors
+    /// [`RecordingError`] from the check, the write, or [`RecordingError::ReadBack`].
+    pub fn stage_checked(
+        &self,
+        dest: &Path,
+        replace: bool,
+    ) -> Result<StagedFolder, RecordingError> {
+        self.check()?;
+        let staged = self.stage(dest, replace)?;
+        let back = if self.samples.has_tracker_angle() {
+            Self::read(staged.path())
+        } else {
+            Self::read_allowing_empty_angle(staged.path())
+        };
+        match back {
+            Ok(_) => Ok(staged),
+            Err(source) => Err(RecordingError::ReadBack {
+                dest: dest.to_path_buf(),
+                reason: source.to_string(),
+            }),
+        }
+    }
+
+    /// The recording written into a staging folder beside `dest`, not yet in place.
+    fn stage(&self, dest: &Path, replace: bool) -> Result<StagedFolder, RecordingError> {
         let occupied = match std::fs::read_dir(dest) {
             Ok(mut entries) => entries.next().is_some(),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
@@ -499,8 +604,7 @@ impl Recording {
             (RIG_FILE.to_string(), rig.into_bytes()),
             (DATA_FILE.to_string(), self.csv_bytes()),
         ];
-        write_folder_atomic(dest, &files)?;
-        Ok(())
+        Ok(stage_folder(dest, &files)?)
     }
 
     /// `data.csv` as bytes: fixed decimals (time and stroke to 1e-6, angle to 1e-4°, voltage to
@@ -674,7 +778,7 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
         }
         for c in 0..channels {
             let volts = row[3 + c];
-            if !(volts > 0.0 && volts < rig.supply_v) {
+            if !within_rails(volts, rig.supply_v) {
                 return Err(RecordingError::Rail {
                     path: path.to_path_buf(),
                     line,
@@ -713,13 +817,19 @@ pub const MAX_ABS_VOLTS: f64 = 1e3;
 
 /// The limit and unit of a column's magnitude: values past it are refused at the edge, since
 /// every analysis of them only produces overflows (an angle of 1e308° made an RMSE of inf°).
-fn column_limit(column: &str) -> (f64, &'static str) {
+pub fn column_limit(column: &str) -> (f64, &'static str) {
     match column {
         "time_s" => (MAX_ABS_TIME_S, "s"),
         "stroke_mm" => (MAX_ABS_STROKE_MM, "mm"),
         "angle_deg" => (MAX_ABS_ANGLE_DEG, "°"),
         _ => (MAX_ABS_VOLTS, "V"),
     }
+}
+
+/// Whether a divider voltage lies strictly between the rails `0` and `supply_v`, where a
+/// finite sensor resistance explains it.
+pub fn within_rails(volts: f64, supply_v: f64) -> bool {
+    volts > 0.0 && volts < supply_v
 }
 
 #[inline]
@@ -730,6 +840,11 @@ fn parse_field(field: &str, line: usize, column: &str, path: &Path) -> Result<f6
         column: column.to_string(),
         text: crate::limits::quote(field),
     })?;
+    check_value(v, line, column, path)
+}
+
+/// `v` if it is finite and within its column's magnitude limit ([`column_limit`]).
+fn check_value(v: f64, line: usize, column: &str, path: &Path) -> Result<f64, RecordingError> {
     if !v.is_finite() {
         return Err(RecordingError::NotFinite {
             path: path.to_path_buf(),

@@ -55,6 +55,24 @@ pub struct ImportInfo {
     pub tracker_frames: u64,
     /// Tracker frames with the tip (or reference) tool missing.
     pub missing_frames: u64,
+    /// When the DAQ's time column jumps: each stretch of its clock and that stretch's own
+    /// alignment (the figures above are the longest stretch's). Absent for one stretch.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stretches: Vec<ImportStretch>,
+}
+
+/// One stretch of an imported recording's DAQ clock, aligned on its own.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImportStretch {
+    /// Its first sample's DAQ time (s).
+    pub from_s: f64,
+    /// Its last sample's DAQ time (s).
+    pub to_s: f64,
+    /// `t_daq = offset_s + τ·(1 + drift_ppm·10⁻⁶)` in it (s).
+    pub offset_s: f64,
+    /// Its drift (ppm).
+    pub drift_ppm: f64,
 }
 
 /// Where a recording came from, as [`Rig::provenance`](super::Rig::provenance) reads it.

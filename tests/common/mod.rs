@@ -2,6 +2,7 @@
 //! finding the shipped designs.
 #![allow(dead_code)]
 
+pub mod bench;
 pub mod designs;
 pub mod discovery;
 

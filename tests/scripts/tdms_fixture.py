@@ -53,8 +53,10 @@ def read(in_path, out_path):
     channels = {}
     for group in TdmsFile.read(in_path).groups():
         for channel in group.channels():
+            data = channel[:]
+            numeric = getattr(data, "dtype", None) is not None and data.dtype.kind in "fiub"
             channels[f"{group.name}/{channel.name}"] = {
-                "values": [float(v) for v in channel[:]],
+                "values": [float(v) for v in data] if numeric else [str(v) for v in data],
                 "properties": {k: str(v) for k, v in channel.properties.items()},
             }
     with open(out_path, "w") as f:

@@ -76,6 +76,8 @@ fn floats(value: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
 struct Design {
     design: CoreDesign,
     inspection: dlw_core::rules::Inspection,
+    /// The file it was read from: an input no `save` may replace.
+    path: Option<PathBuf>,
 }
 
 #[pymethods]
@@ -88,6 +90,7 @@ impl Design {
         Ok(Self {
             inspection: dlw_core::rules::Inspection::of(&checked),
             design: checked.design,
+            path: Some(path),
         })
     }
 
@@ -106,6 +109,18 @@ impl Design {
     fn __repr__(&self) -> String {
         format!("Design({:?})", self.design.file.name)
     }
+}
+
+/// The file a design or recording argument names (a path, or a `Design` read from one); `None`
+/// for a dict or a design made in memory. Such files are inputs that no `save` may replace.
+fn input_path(value: &Bound<'_, PyAny>) -> Option<PathBuf> {
+    if let Ok(d) = value.extract::<PyRef<'_, Design>>() {
+        return d.path.clone();
+    }
+    if value.cast::<PyDict>().is_ok() {
+        return None;
+    }
+    value.extract::<PathBuf>().ok()
 }
 
 /// A design argument: a `Design` or a path to a design file.
@@ -339,6 +354,8 @@ struct Fit {
     config_toml: String,
     summary: serde_json::Value,
     config: EstimatorConfig,
+    /// The files the fit read (recording folders, the design): `save` never replaces one.
+    inputs: Vec<PathBuf>,
 }
 
 #[pymethods]
@@ -348,11 +365,12 @@ impl Fit {
         self.config_toml.clone()
     }
 
-    /// Writes the config; an existing file is replaced only with `force=True`.
+    /// Writes the config; an existing file is replaced only with `force=True`, and a file the
+    /// fit read (the recording's folder or anything in it, the design) never is, as
+    /// `dlw fit -o` refuses it.
     #[pyo3(signature = (path, force=false))]
     fn save(&self, path: PathBuf, force: bool) -> PyResult<()> {
-        dlw_core::output::claim(&path, std::iter::empty::<&PathBuf>(), force)
-            .map_err(value_error)?;
+        dlw_core::output::claim(&path, &self.inputs, force).map_err(value_error)?;
         dlw_core::output::write_atomic(&path, self.config_toml.as_bytes()).map_err(value_error)
     }
 
@@ -393,6 +411,11 @@ fn fit(
     compare: bool,
     validate: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Fit> {
+    let inputs: Vec<PathBuf> = [Some(recording), Some(design), validate]
+        .into_iter()
+        .flatten()
+        .filter_map(input_path)
+        .collect();
     let recording = recording_arg(recording)?;
     let design = design_arg(design)?;
     let validate = validate.map(recording_arg).transpose()?;
@@ -424,6 +447,7 @@ fn fit(
         config_toml,
         summary,
         config,
+        inputs,
     })
 }
 

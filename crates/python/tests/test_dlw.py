@@ -2,6 +2,7 @@
 each Python result must be the command's result over the same inputs."""
 
 import json
+import shutil
 import os
 import subprocess
 from pathlib import Path
@@ -81,6 +82,17 @@ def test_fit_matches_the_cli_and_the_estimator_matches_estimate(recordings, tmp_
     with pytest.raises(ValueError, match="exists"):
         f.save(tmp_path / "py.toml")
     f.save(tmp_path / "py.toml", force=True)
+    # Issue 30: an input of the fit (the recording's rig.toml, the design) is never replaced,
+    # even with force=True, as the command line refuses it.
+    shutil.copytree(recordings / "char", tmp_path / "char")
+    shutil.copy(design, tmp_path / "joint-d.toml")
+    own = dlw.fit(tmp_path / "char", tmp_path / "joint-d.toml", model="linear")
+    for target in (tmp_path / "char" / "rig.toml", tmp_path / "joint-d.toml", tmp_path / "char"):
+        before = sorted(p.read_bytes() for p in ([target] if target.is_file() else target.iterdir()))
+        with pytest.raises(ValueError, match="refused even with --force"):
+            own.save(target, force=True)
+        after = sorted(p.read_bytes() for p in ([target] if target.is_file() else target.iterdir()))
+        assert before == after
     # The estimator over the recording equals dlw estimate's estimates.csv to 1e-9.
     cli("estimate", "--config", tmp_path / "py.toml", recordings / "rand", "-o", tmp_path / "est.csv", "--precision", "12")
     rows = (tmp_path / "est.csv").read_text().splitlines()

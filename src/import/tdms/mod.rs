@@ -35,7 +35,8 @@ mod segment;
 pub use daq::daq_table;
 use scale::linear_scales;
 use segment::{
-    decode_run, DataType, LeadIn, ObjectList, RawIndex, Run, TOC_META_DATA, TOC_RAW_DATA,
+    decode_run, decode_text_run, type_name, DataType, LeadIn, ObjectList, RawIndex, Run,
+    TOC_META_DATA, TOC_RAW_DATA,
 };
 
 /// 2⁶⁴, the denominator of a timestamp's fraction of a second.
@@ -409,6 +410,57 @@ impl<'a> TdmsFile<'a> {
                 .filter(|v| *v >= 0.0)
                 .map(|v| v as u64),
         }
+    }
+
+    /// The channel's data type, as npTDMS names it (`DoubleFloat`, `Int16`, `String`, …);
+    /// `None` for a channel that never had raw data.
+    pub fn type_name(&self, id: ChannelId) -> Option<&'static str> {
+        let o = &self.objects[id.0];
+        o.runs
+            .first()
+            .map(|r| r.code)
+            .or(o.last_index.map(|r| r.code))
+            .map(type_name)
+    }
+
+    /// How many values the channel has across every segment.
+    pub fn length(&self, id: ChannelId) -> usize {
+        self.objects[id.0]
+            .runs
+            .iter()
+            .map(|r| r.chunks * r.count)
+            .sum()
+    }
+
+    /// Whether the channel holds text.
+    pub fn is_text(&self, id: ChannelId) -> bool {
+        self.objects[id.0]
+            .runs
+            .iter()
+            .any(|r| r.dtype == DataType::Text)
+    }
+
+    /// The channel's strings across every segment (empty for a channel that is not text).
+    pub fn texts(&self, id: ChannelId) -> Vec<String> {
+        let mut out = Vec::new();
+        for run in &self.objects[id.0].runs {
+            if run.dtype == DataType::Text {
+                decode_text_run(self.bytes, run, &mut out);
+            }
+        }
+        out
+    }
+
+    /// The channel's values across every segment as written: no scale applied, not checked
+    /// to be finite (text and opaque types read as NaN).
+    pub fn raw_values(&self, id: ChannelId) -> Vec<f64> {
+        let mut values = Vec::new();
+        for run in &self.objects[id.0].runs {
+            if run.dtype != DataType::Text {
+                decode_run(self.bytes, run, &mut values);
+            }
+        }
+        values
     }
 
     /// The channel's values across every segment, scaled by its linear scales.

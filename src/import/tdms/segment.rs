@@ -96,6 +96,8 @@ impl DataType {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct RawIndex {
     pub(super) dtype: DataType,
+    /// The data type's code as written (0x19 and 0x09 both decode as f32).
+    pub(super) code: u32,
     pub(super) values: u64,
     /// For text: the bytes of the segment's strings and their offsets.
     pub(super) text_bytes: u64,
@@ -122,6 +124,8 @@ pub(super) struct Run {
     pub(super) count: usize,
     pub(super) stride: usize,
     pub(super) dtype: DataType,
+    /// The data type's code as written.
+    pub(super) code: u32,
     pub(super) big_endian: bool,
 }
 
@@ -247,6 +251,7 @@ impl<'a> TdmsFile<'a> {
                 };
                 let raw = RawIndex {
                     dtype,
+                    code,
                     values,
                     text_bytes,
                 };
@@ -323,6 +328,7 @@ impl<'a> TdmsFile<'a> {
                     count: values as usize,
                     stride: row,
                     dtype: raw.dtype,
+                    code: raw.code,
                     big_endian: lead.big_endian,
                 };
                 self.push_run(i, run);
@@ -356,7 +362,20 @@ impl<'a> TdmsFile<'a> {
         let (chunks, rest) = (size / chunk, size % chunk);
         for &(i, raw, at, bytes) in &layout {
             let Some(width) = raw.dtype.size() else {
-                self.push_run(i, text_run(lead, raw));
+                // Text: per chunk, `values` end offsets (u32) then the strings' bytes.
+                self.push_run(
+                    i,
+                    Run {
+                        start: lead.raw_start + at,
+                        chunks,
+                        chunk_bytes: chunk,
+                        count: raw.values as usize,
+                        stride: 0,
+                        dtype: raw.dtype,
+                        code: raw.code,
+                        big_endian: lead.big_endian,
+                    },
+                );
                 continue;
             };
             let run = Run {
@@ -366,6 +385,7 @@ impl<'a> TdmsFile<'a> {
                 count: bytes / width,
                 stride: width,
                 dtype: raw.dtype,
+                code: raw.code,
                 big_endian: lead.big_endian,
             };
             self.push_run(i, run);
@@ -391,16 +411,57 @@ impl<'a> TdmsFile<'a> {
     }
 }
 
-/// A marker run for a text channel: never decoded, so that asking for it says it is text.
-pub(super) fn text_run(lead: &LeadIn, raw: RawIndex) -> Run {
-    Run {
-        start: lead.raw_start,
-        chunks: 1,
-        chunk_bytes: 0,
-        count: 1,
-        stride: 0,
-        dtype: raw.dtype,
-        big_endian: lead.big_endian,
+/// The strings of a text run: per chunk, `count` end offsets (u32, from the strings' start)
+/// then the strings' UTF-8 bytes (invalid bytes replaced). A chunk cut short gives the strings
+/// that are whole in it.
+pub(super) fn decode_text_run(bytes: &[u8], run: &Run, out: &mut Vec<String>) {
+    for k in 0..run.chunks {
+        let base = run.start + k * run.chunk_bytes;
+        let strings = base + 4 * run.count;
+        let mut from = 0usize;
+        for i in 0..run.count {
+            let at = base + 4 * i;
+            let Some(b) = bytes.get(at..at + 4) else {
+                return;
+            };
+            let mut word = [0u8; 4];
+            word.copy_from_slice(b);
+            if run.big_endian {
+                word.reverse();
+            }
+            let to = u32::from_le_bytes(word) as usize;
+            let Some(text) = bytes.get(strings + from..strings + to) else {
+                return;
+            };
+            out.push(String::from_utf8_lossy(text).into_owned());
+            from = to;
+        }
+    }
+}
+
+/// npTDMS's name of a TDMS data type code (`DoubleFloat`, `Int16`, …).
+pub(super) fn type_name(code: u32) -> &'static str {
+    match code {
+        1 => "Int8",
+        2 => "Int16",
+        3 => "Int32",
+        4 => "Int64",
+        5 => "Uint8",
+        6 => "Uint16",
+        7 => "Uint32",
+        8 => "Uint64",
+        9 => "SingleFloat",
+        10 => "DoubleFloat",
+        11 => "ExtendedFloat",
+        0x19 => "SingleFloatWithUnit",
+        0x1A => "DoubleFloatWithUnit",
+        0x1B => "ExtendedFloatWithUnit",
+        0x20 => "String",
+        0x21 => "Boolean",
+        0x44 => "TimeStamp",
+        0x0008_000C => "ComplexSingleFloat",
+        0x0010_000D => "ComplexDoubleFloat",
+        _ => "Unknown",
     }
 }
 
