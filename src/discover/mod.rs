@@ -409,7 +409,8 @@ pub fn discover_with(
     let mut discovered: Vec<Discovery> = discovered.into_iter().map(|(_, d)| d).collect();
     merge_saturating_hysteresis(&mut discovered);
     progress("measuring the gaps");
-    let (gaps, unexplained, channels) = search.measure(&models, &steps, &ambiguous)?;
+    let (gaps, unexplained, channels) =
+        search.measure(&models, &steps, &ambiguous, options.fast)?;
     let (samples, dt_s) = search.samples_and_dt();
     Ok(Outcome {
         discovered,

@@ -347,6 +347,7 @@ impl<'a> Search<'a> {
         models: &BTreeMap<Channel, ChannelModel>,
         steps: &BTreeMap<Channel, Vec<(Effect, f64)>>,
         ambiguous: &[Ambiguity],
+        fast: bool,
     ) -> Result<Measured, DiscoverError> {
         let mut gaps = Vec::new();
         let mut unexplained = Vec::new();
@@ -397,8 +398,9 @@ impl<'a> Search<'a> {
                     noise,
                     lags: self.lags,
                     span: self.span_of(ch),
+                    holdout: self.holdout(),
                 };
-                unexplained.extend(residuals.test(ch));
+                unexplained.extend(residuals.test(ch, fast, unexplained_seed(ch)));
             }
             reports.push(ChannelReport {
                 channel: ch,
@@ -612,4 +614,13 @@ impl ChannelSearch<'_, '_> {
         self.model = updated;
         Some((fitted, rmse))
     }
+}
+
+/// The seed of a channel's `unexplained` copies.
+fn unexplained_seed(ch: Channel) -> u64 {
+    0x0123_4567_89AB_CDEF
+        ^ match ch {
+            Channel::Plant => 0,
+            Channel::Sensor(s) => s.index() as u64 + 1,
+        }
 }
