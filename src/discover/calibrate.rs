@@ -13,7 +13,8 @@
 //!   recording's measured angle, so they never see the plant model either.
 //! - **The noise**: an AR process fitted (Levinson-Durbin, order by AIC up to the correlation
 //!   window) to the residual of the fuller model, the one with the effect, over every moving
-//!   sample. The frozen noise model whitens, as on the recording; but a copy made with that
+//!   sample, less a smooth baseline in time ([`without_slow_baseline`]: wander over a minute
+//!   or more is a drift, not noise). The frozen noise model whitens, as on the recording; but a copy made with that
 //!   same model would whiten to white noise and miss the colour (slow wander during motion)
 //!   that inflates evidence on the recording. The fuller model's residual estimates the noise
 //!   whether or not the effect is real (Hall & Wilson 1991, "Two guidelines for bootstrap
@@ -46,9 +47,11 @@ use rand_distr::{Distribution, StandardNormal};
 use rayon::prelude::*;
 use serde::Serialize;
 
+use super::data::Data;
 use super::model::{correlation_time_white, fit, Channel, ChannelModel};
 use super::search::ChannelSearch;
 use super::terms::{Effect, Term};
+use super::unexplained::{time_splines, MIN_TIME_INTERVALS, TIME_KNOT_S};
 
 /// Copies of the bootstrap: at least 20, as the issue asks.
 pub const COPIES: usize = 20;
@@ -529,7 +532,9 @@ impl ChannelSearch<'_, '_> {
             .then(|| fitted.predict(&world.design(&s.test_data, &s.inputs.1)));
         let full_design = fuller.design(&s.data, &s.inputs.0);
         let full = fit(&full_design, noise, &s.train)?;
-        let copy_noise = CopyNoise::fit(&full.residual(&full_design), &s.data.moving(), s.lags);
+        let moving = s.data.moving();
+        let residual = without_slow_baseline(&full.residual(&full_design), &s.data, &moving);
+        let copy_noise = CopyNoise::fit(&residual, &moving, s.lags);
         let seed = seed ^ channel_seed(self.channel);
         Some(
             (first..first + count)
@@ -594,6 +599,42 @@ impl ChannelSearch<'_, '_> {
             .map(|&e| (e, Term::grid(e, s.span_of(self.channel))))
             .collect()
     }
+}
+
+/// `residual` less its least-squares fit by a smooth baseline in time over the `moving`
+/// samples (the cubic B-splines of the `unexplained` test's time kind, knots every
+/// [`TIME_KNOT_S`]): a baseline that wanders over a minute or more is a drift, structure the
+/// library's `drift` or the `time` kind is there to find, not noise for the copies to carry.
+/// Left in, a random-walk drift the linear or settling form misses filled the copies with
+/// random walks, which named "drift" in them more strongly than on the recording.
+pub fn without_slow_baseline(residual: &[f64], data: &Data, moving: &[bool]) -> Vec<f64> {
+    let rows: Vec<usize> = (0..residual.len()).filter(|&i| moving[i]).collect();
+    let (Some(&first), Some(&last)) = (rows.first(), rows.last()) else {
+        return residual.to_vec();
+    };
+    let (lo, hi) = (data.time_s[first], data.time_s[last]);
+    let intervals = (((hi - lo) / TIME_KNOT_S).round() as usize).max(MIN_TIME_INTERVALS);
+    let basis = time_splines(&data.time_s, lo, hi, intervals);
+    let p = basis.len();
+    let x = DMatrix::from_fn(rows.len(), p, |r, c| basis[c][rows[r]]);
+    let y = DVector::from_iterator(rows.len(), rows.iter().map(|&i| residual[i]));
+    let gram = x.tr_mul(&x);
+    let ridge = DMatrix::identity(p, p) * (1e-9 * gram.trace() / p as f64);
+    let Some(chol) = (gram + ridge).cholesky() else {
+        return residual.to_vec();
+    };
+    let coef = chol.solve(&x.tr_mul(&y));
+    residual
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            r - basis
+                .iter()
+                .zip(coef.iter())
+                .map(|(b, c)| b[i] * c)
+                .sum::<f64>()
+        })
+        .collect()
 }
 
 /// Seeds of the channels' copies, so that no two channels draw alike.

@@ -83,13 +83,27 @@ impl ChannelSearch<'_, '_> {
         if !null.passed {
             return Pick::Declined(top.clone(), null);
         }
+        let flexible = self.flexible_model();
         let credible: Vec<&Candidate> = scored
             .iter()
             .filter(|c| {
                 let e = observed_of(c.effect);
                 e >= SCREEN_NATS && e > null.bound_or_inf()
             })
+            // After a named hysteresis or saturation, a candidate must show its evidence over
+            // that effect's richer form too: what it explains must not be the named form's
+            // misfit.
+            .filter(|c| {
+                flexible.as_ref().map_or(true, |m| {
+                    self.search
+                        .gain(m, &c.term)
+                        .is_some_and(|e| e >= SCREEN_NATS && e > null.bound_or_inf())
+                })
+            })
             .collect();
+        if credible.is_empty() {
+            return Pick::Declined(top.clone(), null);
+        }
         let mut excluded: Vec<Effect> = Vec::new();
         for a in &credible {
             if excluded.contains(&a.effect) {
@@ -205,6 +219,29 @@ impl ChannelSearch<'_, '_> {
             separate: Vec::new(),
             rivals: Vec::new(),
         })
+    }
+
+    /// The channel's model with each named effect that has a richer form ([`Term::flexible`])
+    /// in that form; `None` when none has.
+    fn flexible_model(&self) -> Option<super::model::ChannelModel> {
+        let span = self.search.span_of(self.channel);
+        let base = &self.search.base_models[&self.channel];
+        let named: Vec<&Term> = self
+            .model
+            .terms
+            .iter()
+            .filter(|t| !base.terms.contains(t))
+            .collect();
+        let mut m = self.model.clone();
+        let mut changed = false;
+        for t in named {
+            if let Some(f) = t.flexible(span) {
+                m.terms.retain(|x| x != t);
+                m.terms.push(f);
+                changed = true;
+            }
+        }
+        changed.then_some(m)
     }
 
     /// `a` (its shapes `a_shapes`) against the rival `b`, each simulated as the other's

@@ -70,7 +70,7 @@ pub(super) struct Search<'a> {
     on: &'static str,
     /// The plant, then each sensor.
     pub(super) channels: Vec<Channel>,
-    base_models: BTreeMap<Channel, ChannelModel>,
+    pub(super) base_models: BTreeMap<Channel, ChannelModel>,
     pub(super) noises: BTreeMap<Channel, ArNoise>,
     bases: BTreeMap<Channel, Fitted>,
     /// The sensors' candidate input on `data` and on `test_data`: the strain of the smoothed
