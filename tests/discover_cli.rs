@@ -271,8 +271,9 @@ fn the_tours_discovery_headline() {
 }
 
 /// `--json` and the text summary are two views of one result (`DiscoverResult`, an `Analysis`):
-/// the JSON keeps the keys it always had, and the text's evidence and gaps are the JSON's
-/// numbers.
+/// the JSON keeps the keys it always had (and, since issue 31, `declined`: candidates that
+/// cleared the screen but not their calibration), and the text's evidence and gaps are the
+/// JSON's numbers; each name carries its calibration, which the text states.
 #[test]
 fn json_and_text_are_one_result() {
     let dir = tempfile::tempdir().unwrap();
@@ -292,6 +293,7 @@ fn json_and_text_are_one_result() {
         [
             "ambiguous",
             "candidates",
+            "declined",
             "discovered",
             "gaps",
             "report",
@@ -319,6 +321,16 @@ fn json_and_text_are_one_result() {
         first["evidence"].as_f64().unwrap()
     );
     assert!(text.contains(&line), "{line:?} not in\n{text}");
+    let calibration = &first["calibration"];
+    let stated = format!(
+        "calibrated: evidence {:.1} nats against {} copies",
+        calibration["observed"].as_f64().unwrap(),
+        calibration["null"].as_array().unwrap().len()
+    );
+    assert!(
+        calibration["passed"] == true && text.contains(&stated),
+        "{stated:?} not in\n{text}"
+    );
     for g in json["gaps"].as_array().unwrap() {
         let gap = format!(
             "{:.4} → {:.4} {}",
