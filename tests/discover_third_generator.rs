@@ -266,7 +266,8 @@ fn discover_meets_the_acceptance_figures_on_the_third_generator() {
 
 /// Writes one recording per effect and size (Joint A; Joint C's sensor 2) and a clean one
 /// into `$THIRD_DIR`, to look at: `THIRD_DIR=/tmp/third cargo test --test
-/// discover_third_generator -- --ignored write_samples`.
+/// discover_third_generator -- --ignored write_samples` (`THIRD_SEED`, `THIRD_JOINTS` =
+/// `joint-a.toml,joint-c.toml`, `THIRD_ONLY` = a part of the case names).
 #[test]
 #[ignore = "writes sample recordings for inspection"]
 fn write_samples() {
@@ -285,12 +286,16 @@ fn write_samples() {
                 effects.push(Some((e, s, if design == "joint-c.toml" { 2 } else { 1 })));
             }
         }
+        let only = std::env::var("THIRD_ONLY").ok();
         for effect in effects {
             let case = Case {
                 design,
                 effect,
                 seed,
             };
+            if only.as_ref().is_some_and(|o| !case.name().contains(o.as_str())) {
+                continue;
+            }
             let bench = Bench {
                 effect,
                 duration_s: case.duration_s(),

@@ -4,7 +4,7 @@
 //! by [`super::DiscoverResult`]'s [`crate::analysis::Analysis::add_to_page`].
 
 use crate::analysis::Placement;
-use crate::report::{Chart, Page, Series, Table, PALETTE};
+use crate::report::{Chart, Page, Series, SeriesStyle, Table, PALETTE};
 
 use super::calibrate::{Calibration, Rivalry, COPIES, FALSE_NAME_RATE, MORE_COPIES, SCREEN_NATS};
 use super::model::Channel;
@@ -268,24 +268,23 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
             c.null
                 .iter()
                 .enumerate()
-                .map(|(j, v)| (x - 0.2 + 0.4 * j as f64 / k, squash(*v))),
+                .map(|(j, v)| (x - 0.25 + 0.5 * j as f64 / k, squash(*v))),
         );
         observed.push((x, squash(c.observed)));
         if let Some(b) = c.bound {
-            bounds.push((x, squash(b)));
+            bounds.push(vec![(x - 0.35, squash(b)), (x + 0.35, squash(b))]);
         }
     }
-    chart.push(Series::dots(
-        "copies without the effect",
-        copies,
-        PALETTE[0],
-    ));
-    chart.push(Series::dots("bound at the stated rate", bounds, PALETTE[7]));
-    chart.push(Series::dots(
-        "observed on the recording",
-        observed,
-        PALETTE[3],
-    ));
+    let mut dots = Series::dots("copies simulated without the effect", copies, PALETTE[0]);
+    dots.style = SeriesStyle::Dots(3);
+    chart.push(dots);
+    for (i, b) in bounds.into_iter().enumerate() {
+        let label = if i == 0 { "bound at the stated rate" } else { "" };
+        chart.push(Series::reference(label, b, PALETTE[7]));
+    }
+    let mut seen = Series::dots("observed on the recording", observed, PALETTE[3]);
+    seen.style = SeriesStyle::Dots(6);
+    chart.push(seen);
     page.figure(
         at.figure_name("calibration"),
         chart,

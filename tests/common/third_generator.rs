@@ -28,8 +28,10 @@
 //!   more, is what discovery calls a drift (a baseline that changes over the run), not noise.
 //!
 //! Sizes: every effect has a size [`Size`] (×0.5, ×1, ×2 of the constants below), stated
-//! relative to the sensor's span so one generator serves a sensitive UAN sensor and Joint C's
-//! insensitive BSN ones.
+//! relative to the sensor's span. Joint C's sensors are about forty times less sensitive than
+//! Joint A's under the same voltage noise, so a BSN sensor's effects are [`BSN_SENSOR_SCALE`]
+//! times larger (×2, ×4, ×8 of the constants), as the matrix's Joint C effects are; the plant's
+//! (the tracker's noise is the same on both) are not.
 #![allow(dead_code)]
 
 use std::f64::consts::PI;
@@ -71,6 +73,9 @@ pub const DRIFT_WALK: f64 = 0.04;
 pub const GAIN_WALK: f64 = 0.06;
 /// Cycling gain: amplitude at size ×1, and the range its period is drawn from (s).
 pub const GAIN_CYCLE: (f64, (f64, f64)) = (0.05, (250.0, 700.0));
+
+/// A BSN joint's sensor effects are this many times the constants (module docs).
+pub const BSN_SENSOR_SCALE: f64 = 4.0;
 
 /// Voltage noise (V): white, and the spread of each of the four AR(1) terms.
 pub const NOISE_V: (f64, f64) = (0.0018, 0.0008);
@@ -338,7 +343,12 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
         let (r0, gf) = constants[k];
         let span_ohm = r0 * gf * peak;
         let sign = if sensor == 2 { -1.0 } else { 1.0 };
-        let here = |e: Effect| on(e).filter(|(_, s)| *s == sensor).map(|(size, _)| size);
+        let scale = if bsn { BSN_SENSOR_SCALE } else { 1.0 };
+        let here = |e: Effect| {
+            on(e)
+                .filter(|(_, s)| *s == sensor)
+                .map(|(size, _)| scale * size)
+        };
         let divider = Divider {
             fixed_ohm: dividers[k],
             supply_v: SUPPLY_V,
