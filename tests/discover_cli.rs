@@ -371,7 +371,10 @@ fn rivals_that_cannot_be_told_apart_are_ambiguous_with_what_would_separate_them(
         .iter()
         .map(|c| c[0].as_str().unwrap())
         .collect();
-    assert!(names.contains(&"drift") && names.contains(&"creep"), "{names:?}");
+    assert!(
+        names.contains(&"drift") && names.contains(&"creep"),
+        "{names:?}"
+    );
     let rivalry = a["rivals"]
         .as_array()
         .unwrap()
@@ -381,9 +384,10 @@ fn rivals_that_cannot_be_told_apart_are_ambiguous_with_what_would_separate_them(
     assert_eq!(rivalry["verdict"], "neither");
     let separate = a["separate"].as_array().unwrap();
     assert!(
-        separate
-            .iter()
-            .any(|s| s.as_str().unwrap().contains("holds at zero strain longer than the creep")),
+        separate.iter().any(|s| s
+            .as_str()
+            .unwrap()
+            .contains("holds at zero strain longer than the creep")),
         "{separate:?}"
     );
     assert!(json["discovered"].as_array().unwrap().is_empty(), "{json}");

@@ -279,7 +279,11 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     dots.style = SeriesStyle::Dots(3);
     chart.push(dots);
     for (i, b) in bounds.into_iter().enumerate() {
-        let label = if i == 0 { "bound at the stated rate" } else { "" };
+        let label = if i == 0 {
+            "bound at the stated rate"
+        } else {
+            ""
+        };
         chart.push(Series::reference(label, b, PALETTE[7]));
     }
     let mut seen = Series::dots("observed on the recording", observed, PALETTE[3]);
