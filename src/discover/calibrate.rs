@@ -271,7 +271,7 @@ impl CopyNoise {
                 s / n as f64
             })
             .collect();
-        if !(acov[0] > 0.0) || !acov[0].is_finite() {
+        if !(acov[0].is_finite() && acov[0] > 0.0) {
             return Self {
                 phi: Vec::new(),
                 innovation: 0.0,

@@ -181,7 +181,7 @@ impl Smoother {
             }
             let s = p[(0, 0)] + p[(0, 2)] + p[(2, 0)] + p[(2, 2)] + r;
             let innovation = y - x[0] - x[2];
-            if !(s > 0.0) || !s.is_finite() {
+            if !(s.is_finite() && s > 0.0) {
                 return f64::NEG_INFINITY;
             }
             ll -= 0.5 * (s.ln() + innovation * innovation / s);

@@ -194,8 +194,18 @@ pub struct Residuals<'a> {
 struct Prepared {
     groups: Vec<usize>,
     /// Per smoothing weight: the factor of all training folds, and of each fold left out.
-    factors: Vec<(Cholesky<f64, Dyn>, Vec<Cholesky<f64, Dyn>>)>,
+    factors: Vec<Factors>,
 }
+
+/// At one smoothing weight: the factor of all training folds, and of each fold left out.
+type Factors = (Cholesky<f64, Dyn>, Vec<Cholesky<f64, Dyn>>);
+
+/// A set's columns, and where each penalized block starts among them with its penalty.
+type Columns<'a> = (Vec<&'a Vec<f64>>, Vec<(usize, &'a DMatrix<f64>)>);
+
+/// The statistic (the larger of all kinds together and the best kind alone), each kind's
+/// evidence alone, and every set's fit.
+type Statistic = (f64, Vec<(Kind, f64)>, Vec<SetFit>);
 
 /// A channel's generic test over any target: the groups' whitened columns, the folds.
 struct Generic<'a> {
@@ -429,7 +439,7 @@ impl Generic<'_> {
     }
 
     /// The columns of a set, and where each penalized block starts among them.
-    fn columns_of(&self, set: &[usize]) -> (Vec<&Vec<f64>>, Vec<(usize, &DMatrix<f64>)>) {
+    fn columns_of(&self, set: &[usize]) -> Columns<'_> {
         let mut cols = Vec::new();
         let mut penalties = Vec::new();
         for &g in set {
@@ -576,11 +586,7 @@ impl Generic<'_> {
 
     /// The test's evidence on `target` (the larger of all kinds together and the best kind
     /// alone), each kind's alone, and every set's fit.
-    fn statistic(
-        &self,
-        sets: &[Prepared],
-        target: &Target,
-    ) -> Option<(f64, Vec<(Kind, f64)>, Vec<SetFit>)> {
+    fn statistic(&self, sets: &[Prepared], target: &Target) -> Option<Statistic> {
         let fits: Vec<SetFit> = sets.iter().map(|s| self.fit(s, target)).collect();
         let n = self.r.test.iter().filter(|t| **t).count();
         let from = fits[0].test_ss;
