@@ -8,7 +8,7 @@
 //! discover_other_forms -- --nocapture`.
 
 mod common;
-use common::discovery::{above, discover_json, gaps, named};
+use common::discovery::{above, discover_json, gaps, judge, named, Judgement, Truth};
 use common::other_forms::{self, Bench, Effect};
 use common::shipped_design;
 
@@ -79,6 +79,8 @@ impl Case {
 struct Seen {
     named: Vec<(String, String)>,
     flagged: bool,
+    /// The rules on names, flags and ambiguity ([`judge`]).
+    judged: Judgement,
     /// Per channel, the held-out RMSE before and after.
     gaps: Vec<(String, f64, f64)>,
 }
@@ -91,7 +93,15 @@ fn seen(dir: &Path, case: &Case) -> Seen {
         ..Bench::default()
     };
     let report = discover(dir, case.design, &bench, &case.name());
+    let truth = match (case.effect, case.channel()) {
+        (Some((e, _)), Some(channel)) => Truth::Library {
+            effect: e.name().to_owned(),
+            channel,
+        },
+        _ => Truth::Clean,
+    };
     Seen {
+        judged: judge(&report, &truth),
         named: named(&report),
         flagged: !report["unexplained"].as_array().unwrap().is_empty(),
         gaps: gaps(&report),
@@ -183,12 +193,7 @@ fn discover_meets_the_acceptance_figures_on_other_functional_forms() {
         if s.named.first() == Some(&truth) {
             right += 1;
         }
-        wrong.extend(
-            s.named
-                .iter()
-                .filter(|n| **n != truth)
-                .map(|n| (case.name(), n.clone())),
-        );
+        wrong.extend(s.judged.wrong.iter().map(|w| (case.name(), w.clone())));
         let (before, after) = s.gap(&channel);
         let floor = twin(case).gap(&channel).0;
         let shrink = 1.0 - above(after, floor) / above(before, floor);

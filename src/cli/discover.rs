@@ -1,4 +1,4 @@
-//! `dlw discover --design D REC [--scenario S] [--holdout REC2] -o DIR [--json]`.
+//! `dlw discover --design D REC [--scenario S] [--holdout REC2] -o DIR [--json] [--fast]`.
 
 use std::path::PathBuf;
 
@@ -36,6 +36,10 @@ pub struct Args {
     /// Print the result as JSON.
     #[arg(long)]
     json: bool,
+    /// A quick look: no bootstrap; names by the fixed rule (a threshold in nats, a lead over
+    /// the runner-up, nested evidence) instead of calibrating each on the recording.
+    #[arg(long)]
+    fast: bool,
 }
 
 /// Runs `dlw discover`.
@@ -65,11 +69,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .with_context(|| "resolving the base scenario".to_owned())?;
     let known = scenario::known(&resolved);
     let bar = super::spinner();
-    let outcome = discover::discover(
+    let outcome = discover::discover_with(
         &recording,
         holdout.as_ref(),
         &design.joint,
         &known,
+        discover::Options { fast: args.fast },
         &|m: &str| bar.set_message(m.to_owned()),
     )
     .with_context(|| format!("discovering on {}", args.recording.display()))?;

@@ -8,7 +8,9 @@
 //! gain → the clear winner added, and again, until nothing more is named → the scenario
 //! ([`scenario`]) and the report ([`report`]).
 
+pub mod calibrate;
 pub mod data;
+mod decide;
 pub mod locate;
 pub mod model;
 pub mod noise;
@@ -16,6 +18,7 @@ pub mod report;
 mod result;
 pub mod scenario;
 mod search;
+pub mod smooth;
 mod summary;
 pub mod terms;
 pub mod unexplained;
@@ -31,11 +34,12 @@ use dlw_geometry::Joint;
 use serde::Serialize;
 
 use crate::recording::Recording;
-use data::Data;
+use calibrate::{Calibration, Rivalry};
 use locate::Place;
 use model::{Channel, ChannelModel, Fitted};
 use noise::ArNoise;
-use search::{Pick, Search};
+use rayon::prelude::*;
+use search::{ChannelSearch, Pick, Search};
 use terms::{Effect, Term};
 use unexplained::Unexplained;
 
@@ -46,7 +50,7 @@ pub const THRESHOLD_NATS: f64 = 20.0;
 pub const CLEAR_RATIO: f64 = 1.5;
 /// Lags over which the residual's leftover correlation is summed (s).
 pub const CORRELATION_WINDOW_S: f64 = 2.0;
-/// At most this many effects are named.
+/// At most this many effects are named on one channel.
 pub const MAX_EFFECTS: usize = 4;
 
 /// The evidence for a model over the one it extends: the held-out gain in whitened
@@ -201,9 +205,29 @@ pub struct Discovery {
     /// scenario's form leaves out.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub form: Option<FormFit>,
+    /// The calibration it was named by: the evidence observed against copies simulated without
+    /// it (absent with `--fast`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub calibration: Option<Calibration>,
+    /// The rival names it was told from.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rivals: Vec<Rivalry>,
     /// The shape.
     #[serde(skip)]
     pub term: Term,
+}
+
+/// A candidate that cleared the screen but not its calibration: nothing was named for it.
+#[derive(Debug, Clone, Serialize)]
+pub struct Declined {
+    /// The effect.
+    pub effect: Effect,
+    /// The channel.
+    pub channel: Channel,
+    /// The round.
+    pub round: usize,
+    /// Its calibration.
+    pub calibration: Calibration,
 }
 
 /// The held-out RMSE (channel unit) of a channel's model with a named effect in the library's
@@ -223,6 +247,12 @@ pub struct Ambiguity {
     pub channel: Channel,
     /// The contenders and their evidence.
     pub contenders: Vec<(Effect, f64)>,
+    /// What data would tell each pair apart (the calibrated rule).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub separate: Vec<String>,
+    /// The rival tests neither name could win.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rivals: Vec<Rivalry>,
 }
 
 /// A channel's held-out gap.
@@ -286,6 +316,8 @@ pub struct Outcome {
     pub candidates: Vec<Candidate>,
     /// Channels with an unexplained, ambiguous disagreement.
     pub ambiguous: Vec<Ambiguity>,
+    /// Candidates that cleared the screen but not their calibration.
+    pub declined: Vec<Declined>,
     /// Held-out gaps per channel.
     pub gaps: Vec<Gap>,
     /// Channels with structure left after the named effects that no candidate explains
@@ -297,10 +329,20 @@ pub struct Outcome {
     pub samples: usize,
     /// Decimated sample spacing (s).
     pub dt_s: f64,
+    /// Whether names were calibrated by the bootstrap (not `--fast`).
+    pub calibrated: bool,
 }
 
 /// Effects already in the base scenario, per channel (they are part of the base model).
 pub type Known = Vec<(Channel, Term)>;
+
+/// How discovery names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Options {
+    /// `--fast`: no bootstrap; the fixed rule (a threshold, a lead over the runner-up, nested
+    /// evidence) that named effects before issue 31.
+    pub fast: bool,
+}
 
 /// Runs discovery on `recording` of `joint`, holding out `holdout` when given, with `known`
 /// effects in the base model. `progress` is told each step.
@@ -314,80 +356,157 @@ pub fn discover(
     known: &Known,
     progress: &dyn Fn(&str),
 ) -> Result<Outcome, DiscoverError> {
+    discover_with(
+        recording,
+        holdout,
+        joint,
+        known,
+        Options::default(),
+        progress,
+    )
+}
+
+/// [`discover`] with `options` (`--fast`).
+///
+/// # Errors
+/// See [`DiscoverError`].
+pub fn discover_with(
+    recording: &Recording,
+    holdout: Option<&Recording>,
+    joint: &Joint,
+    known: &Known,
+    options: Options,
+    progress: &dyn Fn(&str),
+) -> Result<Outcome, DiscoverError> {
     progress("reading and decimating");
     let mut search = Search::new(recording, holdout, joint, known)?;
+    progress("smoothing the angle and calibrating the base models");
     search.calibrate()?;
-    let mut discovered: Vec<Discovery> = Vec::new();
+    progress("searching each channel");
+    // Each channel on its own, in parallel: no channel reads another's model.
+    let runs: Vec<ChannelRun> = search
+        .channels
+        .par_iter()
+        .map(|&ch| search.channel(ch).run(options))
+        .collect();
+    let mut discovered: Vec<(usize, Discovery)> = Vec::new();
     let mut candidates = Vec::new();
     let mut ambiguous = Vec::new();
+    let mut declined = Vec::new();
     let mut steps: BTreeMap<Channel, Vec<(Effect, f64)>> = BTreeMap::new();
-    let mut closed: Vec<Channel> = Vec::new();
-    for round in 0..MAX_EFFECTS {
-        progress(&format!("round {}: scoring candidates", round + 1));
-        let mut best: Vec<(Candidate, Option<(Effect, f64)>)> = Vec::new();
-        for ch in search.channels.clone() {
-            if closed.contains(&ch) {
-                continue;
-            }
-            let Some(scored) = search.score(ch, round) else {
-                continue;
-            };
-            candidates.extend(scored.iter().cloned());
-            match search.pick(ch, scored) {
-                Pick::Nothing => {}
-                // The sensors' candidates are built on the plant model's proxy: a plant
-                // effect is added first, and the sensors are scored on the rebuilt proxy next
-                // round, so that the plant's missing effect never reads as a sensor's.
-                Pick::Clear(top, runner) if ch == Channel::Plant => {
-                    best.push((top, runner));
-                    break;
-                }
-                Pick::Clear(top, runner) => best.push((top, runner)),
-                Pick::Ambiguous(a) => {
-                    ambiguous.push(a);
-                    closed.push(ch);
-                }
-            }
-        }
-        let Some((winner, runner_up)) = best
-            .into_iter()
-            .max_by(|a, b| a.0.evidence.total_cmp(&b.0.evidence))
-        else {
-            break;
-        };
-        let winner = search.refine(winner);
-        let form = search.form_fit(&winner);
-        let Some((fitted, rmse)) = search.add(&winner) else {
-            break;
-        };
-        steps
-            .entry(winner.channel)
-            .or_default()
-            .push((winner.effect, rmse));
-        discovered.push(Discovery {
-            effect: winner.effect,
-            channel: winner.channel,
-            evidence: winner.evidence,
-            runner_up,
-            parameters: scenario::parameters(&winner.term, &fitted),
-            form,
-            term: winner.term,
-        });
+    let mut models = BTreeMap::new();
+    for (ch, run) in search.channels.iter().zip(runs) {
+        discovered.extend(run.named);
+        declined.extend(run.declined);
+        candidates.extend(run.candidates);
+        ambiguous.extend(run.ambiguous);
+        steps.insert(*ch, run.steps);
+        models.insert(*ch, run.model);
     }
+    // In the order they were named: by round, then by evidence within a round.
+    discovered.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.evidence.total_cmp(&a.1.evidence)));
+    candidates.sort_by_key(|c| c.round);
+    let mut discovered: Vec<Discovery> = discovered.into_iter().map(|(_, d)| d).collect();
     merge_saturating_hysteresis(&mut discovered);
     progress("measuring the gaps");
-    let (gaps, unexplained, channels) = search.measure(&steps, &ambiguous)?;
+    let (gaps, unexplained, channels) =
+        search.measure(&models, &steps, &ambiguous, options.fast)?;
     let (samples, dt_s) = search.samples_and_dt();
     Ok(Outcome {
         discovered,
         candidates,
         ambiguous,
+        declined,
         gaps,
         unexplained,
         channels,
         samples,
         dt_s,
+        calibrated: !options.fast,
     })
+}
+
+/// What the search of one channel found.
+struct ChannelRun {
+    /// Named effects with the round each was named in.
+    named: Vec<(usize, Discovery)>,
+    /// Every candidate of every round.
+    candidates: Vec<Candidate>,
+    /// The channel, if left ambiguous.
+    ambiguous: Option<Ambiguity>,
+    /// Candidates declined by their calibration.
+    declined: Vec<Declined>,
+    /// The held-out RMSE after each named effect.
+    steps: Vec<(Effect, f64)>,
+    /// The final model.
+    model: ChannelModel,
+}
+
+impl ChannelSearch<'_, '_> {
+    /// The channel's rounds: score, pick, refine and add, until nothing more is named, the
+    /// channel is left ambiguous, or [`MAX_EFFECTS`] are named.
+    fn run(mut self, options: Options) -> ChannelRun {
+        let mut run = ChannelRun {
+            named: Vec::new(),
+            candidates: Vec::new(),
+            ambiguous: None,
+            declined: Vec::new(),
+            steps: Vec::new(),
+            model: self.model.clone(),
+        };
+        for round in 0..MAX_EFFECTS {
+            let Some(scored) = self.score(round) else {
+                break;
+            };
+            run.candidates.extend(scored.iter().cloned());
+            let pick = if options.fast {
+                self.pick_fast(scored)
+            } else {
+                self.pick_calibrated(scored, round)
+            };
+            let (winner, runner_up, calibrated) = match pick {
+                Pick::Nothing => break,
+                Pick::Ambiguous(a) => {
+                    run.ambiguous = Some(a);
+                    break;
+                }
+                Pick::Declined(top, calibration) => {
+                    run.declined.push(Declined {
+                        effect: top.effect,
+                        channel: top.channel,
+                        round,
+                        calibration,
+                    });
+                    break;
+                }
+                Pick::Clear(top, runner, calibrated) => (top, runner, calibrated),
+            };
+            let (calibration, rivals) =
+                calibrated.map_or((None, Vec::new()), |c| (Some(c.calibration), c.rivals));
+            let winner = self.refine(winner);
+            let form = self.form_fit(&winner);
+            let Some((fitted, rmse)) = self.add(&winner) else {
+                break;
+            };
+            run.steps.push((winner.effect, rmse));
+            run.named.push((
+                round,
+                Discovery {
+                    effect: winner.effect,
+                    channel: winner.channel,
+                    evidence: winner.evidence,
+                    runner_up,
+                    parameters: scenario::parameters(&winner.term, &fitted),
+                    form,
+                    calibration,
+                    rivals,
+                    term: winner.term,
+                },
+            ));
+        }
+        run.model = self.model;
+        run
+    }
 }
 
 /// Hysteresis (the generalized PI: a tanh curve centred anywhere, plays, a direction switch)
@@ -426,42 +545,6 @@ fn merge_saturating_hysteresis(discovered: &mut Vec<Discovery>) {
         discovered.remove(h.max(s));
         discovered[at] = merged;
     }
-}
-
-/// Window of the centred moving average that keeps the slow part of the tracker's departure
-/// from the plant model in the proxy (s).
-pub const PROXY_SMOOTHING_S: f64 = 10.0;
-
-/// The strain of the angle the sensor's candidate terms are driven by: the plant model's angle
-/// from the stroke, plus the slow part (a centred moving average over [`PROXY_SMOOTHING_S`]) of
-/// the tracker's departure from it.
-///
-/// The tracker angle is noisy, and its noise is correlated over seconds. A candidate built from
-/// it, a low-passed rate say, is a high-pass of that noise, which also sits in the sensor
-/// residual (through the base term `b·ε(θ_tracker)`): it "explains" the noise on held-out data
-/// too and names effects on clean recordings. The stroke is noise-free; the plant model carries
-/// it to an angle, and the slow part of the tracker keeps whatever the plant model misses.
-pub fn proxy(data: &Data, plant: &ChannelModel, fitted: &Fitted, joint: &Joint) -> Vec<f64> {
-    let predicted = fitted.predict(&plant.design(data, &[]));
-    let departure: Vec<f64> = data
-        .angle_deg
-        .iter()
-        .zip(&predicted)
-        .map(|(a, p)| a - p)
-        .collect();
-    let half = ((PROXY_SMOOTHING_S / data.dt_s) as usize / 2).max(1);
-    let n = data.len();
-    let mut prefix = vec![0.0; n + 1];
-    for i in 0..n {
-        prefix[i + 1] = prefix[i] + departure[i];
-    }
-    (0..n)
-        .map(|i| {
-            let (lo, hi) = (i.saturating_sub(half), (i + half + 1).min(n));
-            let slow = (prefix[hi] - prefix[lo]) / (hi - lo) as f64;
-            joint.strain((predicted[i] + slow).to_radians())
-        })
-        .collect()
 }
 
 fn same_rig(a: &Recording, b: &Recording) -> Result<(), DiscoverError> {

@@ -328,7 +328,11 @@ impl Fitted {
 /// evidence by this factor, measured on the candidate model's own training residual (noise,
 /// if the candidate captured the effect), keeps the evidence in units of independent samples.
 pub fn correlation_time(residual: &[f64], noise: &ArNoise, mask: &[bool], max_lag: usize) -> f64 {
-    let w = noise.whiten(residual);
+    correlation_time_white(&noise.whiten(residual), mask, max_lag)
+}
+
+/// [`correlation_time`] of a residual already whitened.
+pub fn correlation_time_white(w: &[f64], mask: &[bool], max_lag: usize) -> f64 {
     let idx: Vec<usize> = (0..w.len()).filter(|&i| mask[i]).collect();
     if idx.len() < 2 * max_lag + 2 {
         return 1.0;

@@ -4,10 +4,11 @@
 //! by [`super::DiscoverResult`]'s [`crate::analysis::Analysis::add_to_page`].
 
 use crate::analysis::Placement;
-use crate::report::{Chart, Page, Series, Table, PALETTE};
+use crate::report::{Chart, Page, Series, SeriesStyle, Table, PALETTE};
 
+use super::calibrate::{Calibration, Rivalry, COPIES, FALSE_NAME_RATE, MORE_COPIES, SCREEN_NATS};
 use super::model::Channel;
-use super::{Outcome, CLEAR_RATIO, THRESHOLD_NATS};
+use super::{Discovery, Outcome, CLEAR_RATIO, THRESHOLD_NATS};
 
 /// Adds the discovery's sections to `page`, placed by `at`.
 pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
@@ -15,12 +16,22 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         "Each channel is compared on its own: the plant (stroke → tracker angle) and each sensor \
          (tracker angle → resistance). The base model is calibrated on the training blocks, the \
          noise model is an autoregressive process frozen from the rest at the start, and every \
-         candidate effect is scored by its held-out gain in whitened log-likelihood (nats). An \
-         effect is named when its evidence exceeds {THRESHOLD_NATS} and {CLEAR_RATIO} times the \
-         runner-up's on its channel, or, where a rival comes closer, when it still clears \
-         {THRESHOLD_NATS} added after the rival and the rival no longer does added after it; its \
-         shape is then refined and the search repeats on what remains. {} samples at \
-         {:.0} Hz after block averaging.",
+         candidate effect is scored by its held-out gain in whitened log-likelihood (nats). A \
+         sensor's candidates are built from the tracker angle smoothed with the tracker's own \
+         noise model, never from the plant model. {} The named effect's shape is then refined and \
+         the search repeats on what remains. {} samples at {:.0} Hz after block averaging.",
+        if outcome.calibrated {
+            "An effect is named when its evidence beats copies of the recording simulated \
+             without it, and every rival name it is told from (below, under Calibration)."
+                .to_owned()
+        } else {
+            format!(
+                "With --fast, an effect is named when its evidence exceeds {THRESHOLD_NATS} and \
+                 {CLEAR_RATIO} times the runner-up's on its channel, or, where a rival comes \
+                 closer, when it still clears {THRESHOLD_NATS} added after the rival and the \
+                 rival no longer does added after it."
+            )
+        },
         outcome.samples,
         1.0 / outcome.dt_s
     ));
@@ -60,15 +71,21 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     }
     for a in &outcome.ambiguous {
         page.text(format!(
-            "Ambiguous on {}: {} — none beats the others clearly; the disagreement is shown below.",
+            "Ambiguous on {}: {} — none beats the others clearly; the disagreement is shown below.{}",
             a.channel.name(),
             a.contenders
                 .iter()
                 .map(|(e, v)| format!("{} ({v:.1})", e.name()))
                 .collect::<Vec<_>>()
-                .join(", ")
+                .join(", "),
+            a.rivals
+                .iter()
+                .zip(&a.separate)
+                .map(|(r, s)| format!(" {} against {}: {}. To tell them apart: {s}.", r.effect.name(), r.rival.name(), r.sentence()))
+                .collect::<String>()
         ));
     }
+    calibration_section(page, outcome, at);
     if !outcome.unexplained.is_empty() {
         page.heading(at.titled("What the library does not explain"));
         page.text(format!(
@@ -157,6 +174,128 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     for c in &outcome.channels {
         channel_section(page, c, at);
     }
+}
+
+/// Each name's calibration (and each declined candidate's): the evidence observed against the
+/// copies simulated without it, the rival tests, and a figure of both.
+fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
+    let tests: Vec<(String, &Calibration)> = outcome
+        .discovered
+        .iter()
+        .filter_map(|d| {
+            let c = d.calibration.as_ref()?;
+            Some((format!("{} on {}", d.effect.name(), d.channel.name()), c))
+        })
+        .chain(outcome.declined.iter().map(|d| {
+            (
+                format!("{} on {} (not named)", d.effect.name(), d.channel.name()),
+                &d.calibration,
+            )
+        }))
+        .collect();
+    if tests.is_empty() {
+        return;
+    }
+    page.heading(at.titled("Calibration of each name"));
+    page.text(format!(
+        "Each name is calibrated on this recording: the channel's model without the effect, \
+         fitted here, is simulated {COPIES} times (up to {MORE_COPIES} when the first copies leave \
+         it close) on the recording's own input, with noise fitted to the residual of the model \
+         with the effect; every candidate is scored on each copy as on the recording, and the \
+         largest evidence kept. A name needs the {SCREEN_NATS}-nat screen, more evidence than \
+         every copy, and more than the copies' one-sided prediction bound at a {} % false-name \
+         rate. Between rival names, each is simulated as the other's alternative, and one is \
+         named only when the other cannot produce what was seen.",
+        100.0 * FALSE_NAME_RATE
+    ));
+    let mut table = Table::new([
+        "test",
+        "observed (nats)",
+        "copies",
+        "null mean ± sd",
+        "null largest",
+        "bound",
+        "p",
+        "verdict",
+    ]);
+    for (name, c) in &tests {
+        table.row([
+            name.clone(),
+            format!("{:.1}", c.observed),
+            c.null.len().to_string(),
+            match (c.null_mean, c.null_sd) {
+                (Some(m), Some(s)) => format!("{m:.1} ± {s:.1}"),
+                _ => "–".to_owned(),
+            },
+            c.null_max.map_or("–".to_owned(), |v| format!("{v:.1}")),
+            c.bound.map_or("–".to_owned(), |v| format!("{v:.1}")),
+            format!("{:.3}", c.p_value),
+            if c.passed { "named" } else { "not named" }.to_owned(),
+        ]);
+    }
+    page.table(table);
+    let rivals: Vec<(&Discovery, &Rivalry)> = outcome
+        .discovered
+        .iter()
+        .flat_map(|d| d.rivals.iter().map(move |r| (d, r)))
+        .collect();
+    if !rivals.is_empty() {
+        let mut table = Table::new(["named", "rival", "what the two worlds produce"]);
+        for (d, r) in &rivals {
+            table.row([
+                format!("{} on {}", d.effect.name(), d.channel.name()),
+                r.rival.name().to_owned(),
+                r.sentence(),
+            ]);
+        }
+        page.table(table);
+    }
+    // Evidence spans orders of magnitude between a copy and a clear effect: a signed
+    // log scale keeps both in view.
+    let squash = |e: f64| e.signum() * (1.0 + e.abs()).log10();
+    let mut chart = Chart::new(
+        "Observed evidence against the copies simulated without the effect",
+        "test (as in the table above)",
+        "evidence, sign·log10(1 + |nats|)",
+    );
+    let mut copies = Vec::new();
+    let mut observed = Vec::new();
+    let mut bounds = Vec::new();
+    for (i, (_, c)) in tests.iter().enumerate() {
+        let x = (i + 1) as f64;
+        let k = c.null.len().max(1) as f64;
+        copies.extend(
+            c.null
+                .iter()
+                .enumerate()
+                .map(|(j, v)| (x - 0.25 + 0.5 * j as f64 / k, squash(*v))),
+        );
+        observed.push((x, squash(c.observed)));
+        if let Some(b) = c.bound {
+            bounds.push(vec![(x - 0.35, squash(b)), (x + 0.35, squash(b))]);
+        }
+    }
+    let mut dots = Series::dots("copies simulated without the effect", copies, PALETTE[0]);
+    dots.style = SeriesStyle::Dots(3);
+    chart.push(dots);
+    for (i, b) in bounds.into_iter().enumerate() {
+        let label = if i == 0 {
+            "bound at the stated rate"
+        } else {
+            ""
+        };
+        chart.push(Series::reference(label, b, PALETTE[7]));
+    }
+    let mut seen = Series::dots("observed on the recording", observed, PALETTE[3]);
+    seen.style = SeriesStyle::Dots(6);
+    chart.push(seen);
+    page.figure(
+        at.figure_name("calibration"),
+        chart,
+        "Each test's copies (spread across its slot), its bound, and the evidence observed on \
+         the recording: a name is given where the observation stands above every copy and the \
+         bound.",
+    );
 }
 
 fn channel_section(page: &mut Page, c: &super::ChannelReport, at: Placement<'_>) {

@@ -87,6 +87,21 @@ impl Analysis for DiscoverResult {
                     e.name()
                 ))
             );
+            if let Some(c) = &d.calibration {
+                let _ = writeln!(out, "  calibrated: {}", c.sentence());
+            }
+            for r in &d.rivals {
+                let _ = writeln!(out, "  against {}: {}", r.rival.name(), r.sentence());
+            }
+        }
+        for x in &o.declined {
+            let _ = writeln!(
+                out,
+                "not named: {} on {} ({})",
+                x.effect.name(),
+                x.channel.name(),
+                x.calibration.sentence()
+            );
         }
         for a in &o.ambiguous {
             let contenders: Vec<String> = a
@@ -100,6 +115,9 @@ impl Analysis for DiscoverResult {
                 a.channel.name(),
                 contenders.join(", ")
             );
+            for s in &a.separate {
+                let _ = writeln!(out, "  to tell them apart: {s}");
+            }
         }
         for u in &o.unexplained {
             let _ = writeln!(

@@ -24,6 +24,12 @@ pub struct Named {
     /// A saturation's held-out RMSE in the library's form and with a curve of any shape.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub form: Option<super::FormFit>,
+    /// The bootstrap it was named by (absent with `--fast`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub calibration: Option<super::Calibration>,
+    /// The rival names it was told from.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rivals: Vec<super::Rivalry>,
 }
 
 /// A candidate with its score.
@@ -53,6 +59,8 @@ pub struct Summary {
     pub candidates: Vec<Scored>,
     /// Channels where two effects explain the data alike.
     pub ambiguous: Vec<Ambiguity>,
+    /// Candidates that cleared the screen but not their calibration.
+    pub declined: Vec<super::Declined>,
     /// Structure no candidate explains.
     pub unexplained: Vec<super::unexplained::Unexplained>,
     /// The gaps before and after.
@@ -72,6 +80,8 @@ impl Summary {
                     evidence: d.evidence,
                     parameters: d.parameters.clone(),
                     form: d.form,
+                    calibration: d.calibration.clone(),
+                    rivals: d.rivals.clone(),
                 })
                 .collect(),
             candidates: outcome
@@ -87,6 +97,7 @@ impl Summary {
                 })
                 .collect(),
             ambiguous: outcome.ambiguous.clone(),
+            declined: outcome.declined.clone(),
             unexplained: outcome.unexplained.clone(),
             gaps: outcome.gaps.clone(),
         }

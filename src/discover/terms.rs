@@ -81,6 +81,10 @@ pub const CREEP_SLOW_TAUS_S: [f64; 3] = [20.0, 40.0, 80.0];
 /// lag it is (`Term::same_family`).
 pub const CREEP_FAST_TAUS_S: [f64; 2] = [1.0, 3.0];
 
+/// Play radii of a hysteresis's richer form ([`Term::flexible`]), as fractions of the span:
+/// the candidate's three and four more between and beyond them.
+pub const FLEXIBLE_RADII: [f64; 7] = [0.02, 0.05, 0.1, 0.15, 0.22, 0.3, 0.4];
+
 /// Reference strain rate of the log form (1/s), the simulator's default.
 pub const LOG_REFERENCE_RATE: f64 = 1e-3;
 
@@ -237,6 +241,31 @@ impl Term {
                 span * u.signum() * u.abs().powf(STATIC_KNOT_GRADING)
             })
             .collect()
+    }
+
+    /// A richer form of the same effect, against which a later candidate must still show
+    /// evidence, so that it is not named for the named effect's misfit: a hysteresis with more
+    /// plays and a memoryless curve of any shape beside its tanh ([`FLEXIBLE_RADII`],
+    /// [`Term::static_knots`]); a saturation as a memoryless curve of any shape. `None` for the
+    /// others, whose forms the library already varies (time constants, settling).
+    pub fn flexible(&self, span: f64) -> Option<Term> {
+        match self {
+            Term::Hysteresis { center, width, .. } => Some(Term::Hysteresis {
+                radii: FLEXIBLE_RADII.iter().map(|f| f * span).collect(),
+                center: *center,
+                width: *width,
+                memory: true,
+                knots: Term::static_knots(span),
+            }),
+            Term::Saturation { .. } => Some(Term::Hysteresis {
+                radii: Vec::new(),
+                center: 0.0,
+                width: span,
+                memory: false,
+                knots: Term::static_knots(span),
+            }),
+            _ => None,
+        }
     }
 
     /// The term's one continuous shape parameter (a width, a saturation strain, a time

@@ -58,3 +58,110 @@ pub fn gaps(report: &serde_json::Value) -> Vec<(String, f64, f64)> {
 pub fn above(rmse: f64, floor: f64) -> f64 {
     (rmse * rmse - floor * floor).max(0.0).sqrt()
 }
+
+/// What a recording holds, for judging what discovery said about it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Truth {
+    /// Nothing: no name and no flag is right.
+    Clean,
+    /// A library effect on a channel: its name first is right.
+    Library {
+        /// The effect's name.
+        effect: String,
+        /// `plant`, `sensor1`, `sensor2`.
+        channel: String,
+    },
+    /// A sensitivity that changes in a form outside the library: a flag on the channel, or
+    /// `gain_drift` named there, is right.
+    OutsideGain {
+        /// The sensor.
+        channel: String,
+    },
+}
+
+/// What discovery said about one recording, against the truth.
+#[derive(Debug, Clone, Default)]
+pub struct Judgement {
+    /// The right effect named first on the right channel (or, for an out-of-library gain,
+    /// flagged or `gain_drift` there; for a clean recording, nothing).
+    pub right: bool,
+    /// Names or flags that must never be given, with why.
+    pub wrong: Vec<String>,
+    /// Something named or flagged on a clean recording.
+    pub alarm: bool,
+}
+
+/// Judges `report` (`dlw discover --json`) against `truth`: a wrong name is any name other than
+/// the truth's (on a clean recording, an alarm); `ambiguous` is allowed only on the truth's
+/// channel with the true name among the contenders; a plant effect never names or flags a
+/// sensor.
+pub fn judge(report: &serde_json::Value, truth: &Truth) -> Judgement {
+    let names = named(report);
+    let flags: Vec<String> = report["unexplained"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|u| u["channel"].as_str().unwrap().to_owned())
+        .collect();
+    let ambiguous: Vec<(String, Vec<String>)> = report["ambiguous"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| {
+            (
+                a["channel"].as_str().unwrap().to_owned(),
+                a["contenders"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|c| c[0].as_str().unwrap().to_owned())
+                    .collect(),
+            )
+        })
+        .collect();
+    let mut j = Judgement::default();
+    match truth {
+        Truth::Clean => {
+            j.alarm = !names.is_empty() || !flags.is_empty() || !ambiguous.is_empty();
+            j.right = !j.alarm;
+        }
+        Truth::Library { effect, channel } => {
+            let truth = (effect.clone(), channel.clone());
+            j.right = names.first() == Some(&truth);
+            for n in names.iter().filter(|n| **n != truth) {
+                j.wrong.push(format!("named {} on {}", n.0, n.1));
+            }
+            for (ch, contenders) in &ambiguous {
+                if ch != channel || !contenders.contains(effect) {
+                    j.wrong
+                        .push(format!("ambiguous on {ch} among {contenders:?}"));
+                }
+            }
+            if channel == "plant" {
+                for f in flags.iter().filter(|f| *f != "plant") {
+                    j.wrong.push(format!("a plant effect flagged {f}"));
+                }
+            }
+        }
+        Truth::OutsideGain { channel } => {
+            j.right = names.contains(&("gain_drift".to_owned(), channel.clone()))
+                || flags.contains(channel);
+            for n in names
+                .iter()
+                .filter(|n| !(n.0 == "gain_drift" && n.1 == *channel))
+            {
+                j.wrong.push(format!("named {} on {}", n.0, n.1));
+            }
+            for f in flags.iter().filter(|f| *f != channel) {
+                j.wrong.push(format!("flagged {f}"));
+            }
+            for (ch, contenders) in &ambiguous {
+                if ch != channel || !contenders.iter().any(|c| c == "gain_drift") {
+                    j.wrong
+                        .push(format!("ambiguous on {ch} among {contenders:?}"));
+                }
+            }
+        }
+    }
+    j
+}

@@ -60,3 +60,4 @@ pub fn shipped_design(name: &str) -> String {
 pub mod other_forms;
 pub mod rng;
 pub mod second_generator;
+pub mod third_generator;

@@ -1,0 +1,326 @@
+//! The calibrated rule of a round ([`ChannelSearch::pick_calibrated`]): which candidate is
+//! named, from the bootstrap of [`super::calibrate`], instead of the fixed margins (the
+//! threshold's lead of [`super::CLEAR_RATIO`] over the runner-up, and nested evidence against a
+//! 20-nat bar) that `--fast` keeps.
+//!
+//! 1. **Screen**: the best candidate must reach [`SCREEN_NATS`] (the old threshold).
+//! 2. **Null**: the current model is simulated ([`ChannelSearch::bootstrap`]); on each copy every
+//!    candidate is scored, and the largest evidence kept. A candidate is *credible* when its
+//!    evidence beats that null by the rule; the best must be, or nothing is named (the
+//!    calibration is kept for the report).
+//! 3. **Rivals**: each credible candidate `A`, best first, against every other credible `B`
+//!    (at most [`MAX_RIVALS`]): `B`'s world (the model with `B`, fitted) is simulated and
+//!    the evidence of `A` added after `B` measured on each copy. When the recording's exceeds it
+//!    by the rule, `B` cannot produce what was seen. When it does not, `A`'s world is simulated
+//!    for the evidence of `B` after `A`: if `A` cannot produce what was seen, `B` is the better
+//!    name and is tried next; if it can, the two are `ambiguous` ([`Verdict::Neither`]).
+//! 4. `A` is named when every rival is excluded. Two exceptions keep a simpler name: a
+//!    saturation and a hysteresis that cannot be told apart are `saturation` (a hysteresis is
+//!    a saturating curve with memory, and its memory is not shown), and a one-term creep left
+//!    ambiguous is tried again in its best two-term form.
+
+use super::calibrate::{
+    separating_data, Calibration, Rivalry, Verdict, RIVAL_SCREEN_NATS, SCREEN_NATS,
+};
+use super::search::{ChannelSearch, Pick};
+use super::terms::{Effect, Term};
+use super::{prefer_simpler, Ambiguity, Candidate};
+
+/// At most this many rivals are simulated against a candidate (the most evidence first): each
+/// costs a bootstrap.
+pub const MAX_RIVALS: usize = 4;
+
+/// Seeds of the tests of a round, so that every run of the same recording draws the same
+/// copies (and a sensor's draws never depend on the plant).
+fn seed(round: usize, test: u64, a: Effect, b: Effect) -> u64 {
+    ((round as u64) << 40) ^ (test << 32) ^ ((a as u64) << 8) ^ (b as u64)
+}
+
+/// A name the calibrated rule gives: its calibration against the world without it, and the
+/// rivals it was told from.
+#[derive(Debug, Clone)]
+pub(super) struct Calibrated {
+    pub(super) calibration: Calibration,
+    pub(super) rivals: Vec<Rivalry>,
+}
+
+impl ChannelSearch<'_, '_> {
+    /// The round's verdict by the calibrated rule (module docs).
+    pub(super) fn pick_calibrated(&self, mut scored: Vec<Candidate>, round: usize) -> Pick {
+        prefer_simpler(&mut scored);
+        let Some(top) = scored.first() else {
+            return Pick::Nothing;
+        };
+        if top.evidence < SCREEN_NATS {
+            return Pick::Nothing;
+        }
+        let groups = self.candidate_groups();
+        let observed = self.observed_target();
+        let Some(row) = self
+            .evidences(
+                &self.model,
+                &groups.iter().map(|(_, g)| g.clone()).collect::<Vec<_>>(),
+                std::slice::from_ref(&observed),
+            )
+            .and_then(|rows| rows.into_iter().next())
+        else {
+            return Pick::Nothing;
+        };
+        let observed_of = |e: Effect| {
+            groups
+                .iter()
+                .position(|(g, _)| *g == e)
+                .map_or(f64::NAN, |i| row[i])
+        };
+        let null = self.bootstrap(
+            &self.model,
+            &self.model.with(top.term.clone()),
+            &groups.iter().map(|(_, g)| g.clone()).collect::<Vec<_>>(),
+            observed_of(top.effect),
+            SCREEN_NATS,
+            seed(round, 1, top.effect, top.effect),
+        );
+        if !null.passed {
+            return Pick::Declined(top.clone(), null);
+        }
+        let flexible = self.flexible_model();
+        let credible: Vec<&Candidate> = scored
+            .iter()
+            .filter(|c| {
+                let e = observed_of(c.effect);
+                e >= SCREEN_NATS && e > null.bound_or_inf()
+            })
+            // After a named hysteresis or saturation, a candidate must show its evidence over
+            // that effect's richer form too: what it explains must not be the named form's
+            // misfit.
+            .filter(|c| {
+                flexible.as_ref().map_or(true, |m| {
+                    self.search
+                        .gain(m, &c.term)
+                        .is_some_and(|e| e >= SCREEN_NATS && e > null.bound_or_inf())
+                })
+            })
+            .collect();
+        if credible.is_empty() {
+            return Pick::Declined(top.clone(), null);
+        }
+        let mut excluded: Vec<Effect> = Vec::new();
+        for a in &credible {
+            if excluded.contains(&a.effect) {
+                continue;
+            }
+            let rivals: Vec<&Candidate> = credible
+                .iter()
+                .filter(|b| b.effect != a.effect && !excluded.contains(&b.effect))
+                .take(MAX_RIVALS)
+                .copied()
+                .collect();
+            let a_shapes = Term::grid(a.effect, self.search.span_of(self.channel));
+            let tests: Vec<Rivalry> = rivals
+                .iter()
+                .filter_map(|b| self.rival(a, &a_shapes, b, round))
+                .collect();
+            if tests.iter().any(|t| t.verdict == Verdict::Rival) {
+                excluded.push(a.effect);
+                continue;
+            }
+            let calibration =
+                Calibration::of(observed_of(a.effect), null.null.clone(), SCREEN_NATS);
+            let ties: Vec<&Rivalry> = tests
+                .iter()
+                .filter(|t| t.verdict == Verdict::Neither)
+                .collect();
+            // A saturation and a hysteresis that cannot be told apart: the memory is not
+            // shown, and the simpler name stands.
+            let only_bends = !ties.is_empty()
+                && ties.iter().all(|t| {
+                    matches!(
+                        (t.effect, t.rival),
+                        (Effect::Saturation, Effect::Hysteresis)
+                            | (Effect::Hysteresis, Effect::Saturation)
+                    )
+                });
+            if ties.is_empty() || (only_bends && a.effect == Effect::Saturation) {
+                return Pick::Clear(
+                    (*a).clone(),
+                    runner_up(&scored, a),
+                    Some(Calibrated {
+                        calibration,
+                        rivals: tests,
+                    }),
+                );
+            }
+            if only_bends {
+                // The hysteresis leads but its loop is not told from a saturation's curve:
+                // name the saturation if it is credible (it is: it is the tie).
+                if let Some(sat) = credible.iter().find(|c| c.effect == Effect::Saturation) {
+                    return Pick::Clear(
+                        (*sat).clone(),
+                        runner_up(&scored, sat),
+                        Some(Calibrated {
+                            calibration: Calibration::of(
+                                observed_of(Effect::Saturation),
+                                null.null.clone(),
+                                SCREEN_NATS,
+                            ),
+                            rivals: tests,
+                        }),
+                    );
+                }
+            }
+            // A one-term creep: its two-term form may settle what one term cannot.
+            if let Some(two) = self.two_term(a) {
+                let shapes = Term::two_term_creeps();
+                let again: Vec<Rivalry> = ties
+                    .iter()
+                    .filter_map(|t| {
+                        let b = rivals.iter().find(|b| b.effect == t.rival)?;
+                        self.rival(&two, &shapes, b, round)
+                    })
+                    .collect();
+                if again.iter().all(|t| t.verdict == Verdict::Named) {
+                    let mut all: Vec<Rivalry> = tests
+                        .iter()
+                        .filter(|t| t.verdict != Verdict::Neither)
+                        .cloned()
+                        .collect();
+                    all.extend(again);
+                    return Pick::Clear(
+                        two.clone(),
+                        runner_up(&scored, a),
+                        Some(Calibrated {
+                            calibration,
+                            rivals: all,
+                        }),
+                    );
+                }
+            }
+            let tau = match a.term {
+                Term::Creep { tau_s, .. } => Some(tau_s),
+                _ => None,
+            };
+            let mut contenders = vec![(a.effect, a.evidence)];
+            contenders.extend(ties.iter().map(|t| (t.rival, t.rival_evidence)));
+            return Pick::Ambiguous(Ambiguity {
+                channel: self.channel,
+                contenders,
+                separate: ties
+                    .iter()
+                    .map(|t| separating_data(t.effect, t.rival, tau))
+                    .collect(),
+                rivals: ties.into_iter().cloned().collect(),
+            });
+        }
+        // Every credible candidate was excluded by another: the data shows something none of
+        // them alone produces.
+        Pick::Ambiguous(Ambiguity {
+            channel: self.channel,
+            contenders: credible.iter().map(|c| (c.effect, c.evidence)).collect(),
+            separate: Vec::new(),
+            rivals: Vec::new(),
+        })
+    }
+
+    /// The channel's model with each named effect that has a richer form ([`Term::flexible`])
+    /// in that form; `None` when none has.
+    fn flexible_model(&self) -> Option<super::model::ChannelModel> {
+        let span = self.search.span_of(self.channel);
+        let base = &self.search.base_models[&self.channel];
+        let named: Vec<&Term> = self
+            .model
+            .terms
+            .iter()
+            .filter(|t| !base.terms.contains(t))
+            .collect();
+        let mut m = self.model.clone();
+        let mut changed = false;
+        for t in named {
+            if let Some(f) = t.flexible(span) {
+                m.terms.retain(|x| x != t);
+                m.terms.push(f);
+                changed = true;
+            }
+        }
+        changed.then_some(m)
+    }
+
+    /// `a` (its shapes `a_shapes`) against the rival `b`, each simulated as the other's
+    /// alternative; `None` when a model cannot be fitted.
+    fn rival(
+        &self,
+        a: &Candidate,
+        a_shapes: &[Term],
+        b: &Candidate,
+        round: usize,
+    ) -> Option<Rivalry> {
+        let span = self.search.span_of(self.channel);
+        let with_b = self.model.with(b.term.clone());
+        let with_a = self.model.with(a.term.clone());
+        let both = with_b.with(a.term.clone());
+        let observed = self.observed_target();
+        let beyond = |from: &super::model::ChannelModel, shapes: &[Term]| -> Option<f64> {
+            self.evidences(from, &[shapes.to_vec()], std::slice::from_ref(&observed))
+                .and_then(|rows| rows.first().map(|r| r[0]))
+        };
+        let a_after_b = beyond(&with_b, a_shapes)?;
+        let beyond_rival = if a_after_b > RIVAL_SCREEN_NATS {
+            self.bootstrap(
+                &with_b,
+                &both,
+                &[a_shapes.to_vec()],
+                a_after_b,
+                RIVAL_SCREEN_NATS,
+                seed(round, 2, a.effect, b.effect),
+            )
+        } else {
+            Calibration::of(a_after_b, Vec::new(), RIVAL_SCREEN_NATS)
+        };
+        if beyond_rival.passed {
+            return Some(Rivalry {
+                effect: a.effect,
+                rival: b.effect,
+                evidence: a.evidence,
+                rival_evidence: b.evidence,
+                beyond_rival,
+                beyond_effect: None,
+                verdict: Verdict::Named,
+            });
+        }
+        let b_shapes = Term::grid(b.effect, span);
+        let b_after_a = beyond(&with_a, &b_shapes)?;
+        let beyond_effect = if b_after_a > RIVAL_SCREEN_NATS {
+            self.bootstrap(
+                &with_a,
+                &both,
+                &[b_shapes],
+                b_after_a,
+                RIVAL_SCREEN_NATS,
+                seed(round, 3, a.effect, b.effect),
+            )
+        } else {
+            Calibration::of(b_after_a, Vec::new(), RIVAL_SCREEN_NATS)
+        };
+        let verdict = if beyond_effect.passed {
+            Verdict::Rival
+        } else {
+            Verdict::Neither
+        };
+        Some(Rivalry {
+            effect: a.effect,
+            rival: b.effect,
+            evidence: a.evidence,
+            rival_evidence: b.evidence,
+            beyond_rival,
+            beyond_effect: Some(beyond_effect),
+            verdict,
+        })
+    }
+}
+
+/// The best candidate other than `a`, for the report.
+fn runner_up(scored: &[Candidate], a: &Candidate) -> Option<(Effect, f64)> {
+    scored
+        .iter()
+        .find(|c| c.effect != a.effect)
+        .map(|c| (c.effect, c.evidence))
+}

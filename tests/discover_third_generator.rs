@@ -1,0 +1,362 @@
+//! `dlw discover` on the third generator (`tests/common/third_generator.rs`, issue 31): forms
+//! neither the simulator nor the other generators have (a relaxation and a creep with a spread
+//! of time constants, Preisach hysteresis, a saturation that is not odd, a random-walk drift,
+//! a random-walk gain and a gain cycling at a random period), at three sizes, with coloured
+//! noise (white + four AR(1) terms, 0.2-12.8 s), on a UAN joint (A, 300 s) and a BSN joint (C,
+//! 3000 s).
+//!
+//! Asserted in CI (`discover_names_nothing_wrong_on_the_third_generator`): no wrong name;
+//! `ambiguous` only on the right channel with the true name among the contenders; the plant's
+//! relaxation never names or flags a sensor; clean recordings named or flagged in ≤ 1 %. The
+//! issue's detection figures (the right effect first on the right channel in ≥ 95 % of the
+//! cases at or above each effect's detection size, [`DETECTION`]; the gains flagged or named
+//! `gain_drift` in ≥ 80 %) are NOT met on this branch and are asserted by the ignored
+//! `discover_meets_the_detection_figures_on_the_third_generator`. CI runs Joint A's effects at
+//! ×1 and ×2 and two of Joint C's; `DLW_DISCOVER_FULL=1 cargo test --release --test
+//! discover_third_generator -- --nocapture` runs three seeds of every effect at every size on
+//! both joints, with their clean twins and more controls, 100 clean recordings per joint.
+
+mod common;
+use common::discovery::{discover_json, judge, Judgement, Truth};
+use common::shipped_design;
+use common::third_generator::{self, Bench, Effect, Size};
+
+use rayon::prelude::*;
+use std::path::Path;
+
+/// The size (a multiple of the generator's constants) from which the 95 % (80 % for the gains)
+/// is asserted: the generator's ×1 for every effect, as the issue asks. Not a measured
+/// detection limit: the full-size run that would measure one per effect has not been run (at
+/// CI size, one seed, hysteresis ×1, drift ×1 and ×2 and gain-walk ×1 and ×2 are missed;
+/// docs/discovery.md).
+const DETECTION: [(Effect, f64); 7] = [
+    (Effect::Relaxation, 1.0),
+    (Effect::Creep, 1.0),
+    (Effect::Hysteresis, 1.0),
+    (Effect::Saturation, 1.0),
+    (Effect::Drift, 1.0),
+    (Effect::GainWalk, 1.0),
+    (Effect::GainCycle, 1.0),
+];
+
+fn detection(e: Effect) -> f64 {
+    DETECTION.iter().find(|(x, _)| *x == e).map_or(1.0, |d| d.1)
+}
+
+/// One recording.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Case {
+    design: &'static str,
+    effect: Option<(Effect, Size, usize)>,
+    seed: u64,
+}
+
+impl Case {
+    fn duration_s(&self) -> f64 {
+        if self.design == "joint-c.toml" {
+            3000.0
+        } else {
+            300.0
+        }
+    }
+
+    fn name(&self) -> String {
+        format!(
+            "{}-{}-{}",
+            self.design.trim_end_matches(".toml"),
+            self.effect.map_or("clean".to_owned(), |(e, s, k)| format!(
+                "{}-x{}-s{k}",
+                e.tag(),
+                s.0
+            )),
+            self.seed
+        )
+    }
+
+    fn channel(&self) -> Option<String> {
+        self.effect.map(|(e, _, k)| {
+            if e.is_plant() {
+                "plant".to_owned()
+            } else {
+                format!("sensor{k}")
+            }
+        })
+    }
+
+    fn truth(&self) -> Truth {
+        match (self.effect, self.channel()) {
+            (Some((e, ..)), Some(channel)) => match e.name() {
+                Some(name) => Truth::Library {
+                    effect: name.to_owned(),
+                    channel,
+                },
+                None => Truth::OutsideGain { channel },
+            },
+            _ => Truth::Clean,
+        }
+    }
+
+    fn twin(&self) -> Case {
+        Case {
+            effect: None,
+            ..*self
+        }
+    }
+}
+
+fn run(dir: &Path, case: &Case) -> serde_json::Value {
+    let design = shipped_design(case.design);
+    let rec = dir.join(case.name());
+    let bench = Bench {
+        effect: case.effect,
+        duration_s: case.duration_s(),
+        seed: case.seed,
+    };
+    third_generator::write_recording(Path::new(&design), &bench, &rec);
+    let json = discover_json(&design, &rec, &dir.join(format!("{}-out", case.name())));
+    // The recordings are large (Joint C: 1.5 M rows); only the result is kept.
+    let _ = std::fs::remove_dir_all(&rec);
+    json
+}
+
+/// What one run of the cases found.
+struct Summary {
+    wrong: Vec<(String, String)>,
+    alarms: Vec<String>,
+    clean: usize,
+    library: usize,
+    library_right: usize,
+    gains: usize,
+    gains_right: usize,
+}
+
+/// CI: no wrong name, `ambiguous` only with the true name on its channel, a plant effect never
+/// on a sensor, clean recordings within the stated rate (issue 31). These hold today.
+#[test]
+fn discover_names_nothing_wrong_on_the_third_generator() {
+    let s = run_cases();
+    assert!(s.wrong.is_empty(), "wrong names or flags: {:#?}", s.wrong);
+    assert!(
+        s.alarms.len() * 100 <= s.clean,
+        "clean recordings named or flagged: {:?} of {}",
+        s.alarms,
+        s.clean
+    );
+}
+
+/// The issue's detection figures: the right effect on the right channel in ≥ 95 % of the
+/// library cases at or above [`DETECTION`], the gains flagged or named `gain_drift` in ≥ 80 %.
+/// NOT MET on this branch (measured at CI size 2026-11-26: 7/11 and 2/5; docs/discovery.md,
+/// "Issue 31: acceptance, measured"), so it is ignored rather than deleted: run it with
+/// `cargo test --release --test discover_third_generator -- --ignored detection`.
+#[test]
+#[ignore = "not met (issue 31): 7/11 library effects and 2/5 gains at CI size; docs/discovery.md"]
+fn discover_meets_the_detection_figures_on_the_third_generator() {
+    let s = run_cases();
+    assert!(s.wrong.is_empty(), "wrong names or flags: {:#?}", s.wrong);
+    assert!(
+        s.library_right as f64 >= 0.95 * s.library as f64,
+        "{} of {} library effects named right",
+        s.library_right,
+        s.library
+    );
+    assert!(
+        s.gains_right * 5 >= s.gains * 4,
+        "{} of {} gains flagged or named gain_drift",
+        s.gains_right,
+        s.gains
+    );
+}
+
+fn run_cases() -> Summary {
+    let full = std::env::var("DLW_DISCOVER_FULL").is_ok();
+    let mut cases: Vec<Case> = Vec::new();
+    if full {
+        for seed in 0..3u64 {
+            for (i, effect) in Effect::ALL.into_iter().enumerate() {
+                for (j, size) in Size::ALL.into_iter().enumerate() {
+                    let s = 10_000 + 100 * seed + 10 * i as u64 + j as u64;
+                    cases.push(Case {
+                        design: "joint-a.toml",
+                        effect: Some((effect, size, 1)),
+                        seed: s,
+                    });
+                    cases.push(Case {
+                        design: "joint-c.toml",
+                        effect: Some((effect, size, 1 + (i + j + seed as usize) % 2)),
+                        seed: s + 5000,
+                    });
+                }
+            }
+        }
+        let twins: Vec<Case> = cases.iter().map(Case::twin).collect();
+        cases.extend(twins);
+        // 100 clean recordings per joint: the twins and more.
+        for design in ["joint-a.toml", "joint-c.toml"] {
+            let have = cases
+                .iter()
+                .filter(|c| c.design == design && c.effect.is_none())
+                .count();
+            for k in 0..100usize.saturating_sub(have) {
+                cases.push(Case {
+                    design,
+                    effect: None,
+                    seed: 20_000 + k as u64,
+                });
+            }
+        }
+    } else {
+        for (i, effect) in Effect::ALL.into_iter().enumerate() {
+            for size in [Size(1.0), Size(2.0)] {
+                cases.push(Case {
+                    design: "joint-a.toml",
+                    effect: Some((effect, size, 1)),
+                    seed: 10_000 + i as u64,
+                });
+            }
+        }
+        cases.push(Case {
+            design: "joint-c.toml",
+            effect: Some((Effect::Hysteresis, Size(2.0), 2)),
+            seed: 15_002,
+        });
+        cases.push(Case {
+            design: "joint-c.toml",
+            effect: Some((Effect::GainCycle, Size(2.0), 1)),
+            seed: 15_006,
+        });
+        for seed in 0..3 {
+            cases.push(Case {
+                design: "joint-a.toml",
+                effect: None,
+                seed: 20_000 + seed,
+            });
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let results: Vec<(Case, Judgement, String)> = cases
+        .par_iter()
+        .map(|case| {
+            let json = run(dir.path(), case);
+            let j = judge(&json, &case.truth());
+            let said = format!(
+                "named {:?}, ambiguous {}, unexplained {}",
+                common::discovery::named(&json),
+                json["ambiguous"],
+                json["unexplained"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|u| u["channel"].as_str().unwrap())
+                    .collect::<Vec<_>>()
+                    .join(",")
+            );
+            (*case, j, said)
+        })
+        .collect();
+    let mut wrong = Vec::new();
+    let (mut clean, mut alarms) = (0, Vec::new());
+    // Per effect and size: (right, cases).
+    let mut table: Vec<(Effect, f64, usize, usize)> = Vec::new();
+    let (mut library, mut library_right, mut gains, mut gains_right) = (0, 0, 0, 0);
+    for (case, j, said) in &results {
+        eprintln!(
+            "{}: {said}{}",
+            case.name(),
+            if j.right { "" } else { "  (missed)" }
+        );
+        wrong.extend(j.wrong.iter().map(|w| (case.name(), w.clone())));
+        let Some((effect, size, _)) = case.effect else {
+            clean += 1;
+            if j.alarm {
+                alarms.push(case.name());
+            }
+            continue;
+        };
+        match table
+            .iter_mut()
+            .find(|(e, s, ..)| *e == effect && *s == size.0)
+        {
+            Some(row) => {
+                row.2 += usize::from(j.right);
+                row.3 += 1;
+            }
+            None => table.push((effect, size.0, usize::from(j.right), 1)),
+        }
+        if size.0 >= detection(effect) {
+            if effect.name().is_some() {
+                library += 1;
+                library_right += usize::from(j.right);
+            } else {
+                gains += 1;
+                gains_right += usize::from(j.right);
+            }
+        }
+    }
+    for (e, s, right, n) in &table {
+        eprintln!("third generator: {} ×{s}: {right}/{n} right", e.tag());
+    }
+    eprintln!(
+        "third generator: library effects at or above detection {library_right}/{library}, gains {gains_right}/{gains}, wrong {}, clean named or flagged {}/{clean}",
+        wrong.len(),
+        alarms.len()
+    );
+    Summary {
+        wrong,
+        alarms,
+        clean,
+        library,
+        library_right,
+        gains,
+        gains_right,
+    }
+}
+
+/// Writes one recording per effect and size (Joint A; Joint C's sensor 2) and a clean one
+/// into `$THIRD_DIR`, to look at: `THIRD_DIR=/tmp/third cargo test --test
+/// discover_third_generator -- --ignored write_samples` (`THIRD_SEED`, `THIRD_JOINTS` =
+/// `joint-a.toml,joint-c.toml`, `THIRD_ONLY` = a part of the case names).
+#[test]
+#[ignore = "writes sample recordings for inspection"]
+fn write_samples() {
+    let dir = std::env::var("THIRD_DIR").expect("THIRD_DIR is set");
+    let seed: u64 = std::env::var("THIRD_SEED").map_or(1, |s| s.parse().unwrap());
+    let joints: Vec<&str> = std::env::var("THIRD_JOINTS").map_or(vec!["joint-a.toml"], |s| {
+        s.split(',')
+            .map(|j| Box::leak(j.to_owned().into_boxed_str()) as &str)
+            .collect()
+    });
+    let dir = Path::new(&dir);
+    for design in joints {
+        let mut effects: Vec<Option<(Effect, Size, usize)>> = vec![None];
+        for e in Effect::ALL {
+            for s in Size::ALL {
+                effects.push(Some((e, s, if design == "joint-c.toml" { 2 } else { 1 })));
+            }
+        }
+        let only = std::env::var("THIRD_ONLY").ok();
+        for effect in effects {
+            let case = Case {
+                design,
+                effect,
+                seed,
+            };
+            if only
+                .as_ref()
+                .is_some_and(|o| !case.name().contains(o.as_str()))
+            {
+                continue;
+            }
+            let bench = Bench {
+                effect,
+                duration_s: case.duration_s(),
+                seed,
+            };
+            third_generator::write_recording(
+                Path::new(&shipped_design(design)),
+                &bench,
+                &dir.join(case.name()),
+            );
+        }
+    }
+}
