@@ -11,7 +11,9 @@
 //! identically (its own random stream), so the twin's held-out RMSE is exactly the floor that
 //! no model can remove, and the gap is `√(RMSE² − floor²)`.
 //!
-//! CI runs 3 seeds per effect and joint and 10 controls per joint besides the twins. The full
+//! CI runs 1 seed per effect and joint and 4 controls per joint besides the twins (the
+//! calibrated discovery's bootstrap made 3 seeds and 10 controls cost about half of CI's time
+//! budget; `DLW_DISCOVER_SEEDS=3` runs that size). The full
 //! size (10 seeds, 50 controls per joint) runs with `DLW_DISCOVER_FULL=1 cargo test --release
 //! --test discover_matrix -- --nocapture`.
 
@@ -167,7 +169,15 @@ fn run(dir: &Path, case: &Case) -> Outcome {
 #[test]
 fn discovery_matrix() {
     let full = std::env::var("DLW_DISCOVER_FULL").is_ok();
-    let (seeds, controls) = if full { (10u64, 50u64) } else { (3, 10) };
+    let ci_seeds = std::env::var("DLW_DISCOVER_SEEDS")
+        .ok()
+        .and_then(|s| s.parse::<u64>().ok())
+        .unwrap_or(1);
+    let (seeds, controls) = if full {
+        (10u64, 50u64)
+    } else {
+        (ci_seeds, if ci_seeds >= 3 { 10 } else { 4 })
+    };
     let effects = [
         "relaxation",
         "backlash",
