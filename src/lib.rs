@@ -41,6 +41,7 @@
 //! runtime estimator.
 
 pub mod analysis;
+pub mod calibrate;
 pub mod characterize;
 pub mod control;
 pub mod design;

@@ -117,6 +117,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         min_hold_s: args.min_hold_s,
         paper_processing: args.paper_processing,
         decimation: None,
+        models: &dlw::fit::ModelKind::ALL,
     };
     let joint = design.joint;
     let planes = planes(&recording, &joint, &design.file.name)?;

@@ -1,4 +1,4 @@
-//! `dlw reproduce -o DIR [--duration-scale F | --short] [--json]`.
+//! `dlw reproduce -o DIR [--duration-scale F | --short] [--ideal | --bench FILE] [--json]`.
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use anyhow::Context;
 use dlw::analysis::Analysis;
-use dlw::reproduce::{page, reproduce, Settings, SHORT_SCALE, STEPS};
+use dlw::reproduce::{page, reproduce, Bench, BenchFile, Settings, SHORT_SCALE, STEPS};
 
 /// Arguments of `dlw reproduce`.
 #[derive(Debug, clap::Args)]
@@ -28,18 +28,33 @@ pub struct Args {
     /// Print the tables' numbers as JSON.
     #[arg(long)]
     json: bool,
+    /// Run today's clean simulated joints instead of the calibrated twin of the paper's bench
+    /// (designs/scenarios/paper-bench.toml).
+    #[arg(long, conflicts_with = "bench")]
+    ideal: bool,
+    /// A bench file of one scenario per joint (`dlw calibrate` writes one) instead of the
+    /// shipped twin.
+    #[arg(long)]
+    bench: Option<PathBuf>,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.output; 0], args.force)?;
     let start = Instant::now();
-    let settings = Settings {
-        duration_scale: if args.short {
+    let bench = match (&args.bench, args.ideal) {
+        (Some(path), _) => Bench::Twin(BenchFile::load(path)?.into()),
+        (None, true) => Bench::Ideal,
+        (None, false) => Bench::paper()?,
+    };
+    let settings = Settings::new(
+        if args.short {
             SHORT_SCALE
         } else {
             args.duration_scale.unwrap_or(1.0)
         },
-    };
+        bench,
+    );
+    let inputs: Vec<&PathBuf> = args.bench.iter().collect();
+    dlw::output::claim(&args.output, inputs, args.force)?;
     let bar = if std::io::stderr().is_terminal() {
         let bar = indicatif::ProgressBar::new(STEPS);
         bar.set_style(

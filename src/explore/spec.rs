@@ -120,10 +120,23 @@ pub enum Metric {
     TendonForcePerDegN,
     /// Tendon stroke per degree (mm/°).
     StrokePerDegMm,
+    /// The angle RMSE (°) the twin of the paper's bench predicts for the joint with the better
+    /// of its linear and PI models (Table IV's estimation), by a short simulation of each front
+    /// candidate (`explore::predict`).
+    PredictedRmseDeg,
+    /// The closed-loop actual-vs-desired RMSE (°) the twin predicts with Joint D's plant
+    /// (Table VI), by the same short simulation.
+    PredictedClosedLoopRmseDeg,
 }
 
 impl Metric {
-    /// Every metric, in `designs.csv`'s column order.
+    /// Whether the metric comes from a simulation of the front's candidates (not from the
+    /// grid's screen).
+    pub fn is_predicted(self) -> bool {
+        matches!(self, Self::PredictedRmseDeg | Self::PredictedClosedLoopRmseDeg)
+    }
+
+    /// Every metric of the grid's screen, in `designs.csv`'s column order.
     pub const ALL: [Metric; 4] = [
         Metric::SensitivityOhmPerDeg,
         Metric::RangeDeg,
@@ -138,6 +151,8 @@ impl Metric {
             Self::RangeDeg => "range_deg",
             Self::TendonForcePerDegN => "tendon_force_per_deg_n",
             Self::StrokePerDegMm => "stroke_per_deg_mm",
+            Self::PredictedRmseDeg => "predicted_rmse_deg",
+            Self::PredictedClosedLoopRmseDeg => "predicted_closed_loop_rmse_deg",
         }
     }
 
@@ -148,6 +163,8 @@ impl Metric {
             Self::RangeDeg => "usable range (°)",
             Self::TendonForcePerDegN => "tendon force per degree (N/°)",
             Self::StrokePerDegMm => "tendon stroke per degree (mm/°)",
+            Self::PredictedRmseDeg => "predicted angle RMSE (°)",
+            Self::PredictedClosedLoopRmseDeg => "predicted closed-loop RMSE (°)",
         }
     }
 }

@@ -67,7 +67,7 @@ pub use correlated::Ar1;
 /// The divider, ADC and EM tracker models.
 pub use measure::{Adc, Tracker};
 /// Default PI sensor models from the paper's Table III.
-pub use pi_default::{PiCharacteristics, JOINT_A_PI, JOINT_C_PI};
+pub use pi_default::{PiCharacteristics, DEFAULT_HYSTERESIS_SHARE, JOINT_A_PI, JOINT_C_PI};
 /// Stroke → angle with backlash, relaxation and the notch limit.
 pub use plant::Plant;
 /// Stroke profiles of the paper's protocols and from CSV.
