@@ -321,8 +321,7 @@ impl Calibration {
                 (a.relative(v) - a.max_relative).max(0.0) / AGREEMENT_SCALE
             }));
         }
-        let hinge = |worse: Option<f64>, better: Option<f64>, margin: f64| match (worse, better)
-        {
+        let hinge = |worse: Option<f64>, better: Option<f64>, margin: f64| match (worse, better) {
             (Some(w), Some(b)) => ((b / w).ln() + margin).max(0.0) / margin,
             _ => 10.0,
         };
@@ -376,9 +375,7 @@ impl Calibration {
         let mut ranked: Vec<&Evaluation> = self.evaluations.iter().collect();
         ranked.sort_by(|a, b| self.objective(a).total_cmp(&self.objective(b)));
         let starts: Vec<Vec<f64>> = ranked.iter().take(5).map(|e| e.u.clone()).collect();
-        let f = |u: &[f64]| {
-            self.residuals(u, &|k| models[k].as_ref().map(|m| m.predict(u)))
-        };
+        let f = |u: &[f64]| self.residuals(u, &|k| models[k].as_ref().map(|m| m.predict(u)));
         minimize(&f, &starts).0
     }
 
@@ -467,7 +464,12 @@ impl Calibration {
             corrections: metrics()
                 .into_iter()
                 .zip(&self.corrections)
-                .filter(|(m, _)| matches!(m, Metric::Table4 { .. } | Metric::Table5 { .. } | Metric::Table6 { .. }))
+                .filter(|(m, _)| {
+                    matches!(
+                        m,
+                        Metric::Table4 { .. } | Metric::Table5 { .. } | Metric::Table6 { .. }
+                    )
+                })
                 .map(|(m, c)| (m.name(), *c))
                 .collect(),
         });

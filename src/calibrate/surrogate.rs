@@ -180,7 +180,9 @@ pub fn minimize(residuals: &dyn Fn(&[f64]) -> Vec<f64>, starts: &[Vec<f64>]) -> 
     let mut best = (starts[0].clone(), cost(&starts[0]));
     for start in starts {
         let problem = Boxed::new(residuals, start);
-        let (solved, _) = LevenbergMarquardt::new().with_patience(200).minimize(problem);
+        let (solved, _) = LevenbergMarquardt::new()
+            .with_patience(200)
+            .minimize(problem);
         let u = solved.point();
         let c = cost(&u);
         if c < best.1 {

@@ -163,14 +163,15 @@ impl Metric {
                 .map(|x| x.metrics.rmse_deg)
         };
         let v = match self {
-            Self::Table4 { joint, pi } => {
-                rmse(joint, if pi { "PI" } else { "linear" }, TENSION)?
-            }
+            Self::Table4 { joint, pi } => rmse(joint, if pi { "PI" } else { "linear" }, TENSION)?,
             Self::Table5 { sensors } => rmse('C', "linear, two-sensor config", sensors)?,
             Self::Table6 { closed } => {
                 run.control.run.metrics[usize::from(closed)].actual_vs_desired_rmse_deg
             }
-            Self::Table3 { joint: letter, field } => {
+            Self::Table3 {
+                joint: letter,
+                field,
+            } => {
                 let s = &joint(letter)?.loops.sensors.first()?.summary;
                 let c = s.characteristic.as_ref();
                 match field {
@@ -195,12 +196,30 @@ impl Metric {
     /// (compression and both; tension is Table IV's Joint C linear) and Table VI (actual vs
     /// desired, open and closed loop).
     pub const TARGETS: [Self; 10] = [
-        Self::Table4 { joint: 'A', pi: false },
-        Self::Table4 { joint: 'A', pi: true },
-        Self::Table4 { joint: 'B', pi: false },
-        Self::Table4 { joint: 'B', pi: true },
-        Self::Table4 { joint: 'C', pi: false },
-        Self::Table4 { joint: 'C', pi: true },
+        Self::Table4 {
+            joint: 'A',
+            pi: false,
+        },
+        Self::Table4 {
+            joint: 'A',
+            pi: true,
+        },
+        Self::Table4 {
+            joint: 'B',
+            pi: false,
+        },
+        Self::Table4 {
+            joint: 'B',
+            pi: true,
+        },
+        Self::Table4 {
+            joint: 'C',
+            pi: false,
+        },
+        Self::Table4 {
+            joint: 'C',
+            pi: true,
+        },
         Self::Table5 {
             sensors: COMPRESSION,
         },

@@ -82,7 +82,14 @@ pub fn loops(
             .map(|&plane| {
                 let fit_options = &fit_options;
                 s.spawn(move || {
-                    fit_sensor_models(recording, joint, plane, fit_options, options.models, &|_| {})
+                    fit_sensor_models(
+                        recording,
+                        joint,
+                        plane,
+                        fit_options,
+                        options.models,
+                        &|_| {},
+                    )
                 })
             })
             .collect();

@@ -513,7 +513,10 @@ impl Exploration {
                     .collect()
             })
             .collect();
-        Ok(pareto::front(&points).into_iter().map(|k| front[k]).collect())
+        Ok(pareto::front(&points)
+            .into_iter()
+            .map(|k| front[k])
+            .collect())
     }
 
     /// The best `k` of the front: ordered by the first objective (best first), then the next.

@@ -435,7 +435,10 @@ fn predicted_section(
         ));
     }
     let point = |c: &Candidate, f: fn(&super::Predicted) -> f64| {
-        (c.metrics.sensitivity_ohm_per_deg, c.metrics.predicted.as_ref().map_or(f64::NAN, f))
+        (
+            c.metrics.sensitivity_ohm_per_deg,
+            c.metrics.predicted.as_ref().map_or(f64::NAN, f),
+        )
     };
     let mut chart = Chart::new(
         "predicted error vs sensitivity",
@@ -444,12 +447,18 @@ fn predicted_section(
     );
     chart.push(Series::dots(
         "front: predicted, linear",
-        predicted.iter().map(|c| point(c, |p| p.linear_rmse_deg)).collect(),
+        predicted
+            .iter()
+            .map(|c| point(c, |p| p.linear_rmse_deg))
+            .collect(),
         FEASIBLE_GREY,
     ));
     let mut pi = Series::dots(
         "front: predicted, PI",
-        predicted.iter().map(|c| point(c, |p| p.pi_rmse_deg)).collect(),
+        predicted
+            .iter()
+            .map(|c| point(c, |p| p.pi_rmse_deg))
+            .collect(),
         PALETTE[0],
     );
     pi.style = crate::report::SeriesStyle::Dots(4);

@@ -133,7 +133,10 @@ impl Metric {
     /// Whether the metric comes from a simulation of the front's candidates (not from the
     /// grid's screen).
     pub fn is_predicted(self) -> bool {
-        matches!(self, Self::PredictedRmseDeg | Self::PredictedClosedLoopRmseDeg)
+        matches!(
+            self,
+            Self::PredictedRmseDeg | Self::PredictedClosedLoopRmseDeg
+        )
     }
 
     /// Every metric of the grid's screen, in `designs.csv`'s column order.

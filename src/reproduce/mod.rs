@@ -161,7 +161,6 @@ pub const PAPER_REPEATS: u32 = 5;
 /// to the random pattern's ramps).
 pub const CALIBRATION_REPEATS: u32 = 1;
 
-
 /// One of Joints A-C: every analysis.
 #[derive(Debug, Clone)]
 pub struct JointResult {
@@ -320,7 +319,10 @@ pub fn tables(settings: &Settings) -> Result<TablesRun, ReproduceError> {
                 .collect::<Result<Vec<_>, ReproduceError>>()
         },
         || {
-            let d = all.iter().find(|j| j.letter == 'D').expect("Joint D is simulated");
+            let d = all
+                .iter()
+                .find(|j| j.letter == 'D')
+                .expect("Joint D is simulated");
             run_control(d, run, &quiet)
         },
     );
@@ -409,7 +411,10 @@ fn simulate(
     run: Run,
     seed: u64,
 ) -> Result<Recording, ReproduceError> {
-    let sc = repeated(scaled(&joint.scenario, protocol, run.scale, seed), run.repeats);
+    let sc = repeated(
+        scaled(&joint.scenario, protocol, run.scale, seed),
+        run.repeats,
+    );
     let err = |source| ReproduceError::Sim {
         joint: joint.letter,
         protocol: protocol.name(),
@@ -491,7 +496,10 @@ fn seed_of(letter: char) -> u64 {
     10 * u64::from(letter as u8 - b'A')
 }
 
-fn analysis_error(letter: char, analysis: &'static str) -> impl Fn(CharacterizeError) -> ReproduceError {
+fn analysis_error(
+    letter: char,
+    analysis: &'static str,
+) -> impl Fn(CharacterizeError) -> ReproduceError {
     move |source| ReproduceError::Analysis {
         joint: letter,
         analysis,
@@ -507,7 +515,12 @@ fn characterize(
     let letter = joint.letter;
     let j = &joint.design.joint;
     let step = |what: &str| progress(&format!("Joint {letter}: {what}"));
-    let rec = simulate(joint, ProtocolKind::Characterization, run, seed_of(letter) + 1)?;
+    let rec = simulate(
+        joint,
+        ProtocolKind::Characterization,
+        run,
+        seed_of(letter) + 1,
+    )?;
     step("characterization simulated");
     let opts = options(run, 10, rec.samples.len());
     let planes =
@@ -589,8 +602,8 @@ fn run_joint(
 
     let rec = simulate(joint, ProtocolKind::Relaxation, run, seed + 3)?;
     step("relaxation simulated");
-    let relaxation = relaxation(&rec, j, &c.planes, &c.options)
-        .map_err(analysis_error(letter, "relaxation"))?;
+    let relaxation =
+        relaxation(&rec, j, &c.planes, &c.options).map_err(analysis_error(letter, "relaxation"))?;
     drop(rec);
     step("relaxation");
 

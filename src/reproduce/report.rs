@@ -53,13 +53,15 @@ pub fn page(r: &Reproduction) -> Page {
 pub(super) fn add_sections(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
     let scale = r.settings.duration_scale;
     let bench = match &r.settings.bench {
-        super::Bench::Ideal => "Joints A-D of Table I on the ideal bench (--ideal): each with the PI \
+        super::Bench::Ideal => {
+            "Joints A-D of Table I on the ideal bench (--ideal): each with the PI \
              sensor built from its Table III points (src/sim/pi_default.rs), white ADC and tracker \
              noise, baseline drift sized to the paper's R₀ spread, and viscoelastic relaxation of \
              the joint. The simulator's effect sizes (noise, drift, relaxation, backlash) are \
              illustrative, so the comparison is of patterns and orders of magnitude, not of \
              decimals"
-            .to_owned(),
+                .to_owned()
+        }
         super::Bench::Twin(file) => format!(
             "Joints A-D of Table I on the calibrated twin of the paper's bench \
              ({}: one scenario per joint{}): the sensors' hysteresis shares, the tracker's and \

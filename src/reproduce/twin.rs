@@ -116,7 +116,8 @@ impl Bench {
     /// # Errors
     /// [`TwinError`] if the shipped file does not read (a test checks it does).
     pub fn paper() -> Result<Self, TwinError> {
-        BenchFile::parse(PAPER_BENCH_TOML, Path::new(PAPER_BENCH_PATH)).map(|f| Self::Twin(f.into()))
+        BenchFile::parse(PAPER_BENCH_TOML, Path::new(PAPER_BENCH_PATH))
+            .map(|f| Self::Twin(f.into()))
     }
 
     /// The simulated joints: the ideal ones, or each with its scenario from the file.
@@ -147,11 +148,12 @@ impl BenchFile {
     /// # Errors
     /// [`TwinError`] naming the file, the joint and the key.
     pub fn load(path: &Path) -> Result<Self, TwinError> {
-        let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES)
-            .map_err(|source| TwinError::Read {
+        let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
+            |source| TwinError::Read {
                 path: path.to_path_buf(),
                 source,
-            })?;
+            },
+        )?;
         Self::parse(&text, path)
     }
 
@@ -212,10 +214,7 @@ mod tests {
         let Bench::Twin(file) = Bench::paper().unwrap() else {
             panic!("not a twin")
         };
-        assert_eq!(
-            file.joint.keys().collect::<Vec<_>>(),
-            ["A", "B", "C", "D"]
-        );
+        assert_eq!(file.joint.keys().collect::<Vec<_>>(), ["A", "B", "C", "D"]);
         let joints = Bench::Twin(file).joints();
         assert_eq!(joints.len(), 4);
     }
@@ -238,6 +237,9 @@ mod tests {
         assert!(err.contains("joint.E") || err.contains("joint.D"), "{err}");
         let bad = text.replacen("[joint.A]\n", "[joint.A]\nsample_hz = -1.0\n", 1);
         let err = BenchFile::parse(&bad, p).unwrap_err().to_string();
-        assert!(err.contains("[joint.A]") && err.contains("sample_hz"), "{err}");
+        assert!(
+            err.contains("[joint.A]") && err.contains("sample_hz"),
+            "{err}"
+        );
     }
 }

@@ -149,9 +149,7 @@ mod tests {
     #[test]
     fn the_hysteresis_share_sets_the_loops_width() {
         let width = |share: f64| {
-            let c = PiCharacteristics {
-                ..JOINT_A_PI
-            };
+            let c = PiCharacteristics { ..JOINT_A_PI };
             let mut pi = GeneralizedPi::new(&c.to_config_with_hysteresis(share)).unwrap();
             let n = 2000;
             let (mut up, mut down) = (0.0, 0.0);
@@ -171,7 +169,10 @@ mod tests {
         let widths = [0.0, 0.1, 0.2, 0.4].map(width);
         assert!(widths[0].abs() < 1.0, "{widths:?}");
         assert!(widths.windows(2).all(|w| w[1] > w[0] + 100.0), "{widths:?}");
-        assert_eq!(JOINT_A_PI.to_config(), JOINT_A_PI.to_config_with_hysteresis(0.2));
+        assert_eq!(
+            JOINT_A_PI.to_config(),
+            JOINT_A_PI.to_config_with_hysteresis(0.2)
+        );
     }
 
     #[test]

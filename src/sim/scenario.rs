@@ -1125,7 +1125,9 @@ mod tests {
             ("[sensor2.saturation]", false, |s| {
                 s.sensor2.as_ref().is_some_and(|p| p.saturation.enabled)
             }),
-            ("[temperature]\nsigma_k = 1.0", false, |s| s.temperature.enabled),
+            ("[temperature]\nsigma_k = 1.0", false, |s| {
+                s.temperature.enabled
+            }),
         ];
         let bsn = test_design(NotchStyle::Bsn);
         let parse = |text: &str| -> Scenario {
