@@ -92,9 +92,9 @@ pub struct Options {
 impl Default for Options {
     fn default() -> Self {
         Self {
-            design_points: 48,
-            rounds: 4,
-            local_points: 6,
+            design_points: 30,
+            rounds: 3,
+            local_points: 4,
             full_checks: 2,
             seed: 1,
             duration_scale: 1.0,

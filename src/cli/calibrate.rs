@@ -1,4 +1,4 @@
-//! `dlw calibrate -o DIR [--design-points N] [--rounds R] [--local-points K] [--full-checks C]
+//! `dlw calibrate -o DIR (paper-bench.toml, calibration.json, evaluations.json) [--design-points N] [--rounds R] [--local-points K] [--full-checks C]
 //! [--seed S] [--json]`: the paper's bench as a calibrated twin.
 
 use std::path::PathBuf;
@@ -71,6 +71,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &[
             ("paper-bench.toml".to_owned(), toml.into_bytes()),
             ("calibration.json".to_owned(), json.clone().into_bytes()),
+            (
+                "evaluations.json".to_owned(),
+                dlw::finite::to_json(&calibration.evaluations)?.into_bytes(),
+            ),
         ],
     )
     .with_context(|| format!("writing {}", args.output.display()))?;
