@@ -463,8 +463,9 @@ impl Exploration {
             .filter(|(m, _)| !m.is_predicted())
             .collect();
         if signed.is_empty() {
-            // Only predicted objectives: every feasible candidate is a front candidate.
-            return (0..feasible.len()).collect();
+            // The spec refuses predicted objectives alone; without objectives nothing is on the
+            // front.
+            return Vec::new();
         }
         let points: Vec<Vec<f64>> = feasible
             .iter()

@@ -314,6 +314,24 @@ impl SpecFile {
                 "must name at least one metric to maximize or minimize",
             ));
         }
+        if signed.iter().all(|(m, _)| m.is_predicted()) {
+            // The predicted metrics are simulated for the front of the others only; alone they
+            // would simulate every feasible candidate.
+            return Err(value_error(
+                "objectives",
+                signed[0].0.key(),
+                "needs a metric of the grid beside it (the prediction runs on their front only)",
+            ));
+        }
+        for (m, sign) in &signed {
+            if m.is_predicted() && *sign > 0.0 {
+                return Err(value_error(
+                    "objectives.maximize",
+                    m.key(),
+                    "is an error: minimize it",
+                ));
+            }
+        }
         for (i, (m, _)) in signed.iter().enumerate() {
             if signed[..i].iter().any(|(n, _)| n == m) {
                 return Err(value_error(
