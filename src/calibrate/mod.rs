@@ -152,8 +152,11 @@ pub struct Calibration {
     /// Per metric, full-size over short-sized value at the last full check (1 before).
     pub corrections: Vec<f64>,
     /// Told of every evaluation, when set.
-    pub log: Option<std::sync::Arc<dyn Fn(&str) + Send + Sync>>,
+    pub log: Option<Log>,
 }
+
+/// What a calibration tells of each evaluation (`dlw calibrate` counts them on stderr).
+pub type Log = std::sync::Arc<dyn Fn(&str) + Send + Sync>;
 
 fn metrics() -> Vec<Metric> {
     Metric::all()
