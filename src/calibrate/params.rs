@@ -96,9 +96,13 @@ impl Parameter {
         }
     }
 
-    /// The value at `u` in `[0, 1]`.
+    /// The value at `u` in `[0, 1]` (the ideal value exactly at the ideal point, which a log
+    /// scale's round trip would miss by a rounding).
     pub fn value(&self, u: f64) -> f64 {
         let u = u.clamp(0.0, 1.0);
+        if u == self.unit(self.ideal) {
+            return self.ideal;
+        }
         if self.log {
             self.lo * (self.hi / self.lo).powf(u)
         } else {

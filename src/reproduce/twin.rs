@@ -235,7 +235,8 @@ mod tests {
         let missing = text.replace("[joint.D", "[joint.E");
         let err = BenchFile::parse(&missing, p).unwrap_err().to_string();
         assert!(err.contains("joint.E") || err.contains("joint.D"), "{err}");
-        let bad = text.replacen("[joint.A]\n", "[joint.A]\nsample_hz = -1.0\n", 1);
+        // Joint A's table comes first (the joints are sorted).
+        let bad = text.replacen("sample_hz = 500.0", "sample_hz = -1.0", 1);
         let err = BenchFile::parse(&bad, p).unwrap_err().to_string();
         assert!(
             err.contains("[joint.A]") && err.contains("sample_hz"),
