@@ -25,8 +25,6 @@
 //! - [`drawing`]: DXF for designers (written and read back) and SVG for people;
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are
 //!   printed);
-//! - [`explore`]: from requirements to joints: candidates scored with the mechanics and the
-//!   sensing model, the design rules, the Pareto front;
 //! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting);
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
 //! - [`sheet`]: the operator's setup sheet, an emitter like the posts;
@@ -55,12 +53,21 @@
 //!   the gap once it is added;
 //! - [`control`]: open- and closed-loop control of a joint on the simulated bench (Section
 //!   IV-C);
-//! - [`reproduce`]: the paper's Section IV on the simulator, Tables III-VI side by side.
+//! - [`reproduce`]: the paper's Section IV on the simulator (the ideal bench or a calibrated
+//!   twin), Tables III-VI side by side;
+//! - [`calibrate`]: the simulator's bench parameters fitted to the paper's measured tables (a
+//!   twin of the bench).
+//!
+//! # Above both sides
+//! - [`explore`]: from requirements to joints: candidates scored with the mechanics and the
+//!   sensing model, the design rules, the Pareto front, and the twin's predicted accuracy of
+//!   the front's designs.
 //!
 //! The cross-section and strain math lives in the `dlw-geometry` crate, shared with the
 //! runtime estimator (`dlw-estimator`).
 
 pub mod analysis;
+pub mod calibrate;
 pub mod characterize;
 pub mod control;
 pub mod design;

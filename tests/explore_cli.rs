@@ -182,3 +182,64 @@ fn a_bad_spec_value_is_named_and_an_existing_folder_is_kept() {
     assert_eq!(front[0]["file"], "best-1.toml");
     assert!(json["feasible"].as_u64().unwrap() >= front.len() as u64);
 }
+
+/// `predicted_rmse_deg` and `predicted_closed_loop_rmse_deg` as objectives: only the grid's
+/// front is simulated (here the two candidates of a one-axis grid whose sensitivity and force
+/// trade off), every front row carries its prediction in `--json`, the report plots the
+/// predicted error against the sensitivity with the paper's joints at their measured errors,
+/// and says what the prediction cost.
+#[test]
+fn predicted_accuracy_objectives_simulate_the_front() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = format!(
+        r#"base = "{base}"
+gauge_factor = 15.3
+r0_ohm = 215e3
+[vary]
+notch_count = [5, 6]
+[objectives]
+maximize = ["sensitivity_ohm_per_deg"]
+minimize = ["predicted_rmse_deg", "predicted_closed_loop_rmse_deg"]
+"#,
+        base = designs().join("joint-a.toml").display(),
+    );
+    let spec = dir.path().join("spec.toml");
+    std::fs::write(&spec, text).unwrap();
+    let out_dir = dir.path().join("explored");
+    let out = dlw(&[
+        "explore".as_ref(),
+        spec.as_os_str(),
+        "-o".as_ref(),
+        out_dir.as_os_str(),
+        "--json".as_ref(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let front = j["front"].as_array().unwrap();
+    assert!(!front.is_empty());
+    for row in front {
+        let p = &row["predicted"];
+        for key in ["linear_rmse_deg", "pi_rmse_deg", "closed_loop_rmse_deg"] {
+            let v = p[key].as_f64().unwrap_or(f64::NAN);
+            assert!(v.is_finite() && v > 0.0 && v < 30.0, "{key} = {v} in {row}");
+        }
+        assert_eq!(p["borrowed"], "A", "{row}");
+    }
+    let html = std::fs::read_to_string(out_dir.join("report.html")).unwrap();
+    for needle in [
+        "Predicted accuracy",
+        "per front candidate",
+        "predicted-accuracy.svg",
+    ] {
+        assert!(html.contains(needle), "{needle} not in the report");
+    }
+    let svg = std::fs::read_to_string(out_dir.join("predicted-accuracy.svg")).unwrap();
+    assert!(
+        svg.contains("measured (Table IV)"),
+        "the paper's joints not marked"
+    );
+}

@@ -16,7 +16,7 @@ fn rmse(joint: &serde_json::Value, config: &str) -> f64 {
         .unwrap()
 }
 
-/// At half the paper's durations, Joint C's fitted PI model flattens near the ends of its
+/// On the ideal bench (`--ideal`): at half the paper's durations, Joint C's fitted PI model flattens near the ends of its
 /// range, and without the runtime's clamp to the characterized strain range its estimate of
 /// the random run was 25.9° against 6.8° for linear (it read angles far beyond the joint's).
 /// With the clamp, every joint's PI estimate stays within 1.5 times its linear one.
@@ -26,6 +26,7 @@ fn half_size_pi_estimates_stay_near_linear() {
     let out = dir.path().join("half");
     let o = common::dlw_ok(&[
         "reproduce",
+        "--ideal",
         "--duration-scale",
         "0.5",
         "-o",
@@ -120,9 +121,11 @@ fn short_reproduction_writes_all_four_tables_and_the_figures() {
         sensors,
         ["sensor1", "sensor1", "sensor1", "sensor2", "both"]
     );
-    // No PI config runs far from its linear one. At these short durations this holds with or
-    // without the PI inverse's strain clamp; `half_size_pi_estimates_stay_near_linear` below
-    // is the run that needs it.
+    // The default bench is the ideal one (the twin misses targets, docs/experiments.md). No PI
+    // config runs far from its linear one on it; at these short durations this holds with or
+    // without the PI inverse's strain clamp; `half_size_pi_estimates_stay_near_linear` below is
+    // the run that needs it.
+    assert_eq!(j["bench"], "ideal");
     for x in joints {
         assert!(rmse(x, "PI") < 1.5 * rmse(x, "linear"), "{x}");
     }
@@ -205,19 +208,23 @@ fn a_bad_duration_scale_is_refused_and_nothing_written() {
     }
 }
 
-/// `dlw reproduce --json` at `duration_scale`, parsed.
-fn reproduce_json(duration_scale: &str) -> serde_json::Value {
+/// `dlw reproduce --json` at `duration_scale` on `bench` (`twin` or `ideal`), parsed.
+fn reproduce_json(duration_scale: &str, bench: &str) -> serde_json::Value {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("r");
-    let o = common::dlw_ok(&[
-        "reproduce",
-        "--duration-scale",
-        duration_scale,
-        "-o",
-        &common::arg(&out),
-        "--json",
-    ]);
-    serde_json::from_slice(&o.stdout).unwrap()
+    let mut args = vec![
+        "reproduce".to_owned(),
+        "--duration-scale".to_owned(),
+        duration_scale.to_owned(),
+        "-o".to_owned(),
+        common::arg(&out),
+        "--json".to_owned(),
+    ];
+    args.push(format!("--{bench}"));
+    let o = common::dlw_ok(&args);
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["bench"], bench);
+    j
 }
 
 /// The names of the patterns whose verdict is `verdict` (`held`, `NOT held`, `cannot show`).
@@ -258,8 +265,9 @@ fn failures(j: &serde_json::Value) -> String {
 /// 4.22° → 8.72°).
 #[test]
 fn patterns_are_listed_and_agree_with_the_numbers() {
-    let j = reproduce_json("0.1");
+    let j = reproduce_json("0.1", "twin");
     let patterns = j["patterns"].as_array().unwrap();
+    assert_eq!(j["bench"], "twin");
     assert_eq!(patterns.len(), 11, "{patterns:?}");
     for p in patterns {
         for key in ["name", "paper", "dlw"] {
@@ -280,8 +288,8 @@ fn patterns_are_listed_and_agree_with_the_numbers() {
     assert_eq!(vi["held"], closed < open, "{vi} against {open} → {closed}");
 }
 
-/// At `--short` and at half size the patterns are asserted too: every one holds except, at half
-/// size, the two the simulated joints cannot show (`KNOWN_CANNOT_SHOW`), so that a pattern that
+/// On the ideal bench (`--ideal`), at `--short` and at half size the patterns are asserted
+/// too: every one holds except, at half size, the two the ideal joints cannot show (`KNOWN_CANNOT_SHOW`), so that a pattern that
 /// breaks, or one that starts to hold, fails this test. At `--short` those two hold: with a
 /// tenth of the data the PI fits' advantage is gone (Joint C: PI 7.28° against linear 7.19°)
 /// and the sensors' errors are within √3 of each other.
@@ -303,7 +311,7 @@ fn the_patterns_at_short_and_half_size() {
         ("0.1", Vec::<&str>::new(), Vec::<&str>::new()),
         ("0.5", vec![], KNOWN_CANNOT_SHOW.to_vec()),
     ] {
-        let j = reproduce_json(scale);
+        let j = reproduce_json(scale, "ideal");
         assert_eq!(
             with_verdict(&j, "NOT held"),
             failing,
@@ -319,16 +327,16 @@ fn the_patterns_at_short_and_half_size() {
     }
 }
 
-/// At the paper's full durations (about 20 s in the dev profile), every pattern the simulated
+/// At the paper's full durations (about 20 s in the dev profile), every pattern the ideal
 /// joints can show holds: PI beats linear for Joints A and B (Table IV), GF does not follow the
 /// rise time (Fig. 5), every relaxation τ comes back within 10 % (Fig. 6), and closed loop beats
 /// open loop on actual vs desired (Table VI; 4.22° → 8.72° before Joint D's desired pattern was
-/// kept inside the characterized range, `reproduce::CONTROL_RANGE_SHARE`). The two the simulated
+/// kept inside the characterized range, `reproduce::CONTROL_RANGE_SHARE`). The two the ideal
 /// joints cannot show, with the reason computed from the run, are `KNOWN_CANNOT_SHOW`; a change
 /// in either list fails this test.
 #[test]
 fn the_simulated_joints_show_the_papers_patterns_at_full_size() {
-    let j = reproduce_json("1");
+    let j = reproduce_json("1", "ideal");
     assert!(with_verdict(&j, "NOT held").is_empty(), "{}", failures(&j));
     assert_eq!(
         with_verdict(&j, "cannot show"),
@@ -346,6 +354,199 @@ fn the_simulated_joints_show_the_papers_patterns_at_full_size() {
     assert!(closed < 0.5 * open, "open {open}° → closed {closed}°");
     insta::assert_snapshot!("headline_numbers_full_size", headline(&j));
 }
+
+/// The shipped twin of the paper's bench at the paper's full durations (`dlw reproduce
+/// --twin`, about 45 s in release; with `DLW_TWIN_FULL=1`): the issue's acceptance, asserted as
+/// measured, which the twin does NOT meet yet (docs/experiments.md). The patterns it does not
+/// hold are `TWIN_NOT_HELD` and `TWIN_CANNOT_SHOW`; the numbers of Tables IV-VI outside 25 % of
+/// the paper's are `UNMET`; every Table III number is no further from the paper than the ideal
+/// bench's plus 5 points except `TABLE_III_NOT_KEPT`; the explorer's short prediction of Joints
+/// A-C is within 30 % of this full simulation. A changed headline number fails the snapshot, a
+/// change in any list fails the test.
+#[test]
+fn the_twin_at_full_size() {
+    if std::env::var_os("DLW_TWIN_FULL").is_none() {
+        eprintln!("skipped: set DLW_TWIN_FULL=1 (the shipped twin at full size)");
+        return;
+    }
+    let j = reproduce_json("1", "twin");
+    assert_eq!(
+        with_verdict(&j, "NOT held"),
+        TWIN_NOT_HELD,
+        "{}",
+        failures(&j)
+    );
+    assert_eq!(
+        with_verdict(&j, "cannot show"),
+        TWIN_CANNOT_SHOW,
+        "{}",
+        failures(&j)
+    );
+    let open = j["control_open_loop"]["actual_vs_desired_rmse_deg"]
+        .as_f64()
+        .unwrap();
+    let closed = j["control_closed_loop"]["actual_vs_desired_rmse_deg"]
+        .as_f64()
+        .unwrap();
+    // The paper: 8.14° → 2.92°. Closed loop at least halves open loop's error.
+    assert!(closed < 0.5 * open, "open {open}° → closed {closed}°");
+    let mut unmet = Vec::new();
+    for (name, twin, paper) in paper_numbers(&j) {
+        let off = twin / paper - 1.0;
+        eprintln!(
+            "{name}: twin {twin:.2}, paper {paper:.2} ({:+.0} %)",
+            100.0 * off
+        );
+        if off.abs() > 0.25 {
+            unmet.push(name);
+        }
+    }
+    assert_eq!(unmet, UNMET, "Tables IV-VI outside 25 % of the paper's");
+    let mut not_kept = Vec::new();
+    for (joint, ideal) in j["joints"].as_array().unwrap().iter().zip(IDEAL_TABLE_III) {
+        let name = joint["joint"].as_str().unwrap();
+        let c = &joint["characteristic"];
+        let twin = [
+            joint["gauge_factor"].as_f64().unwrap(),
+            joint["r0_ohm"].as_f64().unwrap(),
+            c["center_ohm"].as_f64().unwrap(),
+            c["center_strain"].as_f64().unwrap(),
+            c["center_slope_ohm"].as_f64().unwrap(),
+            c["peak_ohm"].as_f64().unwrap(),
+            c["peak_strain"].as_f64().unwrap(),
+        ];
+        let i = usize::from(name.as_bytes()[0] - b'A');
+        for (k, ((t, id), paper)) in twin.iter().zip(ideal).zip(paper_table_iii(i)).enumerate() {
+            let allowed = (id / paper - 1.0).abs() + 0.05;
+            if (t / paper - 1.0).abs() > allowed {
+                not_kept.push(format!("{name}.{}", TABLE_III_ROWS[k]));
+            }
+        }
+    }
+    assert_eq!(
+        not_kept, TABLE_III_NOT_KEPT,
+        "Table III further from the paper than allowed"
+    );
+    insta::assert_snapshot!("headline_numbers_twin_full_size", headline(&j));
+    // The explorer's predicted accuracy of the paper's joints against this full run.
+    let predictor = dlw::explore::Predictor::paper(15.3).unwrap();
+    let predictor_b = dlw::explore::Predictor::paper(22.0).unwrap();
+    for (joint, file, p) in [
+        ("A", "joint-a.toml", &predictor),
+        ("B", "joint-b.toml", &predictor_b),
+        ("C", "joint-c.toml", &predictor),
+    ] {
+        let design = dlw::design::Design::from_toml(&common::shipped_design(file)).unwrap();
+        let predicted = p.predict(&design).unwrap();
+        let x = j["joints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|x| x["joint"] == joint)
+            .unwrap();
+        for (model, full, pred) in [
+            ("linear", rmse(x, "linear"), predicted.linear_rmse_deg),
+            ("PI", rmse(x, "PI"), predicted.pi_rmse_deg),
+        ] {
+            eprintln!("Joint {joint} {model}: predicted {pred:.2}°, full {full:.2}°");
+            assert!(
+                (pred / full - 1.0).abs() <= 0.30,
+                "Joint {joint} {model}: predicted {pred:.2}°, full simulation {full:.2}°"
+            );
+        }
+    }
+}
+
+/// Tables IV-VI's numbers of the issue: name, the twin's, the paper's.
+fn paper_numbers(j: &serde_json::Value) -> Vec<(String, f64, f64)> {
+    let joints = j["joints"].as_array().unwrap();
+    let two = |role: &str| {
+        joints[2]["estimation"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["role"] == role)
+            .unwrap()["rmse_deg"]
+            .as_f64()
+            .unwrap()
+    };
+    let mut out = Vec::new();
+    for (x, [lin, pi]) in joints
+        .iter()
+        .zip([[2.76, 1.76], [3.51, 2.65], [5.25, 7.57]])
+    {
+        let name = x["joint"].as_str().unwrap();
+        out.push((
+            format!("Table IV Joint {name} linear"),
+            rmse(x, "linear"),
+            lin,
+        ));
+        out.push((format!("Table IV Joint {name} PI"), rmse(x, "PI"), pi));
+    }
+    out.push(("Table V compression".into(), two("compression"), 3.84));
+    out.push(("Table V both".into(), two("both"), 3.13));
+    let ad = |k: &str| j[k]["actual_vs_desired_rmse_deg"].as_f64().unwrap();
+    out.push(("Table VI open loop".into(), ad("control_open_loop"), 8.14));
+    out.push((
+        "Table VI closed loop".into(),
+        ad("control_closed_loop"),
+        2.92,
+    ));
+    out
+}
+
+/// Table III's numbers the paper prints for Joint `i` (0 = A), Joint C's `R_peak` read as
+/// 75.4 kΩ: GF, R₀, R_c, ε_c, m_c, R_peak, ε_peak.
+fn paper_table_iii(i: usize) -> [f64; 7] {
+    [
+        [15.3, 215e3, 224e3, 0.00307, 5136e3, 250e3, 0.0135],
+        [22.0, 77.2e3, 87.9e3, 0.00531, 3090e3, 99.2e3, 0.0157],
+        [1.28, 74.0e3, 74.7e3, 0.00804, 181e3, 75.4e3, 0.0137],
+    ][i]
+}
+
+/// The ideal bench's Table III at full size (`dlw reproduce --ideal`, measured before the twin
+/// existed, docs/experiments.md): the "current agreement" the twin must keep.
+const IDEAL_TABLE_III: [[f64; 7]; 3] = [
+    [
+        13.868, 214502.0, 217317.0, 0.0014167, 4680742.0, 246869.0, 0.0145858,
+    ],
+    [
+        21.506, 78508.0, 81449.0, 0.0024514, 1515709.0, 97892.0, 0.0145594,
+    ],
+    [
+        1.1998, 73981.0, 74107.0, 0.0015411, 158271.0, 75360.0, 0.0145668,
+    ],
+];
+
+/// Numbers of Tables IV-VI the shipped twin does not bring within 25 % of the paper's
+/// (docs/experiments.md says why).
+const UNMET: [&str; 5] = [
+    "Table IV Joint C linear",
+    "Table IV Joint C PI",
+    "Table V compression",
+    "Table V both",
+    "Table VI closed loop",
+];
+
+/// The patterns the shipped twin does not hold though it could: the relaxation τ of Joints A-C
+/// (the twin's correlated tracker error, 0.79° with a 10 s time constant, spoils the holds'
+/// exponential fits).
+const TWIN_NOT_HELD: [&str; 3] = [
+    "relaxation τ within 10 % of the simulated one (Joint A, Fig. 6)",
+    "relaxation τ within 10 % of the simulated one (Joint B, Fig. 6)",
+    "relaxation τ within 10 % of the simulated one (Joint C, Fig. 6)",
+];
+
+/// The patterns the shipped twin cannot show: Table V (its sensors' errors differ 3.3 times).
+const TWIN_CANNOT_SHOW: [&str; 1] = ["both sensors beat each sensor alone (Joint C, Table V)"];
+
+/// Table III's rows, as the twin test names them.
+const TABLE_III_ROWS: [&str; 7] = ["GF", "R0", "R_c", "eps_c", "m_c", "R_peak", "eps_peak"];
+
+/// Table III numbers of the shipped twin further from the paper than the ideal bench's plus 5
+/// points.
+const TABLE_III_NOT_KEPT: [&str; 4] = ["A.m_c", "C.GF", "C.eps_c", "C.m_c"];
 
 /// The headline numbers of a reproduction, one per line, rounded to what a reader compares:
 /// every RMSE of Tables IV-V (per joint, model and sensors), the fitted GFs and R₀, Table VI's

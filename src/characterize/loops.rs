@@ -7,7 +7,7 @@ use dlw_geometry::Joint;
 use serde::Serialize;
 
 use super::{figure_name, sensor_label, titled, CharacterizeError, Options};
-use crate::fit::{fit_sensor, Characteristic, FitError, FitOptions, ModelKind, SensorFit};
+use crate::fit::{fit_sensor_models, Characteristic, FitError, FitOptions, ModelKind, SensorFit};
 use crate::recording::Recording;
 use crate::report::{Chart, Page, Series, Table, PALETTE};
 
@@ -81,7 +81,16 @@ pub fn loops(
             .iter()
             .map(|&plane| {
                 let fit_options = &fit_options;
-                s.spawn(move || fit_sensor(recording, joint, plane, fit_options, &|_| {}))
+                s.spawn(move || {
+                    fit_sensor_models(
+                        recording,
+                        joint,
+                        plane,
+                        fit_options,
+                        options.models,
+                        &|_| {},
+                    )
+                })
             })
             .collect();
         handles

@@ -231,6 +231,8 @@ pub struct Options {
     /// `loops`: keep every `k`-th sample for the fits (`None`: `dlw fit`'s choice, at most
     /// `crate::fit::MAX_FIT_SAMPLES`).
     pub decimation: Option<usize>,
+    /// `loops`: the models fitted (the linear model always is); every model by default.
+    pub models: &'static [crate::fit::ModelKind],
 }
 
 impl Default for Options {
@@ -241,6 +243,7 @@ impl Default for Options {
             min_hold_s: DEFAULT_MIN_HOLD_S,
             paper_processing: false,
             decimation: None,
+            models: &crate::fit::ModelKind::ALL,
         }
     }
 }

@@ -76,6 +76,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             min_hold_s: args.min_hold_s,
             paper_processing: args.paper_processing,
             decimation: None,
+            models: &dlw::fit::ModelKind::ALL,
         },
     };
     let mut result = characterize(&request)?;

@@ -29,15 +29,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Claimed twice: against the spec before reading anything, then against every file the
     // spec names (its base design, tube catalogue, process sets) once they are known.
     dlw::output::claim_folder(&args.output, [&args.spec], args.force)?;
-    let x = Exploration::load(&args.spec, &args.output.join("best-1.toml"))?;
+    let mut x = Exploration::load(&args.spec, &args.output.join("best-1.toml"))?;
     dlw::output::claim_folder(&args.output, &x.inputs, args.force)?;
     let bar = progress(x.candidate_count(), "scoring");
     let screen = x.screen(&|n| bar.inc(n));
     bar.finish_and_clear();
     let bar = progress(screen.survivors.len() as u64, "design rules");
-    let feasible = x.check_rules(&screen, &|n| bar.inc(n))?;
+    let mut feasible = x.check_rules(&screen, &|n| bar.inc(n))?;
     bar.finish_and_clear();
-    let front = x.front(&feasible);
+    let mut front = x.front(&feasible);
+    if x.predicts() {
+        let bar = progress(front.len() as u64, "predicting");
+        bar.set_position(0);
+        front = x.predict_front(&mut feasible, &front)?;
+        bar.finish_and_clear();
+    }
     let (out, summary) =
         files(&x, &screen, &feasible, &front, args.top).context("drawing the report")?;
     dlw::output::write_folder_atomic(&args.output, &out)?;

@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 mod build;
+mod calibrate;
 mod characterize;
 mod control;
 mod daq_info;
@@ -70,6 +71,8 @@ enum Command {
     Characterize(characterize::Args),
     /// Run the paper's Section IV on the simulator: Tables III-VI beside the paper's.
     Reproduce(reproduce::Args),
+    /// Calibrate the simulated bench to the paper's Tables IV-VI: the twin `reproduce` runs.
+    Calibrate(calibrate::Args),
 }
 
 /// Runs the parsed command.
@@ -93,6 +96,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Control(args) => control::run(args),
         Command::Characterize(args) => characterize::run(args),
         Command::Reproduce(args) => reproduce::run(args),
+        Command::Calibrate(args) => calibrate::run(args),
     }
 }
 

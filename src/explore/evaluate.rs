@@ -68,6 +68,8 @@ pub struct DesignMetrics {
     pub material_limit_deg: f64,
     /// Angle at which the sensor saturates (°).
     pub saturation_limit_deg: f64,
+    /// The twin's predicted accuracy: only for the front's candidates, when the spec asks.
+    pub predicted: Option<super::Predicted>,
 }
 
 impl DesignMetrics {
@@ -78,6 +80,13 @@ impl DesignMetrics {
             Metric::RangeDeg => self.range_deg,
             Metric::TendonForcePerDegN => self.tendon_force_per_deg_n,
             Metric::StrokePerDegMm => self.stroke_per_deg_mm,
+            // Not predicted (or the prediction failed): the worst, so it never wins.
+            Metric::PredictedRmseDeg => self
+                .predicted
+                .map_or(f64::INFINITY, |p| p.linear_rmse_deg.min(p.pi_rmse_deg)),
+            Metric::PredictedClosedLoopRmseDeg => self
+                .predicted
+                .map_or(f64::INFINITY, |p| p.closed_loop_rmse_deg),
         }
     }
 }
@@ -258,6 +267,7 @@ pub fn evaluate(p: &Params, model: &Model) -> Option<(DesignMetrics, u8)> {
         closing_deg,
         material_limit_deg,
         saturation_limit_deg,
+        predicted: None,
     };
     Some((metrics, failures(&metrics, model)))
 }

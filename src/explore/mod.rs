@@ -19,6 +19,7 @@ mod catalogue;
 mod evaluate;
 mod grid;
 mod pareto;
+mod predict;
 mod report;
 mod spec;
 
@@ -38,6 +39,8 @@ pub use evaluate::{evaluate, Constraint, DesignMetrics, Model};
 pub use grid::{Grid, Params};
 /// The Pareto front.
 pub use pareto::{dominates, front, front_with_ties, tied, TIE_RELATIVE};
+/// The twin's predicted accuracy of a front candidate.
+pub use predict::{Predicted, Predictor};
 /// The output folder's files and the `--json` summary.
 pub use report::{files, ExploreSummary, Files, Row};
 /// The spec file.
@@ -85,6 +88,9 @@ pub enum ExploreError {
     /// Nothing meets every constraint and design rule.
     #[error("no candidate is feasible: {0}")]
     Infeasible(String),
+    /// The twin that predicts accuracy could not be read.
+    #[error("the twin of the paper's bench: {0}")]
+    Twin(#[from] crate::reproduce::TwinError),
 }
 
 /// A scored candidate.
@@ -196,6 +202,9 @@ pub struct Exploration {
     /// process sets found beside a written design. No output may replace one
     /// (`docs/outputs.md`).
     pub inputs: Vec<PathBuf>,
+    /// What predicting the front's accuracy cost, once [`Exploration::predict_front`] ran:
+    /// candidates simulated and wall-clock seconds.
+    pub prediction_cost: Option<(usize, f64)>,
 }
 
 impl Exploration {
@@ -250,6 +259,7 @@ impl Exploration {
             model,
             sets,
             inputs,
+            prediction_cost: None,
         })
     }
 
@@ -458,14 +468,72 @@ impl Exploration {
         }
     }
 
-    /// Indices into `feasible` of the Pareto front of the spec's objectives.
+    /// Indices into `feasible` of the Pareto front of the spec's objectives that the grid's
+    /// screen scores (the predicted ones come after, [`Exploration::predict_front`]).
     pub fn front(&self, feasible: &[Candidate]) -> Vec<usize> {
-        let signed = self.spec.objectives.signed();
+        let signed: Vec<(Metric, f64)> = self
+            .spec
+            .objectives
+            .signed()
+            .into_iter()
+            .filter(|(m, _)| !m.is_predicted())
+            .collect();
+        if signed.is_empty() {
+            // The spec refuses predicted objectives alone; without objectives nothing is on the
+            // front.
+            return Vec::new();
+        }
         let points: Vec<Vec<f64>> = feasible
             .iter()
             .map(|c| signed.iter().map(|&(m, s)| s * c.metrics.get(m)).collect())
             .collect();
         front_with_ties(&points, TIE_RELATIVE)
+    }
+
+    /// Whether the spec asks for a predicted accuracy.
+    pub fn predicts(&self) -> bool {
+        self.spec
+            .objectives
+            .signed()
+            .iter()
+            .any(|(m, _)| m.is_predicted())
+    }
+
+    /// Predicts the accuracy of every candidate of `front` with the shipped twin (a short
+    /// simulation each, in parallel) and returns the Pareto front of those candidates on
+    /// every objective, the predicted ones included. Candidates off `front` are not simulated.
+    ///
+    /// # Errors
+    /// [`ExploreError::Twin`] if the shipped twin does not read.
+    pub fn predict_front(
+        &mut self,
+        feasible: &mut [Candidate],
+        front: &[usize],
+    ) -> Result<Vec<usize>, ExploreError> {
+        let clock = std::time::Instant::now();
+        let predictor = Predictor::paper(self.model.gauge_factor)?;
+        let files: Vec<DesignFile> = front
+            .iter()
+            .map(|&i| feasible[i].params.apply(&self.base, self.base.name.clone()))
+            .collect();
+        for (&i, p) in front.iter().zip(predictor.predict_all(&files)) {
+            feasible[i].metrics.predicted = p;
+        }
+        self.prediction_cost = Some((front.len(), clock.elapsed().as_secs_f64()));
+        let signed = self.spec.objectives.signed();
+        let points: Vec<Vec<f64>> = front
+            .iter()
+            .map(|&i| {
+                signed
+                    .iter()
+                    .map(|&(m, s)| s * feasible[i].metrics.get(m))
+                    .collect()
+            })
+            .collect();
+        Ok(pareto::front(&points)
+            .into_iter()
+            .map(|k| front[k])
+            .collect())
     }
 
     /// The best `k` of the front: ordered by the first objective (best first), then the next.

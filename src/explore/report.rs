@@ -71,6 +71,9 @@ pub struct Row {
     /// The design file written for it, if it is among the best `K`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
+    /// The twin's predicted accuracy, when the spec asks for it (front candidates only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub predicted: Option<super::Predicted>,
 }
 
 impl Row {
@@ -98,6 +101,7 @@ impl Row {
             material_limit_deg: m.material_limit_deg,
             saturation_limit_deg: m.saturation_limit_deg,
             file,
+            predicted: m.predicted,
         }
     }
 }
@@ -336,6 +340,9 @@ fn page(
             ),
         );
     }
+    if x.predicts() {
+        predicted_section(&mut page, x, feasible, front, &paper);
+    }
     page.heading("The front");
     let mut t = Table::new([
         "file",
@@ -384,6 +391,127 @@ fn page(
     }
     page.table(t);
     Ok(page)
+}
+
+/// Table IV's measured RMSE of the paper's joints (the better of linear and PI), for the
+/// predicted-accuracy plot: Joint A 1.76° (PI), B 2.65° (PI), C 5.25° (linear).
+fn measured_deg(label: &str) -> Option<f64> {
+    let i = match label {
+        "Joint A" => 0,
+        "Joint B/D" => 1,
+        "Joint C" => 2,
+        _ => return None,
+    };
+    let [linear, pi] = crate::reproduce::paper::TABLE_IV[i];
+    Some(linear.min(pi))
+}
+
+/// The predicted accuracy: the front's predicted error against the sensitivity, the paper's
+/// joints at their measured errors, and what the prediction cost.
+fn predicted_section(
+    page: &mut Page,
+    x: &Exploration,
+    feasible: &[Candidate],
+    front: &[usize],
+    paper: &[(&str, super::DesignMetrics)],
+) {
+    page.heading("Predicted accuracy");
+    let predicted: Vec<&Candidate> = feasible
+        .iter()
+        .filter(|c| c.metrics.predicted.is_some())
+        .collect();
+    let failed = x.prediction_cost.map_or(0, |(n, _)| n) - predicted.len();
+    if let Some((n, seconds)) = x.prediction_cost {
+        page.text(format!(
+            "The twin of the paper's bench (designs/scenarios/paper-bench.toml) simulated on each \
+             of the {n} candidates of the grid's Pareto front: characterization, linear and PI fits \
+             and the random pattern's estimation (Table IV), and the closed loop on Joint D's plant \
+             (Table VI), every protocol once at the paper's timings and scaled by the twin's \
+             full/short ratios. {:.1} s in all, {:.2} s per front candidate (wall clock, rayon). \
+             {failed} candidates could not be simulated (predicted: cannot tell). The front below \
+             is the Pareto front of these candidates on every objective.",
+            seconds,
+            seconds / n.max(1) as f64
+        ));
+    }
+    let point = |c: &Candidate, f: fn(&super::Predicted) -> f64| {
+        (
+            c.metrics.sensitivity_ohm_per_deg,
+            c.metrics.predicted.as_ref().map_or(f64::NAN, f),
+        )
+    };
+    let mut chart = Chart::new(
+        "predicted error vs sensitivity",
+        Metric::SensitivityOhmPerDeg.label(),
+        "angle RMSE (°)",
+    );
+    chart.push(Series::dots(
+        "front: predicted, linear",
+        predicted
+            .iter()
+            .map(|c| point(c, |p| p.linear_rmse_deg))
+            .collect(),
+        FEASIBLE_GREY,
+    ));
+    let mut pi = Series::dots(
+        "front: predicted, PI",
+        predicted
+            .iter()
+            .map(|c| point(c, |p| p.pi_rmse_deg))
+            .collect(),
+        PALETTE[0],
+    );
+    pi.style = crate::report::SeriesStyle::Dots(4);
+    chart.push(pi);
+    for (k, (label, m)) in paper.iter().enumerate() {
+        if let Some(measured) = measured_deg(label) {
+            let mut s = Series::dots(
+                format!("{label}: measured (Table IV)"),
+                vec![(m.sensitivity_ohm_per_deg, measured)],
+                PALETTE[(k + 1) % PALETTE.len()],
+            );
+            s.style = crate::report::SeriesStyle::Dots(7);
+            chart.push(s);
+        }
+    }
+    page.figure(
+        "predicted-accuracy",
+        chart,
+        "The twin's predicted angle RMSE of each front candidate (grey: linear model; blue: PI) \
+         against its sensitivity under the spec's model; the paper's joints at the sensitivity of \
+         the same model and the RMSE the paper measured (the better of linear and PI, Table IV).",
+    );
+    let mut t = Table::new([
+        "index",
+        "Ω/°",
+        "borrowed sensor",
+        "linear (°)",
+        "PI (°)",
+        "closed loop (°)",
+    ]);
+    let mut rows: Vec<&Candidate> = front
+        .iter()
+        .map(|&i| &feasible[i])
+        .filter(|c| c.metrics.predicted.is_some())
+        .collect();
+    rows.sort_by(|a, b| {
+        b.metrics
+            .sensitivity_ohm_per_deg
+            .total_cmp(&a.metrics.sensitivity_ohm_per_deg)
+    });
+    for c in rows.iter().take(REPORT_TABLE_ROWS) {
+        if let Some(p) = c.metrics.predicted {
+            t.row([
+                c.index.to_string(),
+                format!("{:.1}", c.metrics.sensitivity_ohm_per_deg),
+                format!("Joint {}", p.borrowed),
+                format!("{:.2}", p.linear_rmse_deg),
+                format!("{:.2}", p.pi_rmse_deg),
+                format!("{:.2}", p.closed_loop_rmse_deg),
+            ]);
+        }
+    }
+    page.table(t);
 }
 
 fn scatter(

@@ -120,10 +120,26 @@ pub enum Metric {
     TendonForcePerDegN,
     /// Tendon stroke per degree (mm/°).
     StrokePerDegMm,
+    /// The angle RMSE (°) the twin of the paper's bench predicts for the joint with the better
+    /// of its linear and PI models (Table IV's estimation), by a short simulation of each front
+    /// candidate (`explore::predict`).
+    PredictedRmseDeg,
+    /// The closed-loop actual-vs-desired RMSE (°) the twin predicts with Joint D's plant
+    /// (Table VI), by the same short simulation.
+    PredictedClosedLoopRmseDeg,
 }
 
 impl Metric {
-    /// Every metric, in `designs.csv`'s column order.
+    /// Whether the metric comes from a simulation of the front's candidates (not from the
+    /// grid's screen).
+    pub fn is_predicted(self) -> bool {
+        matches!(
+            self,
+            Self::PredictedRmseDeg | Self::PredictedClosedLoopRmseDeg
+        )
+    }
+
+    /// Every metric of the grid's screen, in `designs.csv`'s column order.
     pub const ALL: [Metric; 4] = [
         Metric::SensitivityOhmPerDeg,
         Metric::RangeDeg,
@@ -138,6 +154,8 @@ impl Metric {
             Self::RangeDeg => "range_deg",
             Self::TendonForcePerDegN => "tendon_force_per_deg_n",
             Self::StrokePerDegMm => "stroke_per_deg_mm",
+            Self::PredictedRmseDeg => "predicted_rmse_deg",
+            Self::PredictedClosedLoopRmseDeg => "predicted_closed_loop_rmse_deg",
         }
     }
 
@@ -148,6 +166,8 @@ impl Metric {
             Self::RangeDeg => "usable range (°)",
             Self::TendonForcePerDegN => "tendon force per degree (N/°)",
             Self::StrokePerDegMm => "tendon stroke per degree (mm/°)",
+            Self::PredictedRmseDeg => "predicted angle RMSE (°)",
+            Self::PredictedClosedLoopRmseDeg => "predicted closed-loop RMSE (°)",
         }
     }
 }
@@ -296,6 +316,24 @@ impl SpecFile {
                 "{}",
                 "must name at least one metric to maximize or minimize",
             ));
+        }
+        if signed.iter().all(|(m, _)| m.is_predicted()) {
+            // The predicted metrics are simulated for the front of the others only; alone they
+            // would simulate every feasible candidate.
+            return Err(value_error(
+                "objectives",
+                signed[0].0.key(),
+                "needs a metric of the grid beside it (the prediction runs on their front only)",
+            ));
+        }
+        for (m, sign) in &signed {
+            if m.is_predicted() && *sign > 0.0 {
+                return Err(value_error(
+                    "objectives.maximize",
+                    m.key(),
+                    "is an error: minimize it",
+                ));
+            }
         }
         for (i, (m, _)) in signed.iter().enumerate() {
             if signed[..i].iter().any(|(n, _)| n == m) {

@@ -23,6 +23,7 @@ pub mod patterns;
 mod prose;
 mod report;
 mod result;
+mod twin;
 
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -45,6 +46,10 @@ pub use joints::{joints, scaled, SimJoint, JOINT_B_PI};
 pub use patterns::{max_rate_correlation, patterns, Pattern, RELAXATION_TAU_TOLERANCE};
 /// The report page.
 pub use report::page;
+/// The bench a reproduction runs on: ideal, or the calibrated twin of a bench file.
+pub use twin::{
+    Bench, BenchFile, Provenance, TwinError, LETTERS, PAPER_BENCH_PATH, PAPER_BENCH_TOML,
+};
 
 /// `--short`: every timing a tenth of the paper's.
 pub const SHORT_SCALE: f64 = 0.1;
@@ -111,15 +116,54 @@ pub enum ReproduceError {
     /// The control simulation failed.
     #[error("Joint D in closed loop: {0}")]
     Control(#[from] ControlError),
+    /// Repetitions outside 1 to 5.
+    #[error("repeats = {value} must lie in 1 to 5 (the paper's protocols repeat five times)")]
+    Repeats {
+        /// The value given.
+        value: u32,
+    },
+}
+
+/// How each experiment of one reproduction is sized.
+#[derive(Debug, Clone, Copy)]
+struct Run {
+    scale: f64,
+    repeats: u32,
+    /// The models the characterization fits.
+    models: &'static [ModelKind],
 }
 
 /// What a reproduction runs.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
     /// Every protocol timing times this, in (0, 1]; 1 is the paper's (1000 s characterization,
     /// 3000 s for the others).
     pub duration_scale: f64,
+    /// Repetitions of every protocol, 1 to 5; the paper's 5 unless a calibration asks for a
+    /// short-sized run ([`CALIBRATION_REPEATS`]).
+    pub repeats: u32,
+    /// The simulated bench: the calibrated twin by default, `--ideal` for the clean joints.
+    pub bench: Bench,
 }
+
+impl Settings {
+    /// Every experiment at `duration_scale`, five repetitions, on `bench`.
+    pub fn new(duration_scale: f64, bench: Bench) -> Self {
+        Self {
+            duration_scale,
+            repeats: PAPER_REPEATS,
+            bench,
+        }
+    }
+}
+
+/// The paper's repetitions of every protocol.
+pub const PAPER_REPEATS: u32 = 5;
+
+/// A calibration's short-sized evaluation: every protocol once, at the paper's timings (a fifth
+/// of a full run; `--short` shrinks the timings instead, which changes what the 2 s average does
+/// to the random pattern's ramps).
+pub const CALIBRATION_REPEATS: u32 = 1;
 
 /// One of Joints A-C: every analysis.
 #[derive(Debug, Clone)]
@@ -135,6 +179,8 @@ pub struct JointResult {
     /// The random pattern estimated with the fitted linear and PI configs (Table IV) and, for
     /// Joint C, the linear two-sensor config (Table V).
     pub estimation: EstimationResult,
+    /// The simulated relaxation time constant (s), scaled with the run's timings.
+    pub simulated_tau_s: f64,
 }
 
 /// Everything the report shows.
@@ -169,7 +215,17 @@ pub fn reproduce(
     if !(scale > 0.0 && scale <= 1.0) {
         return Err(ReproduceError::Scale { value: scale });
     }
-    let all = joints();
+    if !(1..=PAPER_REPEATS).contains(&settings.repeats) {
+        return Err(ReproduceError::Repeats {
+            value: settings.repeats,
+        });
+    }
+    let all = settings.bench.joints();
+    let run = Run {
+        scale,
+        repeats: settings.repeats,
+        models: &ModelKind::ALL,
+    };
     let results: Mutex<Vec<Result<JointResult, ReproduceError>>> = Mutex::new(Vec::new());
     let control: Mutex<Option<Result<ControlResult, ReproduceError>>> = Mutex::new(None);
     std::thread::scope(|s| {
@@ -177,10 +233,10 @@ pub fn reproduce(
             let (results, control) = (&results, &control);
             s.spawn(move || {
                 if joint.letter == 'D' {
-                    let r = run_control(joint, scale, progress);
+                    let r = run_control(joint, run, progress);
                     *control.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
                 } else {
-                    let r = run_joint(joint, scale, progress);
+                    let r = run_joint(joint, run, progress);
                     results.lock().unwrap_or_else(|e| e.into_inner()).push(r);
                 }
             });
@@ -205,13 +261,164 @@ pub fn reproduce(
     })
 }
 
+/// One of Joints A-C in a [`TablesRun`]: the characterization and the estimation.
+#[derive(Debug, Clone)]
+pub struct JointTables {
+    /// `A`, `B`, `C`.
+    pub letter: char,
+    /// The characterization: loops, linear and PI fits (Table III).
+    pub loops: LoopsResult,
+    /// The random pattern estimated (Tables IV-V).
+    pub estimation: EstimationResult,
+}
+
+/// What Tables III-VI need and nothing else: each joint's characterization (the linear and PI
+/// fits only) and estimation, and Joint D's control. A calibration's evaluation
+/// ([`tables`]).
+#[derive(Debug, Clone)]
+pub struct TablesRun {
+    /// Joints A-C.
+    pub joints: Vec<JointTables>,
+    /// Joint D.
+    pub control: ControlResult,
+}
+
+/// Runs only what Tables III-VI need (no rate or relaxation run, no continuous PI fit), the
+/// joints in parallel with rayon, with the same seeds and analyses as [`reproduce`]: the
+/// numbers are the ones a reproduction of the same settings prints.
+///
+/// # Errors
+/// [`ReproduceError`] naming the joint and experiment.
+pub fn tables(settings: &Settings) -> Result<TablesRun, ReproduceError> {
+    use rayon::prelude::*;
+    let scale = settings.duration_scale;
+    if !(scale > 0.0 && scale <= 1.0) {
+        return Err(ReproduceError::Scale { value: scale });
+    }
+    if !(1..=PAPER_REPEATS).contains(&settings.repeats) {
+        return Err(ReproduceError::Repeats {
+            value: settings.repeats,
+        });
+    }
+    let run = Run {
+        scale,
+        repeats: settings.repeats,
+        models: &[ModelKind::Linear, ModelKind::Pi],
+    };
+    let quiet = |_: &str| {};
+    let all = settings.bench.joints();
+    let (joints, control) = rayon::join(
+        || {
+            all.par_iter()
+                .filter(|j| j.letter != 'D')
+                .map(|joint| {
+                    let c = characterize(joint, run, &quiet)?;
+                    let estimation = estimation(joint, run, &c, &quiet)?;
+                    Ok(JointTables {
+                        letter: joint.letter,
+                        loops: c.loops,
+                        estimation,
+                    })
+                })
+                .collect::<Result<Vec<_>, ReproduceError>>()
+        },
+        || {
+            let d = all
+                .iter()
+                .find(|j| j.letter == 'D')
+                .expect("Joint D is simulated");
+            run_control(d, run, &quiet)
+        },
+    );
+    Ok(TablesRun {
+        joints: joints?,
+        control: control?,
+    })
+}
+
+/// A joint's accuracy on the bench it is simulated on: Table IV's linear and PI RMSE (°) of
+/// its random pattern, and Table VI's closed-loop actual-vs-desired RMSE (°) on `control`'s
+/// plant (Joint D's), each the reproduction's own procedure.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Accuracy {
+    /// Linear model (°).
+    pub linear_rmse_deg: f64,
+    /// PI model (°).
+    pub pi_rmse_deg: f64,
+    /// Closed loop, actual vs desired (°).
+    pub closed_loop_rmse_deg: f64,
+}
+
+/// The accuracy of `joint` (its design and scenario; its letter picks the seeds) at
+/// `repeats` repetitions of the paper's timings, with the closed loop run on `control_joint`
+/// (the same sensor on Joint D's plant).
+///
+/// # Errors
+/// [`ReproduceError`] naming the experiment.
+pub fn accuracy(
+    joint: &SimJoint,
+    control_joint: &SimJoint,
+    repeats: u32,
+) -> Result<Accuracy, ReproduceError> {
+    if !(1..=PAPER_REPEATS).contains(&repeats) {
+        return Err(ReproduceError::Repeats { value: repeats });
+    }
+    let run = Run {
+        scale: 1.0,
+        repeats,
+        models: &[ModelKind::Linear, ModelKind::Pi],
+    };
+    let quiet = |_: &str| {};
+    let (estimated, control) = rayon::join(
+        || -> Result<EstimationResult, ReproduceError> {
+            let c = characterize(joint, run, &quiet)?;
+            estimation(joint, run, &c, &quiet)
+        },
+        || run_control(control_joint, run, &quiet),
+    );
+    let estimated = estimated?;
+    let rmse = |config: &str| {
+        estimated
+            .runs
+            .iter()
+            .find(|x| x.config == config && !x.split)
+            .map_or(f64::NAN, |x| x.metrics.rmse_deg)
+    };
+    Ok(Accuracy {
+        linear_rmse_deg: rmse("linear"),
+        pi_rmse_deg: rmse("PI"),
+        closed_loop_rmse_deg: control?.run.metrics[1].actual_vs_desired_rmse_deg,
+    })
+}
+
+impl Reproduction {
+    /// The run's Tables III-VI, as a [`tables`] run gives them.
+    pub fn tables(&self) -> TablesRun {
+        TablesRun {
+            joints: self
+                .joints
+                .iter()
+                .map(|j| JointTables {
+                    letter: j.letter,
+                    loops: j.loops.clone(),
+                    estimation: j.estimation.clone(),
+                })
+                .collect(),
+            control: self.control.clone(),
+        }
+    }
+}
+
 fn simulate(
     joint: &SimJoint,
     protocol: ProtocolKind,
-    scale: f64,
+    run: Run,
     seed: u64,
 ) -> Result<Recording, ReproduceError> {
-    let sc = scaled(&joint.scenario, protocol, scale, seed);
+    let sc = repeated(
+        scaled(&joint.scenario, protocol, run.scale, seed),
+        run.repeats,
+    );
     let err = |source| ReproduceError::Sim {
         joint: joint.letter,
         protocol: protocol.name(),
@@ -235,14 +442,25 @@ fn scaled_prefilter(prefilter: Prefilter, scale: f64) -> Prefilter {
     }
 }
 
-fn options(scale: f64, order: PlayOrder, samples: usize) -> Options {
+fn options(run: Run, order: PlayOrder, samples: usize) -> Options {
     Options {
         prefilter: Prefilter::MovingAverage(100),
         order,
-        min_hold_s: DEFAULT_MIN_HOLD_S * scale,
+        min_hold_s: DEFAULT_MIN_HOLD_S * run.scale,
         paper_processing: true,
         decimation: Some((samples.div_ceil(MAX_FIT_SAMPLES)).max(50)),
+        models: run.models,
     }
+}
+
+/// `sc` with every protocol repeated `repeats` times (the rest at the start once).
+fn repeated(mut sc: crate::sim::Scenario, repeats: u32) -> crate::sim::Scenario {
+    let p = &mut sc.protocols;
+    p.characterization.repeats = repeats;
+    p.rate_dependence.repeats = repeats;
+    p.relaxation.repeats = repeats;
+    p.random.repeats = repeats;
+    sc
 }
 
 /// Drift is on only in the rate-dependence run, where the paper measured it (the spread of R₀).
@@ -269,28 +487,49 @@ fn without_drift(mut sc: crate::sim::Scenario, protocol: ProtocolKind) -> crate:
     sc
 }
 
-fn run_joint(
+/// One joint's characterization: the loops, their fits, and the configs Tables IV-V estimate
+/// with (linear and PI; Joint C also the linear two-sensor config).
+struct Characterized {
+    loops: LoopsResult,
+    planes: Vec<dlw_estimator::SensorPlane>,
+    configs: Vec<NamedConfig>,
+    options: Options,
+}
+
+fn seed_of(letter: char) -> u64 {
+    10 * u64::from(letter as u8 - b'A')
+}
+
+fn analysis_error(
+    letter: char,
+    analysis: &'static str,
+) -> impl Fn(CharacterizeError) -> ReproduceError {
+    move |source| ReproduceError::Analysis {
+        joint: letter,
+        analysis,
+        source,
+    }
+}
+
+fn characterize(
     joint: &SimJoint,
-    scale: f64,
+    run: Run,
     progress: &(dyn Fn(&str) + Sync),
-) -> Result<JointResult, ReproduceError> {
+) -> Result<Characterized, ReproduceError> {
     let letter = joint.letter;
     let j = &joint.design.joint;
-    let seed = 10 * u64::from(letter as u8 - b'A');
-    let analysis = |analysis| {
-        move |source| ReproduceError::Analysis {
-            joint: letter,
-            analysis,
-            source,
-        }
-    };
     let step = |what: &str| progress(&format!("Joint {letter}: {what}"));
-
-    let rec = simulate(joint, ProtocolKind::Characterization, scale, seed + 1)?;
+    let rec = simulate(
+        joint,
+        ProtocolKind::Characterization,
+        run,
+        seed_of(letter) + 1,
+    )?;
     step("characterization simulated");
-    let opts = options(scale, PlayOrder::DEFAULT, rec.samples.len());
-    let planes = planes(&rec, j, &joint.design.file.name).map_err(analysis("loops"))?;
-    let loops = loops(&rec, j, &planes, &opts).map_err(analysis("loops"))?;
+    let opts = options(run, PlayOrder::DEFAULT, rec.samples.len());
+    let planes =
+        planes(&rec, j, &joint.design.file.name).map_err(analysis_error(letter, "loops"))?;
+    let loops = loops(&rec, j, &planes, &opts).map_err(analysis_error(letter, "loops"))?;
     drop(rec);
     step("loops and fits");
     let fits: Vec<_> = loops.sensors.iter().map(|s| s.fit.clone()).collect();
@@ -317,48 +556,81 @@ fn run_joint(
             config: config(&fits, ModelKind::Linear, "two-sensor linear")?,
         });
     }
+    Ok(Characterized {
+        loops,
+        planes,
+        configs,
+        options: opts,
+    })
+}
 
-    let rec = simulate(joint, ProtocolKind::RateDependence, scale, seed + 2)?;
+/// The random pattern estimated with the characterization's configs (Tables IV-V).
+fn estimation(
+    joint: &SimJoint,
+    run: Run,
+    c: &Characterized,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<EstimationResult, ReproduceError> {
+    let letter = joint.letter;
+    let rec = simulate(joint, ProtocolKind::Random, run, seed_of(letter) + 4)?;
+    progress(&format!("Joint {letter}: random pattern simulated"));
+    let estimation =
+        estimate(&rec, &c.configs, &c.options).map_err(analysis_error(letter, "estimation"))?;
+    progress(&format!("Joint {letter}: estimation"));
+    Ok(estimation)
+}
+
+fn run_joint(
+    joint: &SimJoint,
+    run: Run,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<JointResult, ReproduceError> {
+    let letter = joint.letter;
+    let j = &joint.design.joint;
+    let seed = seed_of(letter);
+    let step = |what: &str| progress(&format!("Joint {letter}: {what}"));
+    let c = characterize(joint, run, progress)?;
+
+    let rec = simulate(joint, ProtocolKind::RateDependence, run, seed + 2)?;
     step("rate-dependence simulated");
     // The prefilter's window shrinks with the protocol's timings: a fixed 0.2 s average over a
     // rise of 1 s (at --short) bends a curved sensor's loop more for the faster cycles, and GF
     // then follows the rise time with no rate effect.
     let rate_opts = Options {
-        prefilter: scaled_prefilter(opts.prefilter, scale),
-        ..opts
+        prefilter: scaled_prefilter(c.options.prefilter, run.scale),
+        ..c.options
     };
-    let rate = rate(&rec, j, &planes, &rate_opts).map_err(analysis("rate"))?;
+    let rate = rate(&rec, j, &c.planes, &rate_opts).map_err(analysis_error(letter, "rate"))?;
     drop(rec);
     step("rate");
 
-    let rec = simulate(joint, ProtocolKind::Relaxation, scale, seed + 3)?;
+    let rec = simulate(joint, ProtocolKind::Relaxation, run, seed + 3)?;
     step("relaxation simulated");
-    let relaxation = relaxation(&rec, j, &planes, &opts).map_err(analysis("relaxation"))?;
+    let relaxation =
+        relaxation(&rec, j, &c.planes, &c.options).map_err(analysis_error(letter, "relaxation"))?;
     drop(rec);
     step("relaxation");
 
-    let rec = simulate(joint, ProtocolKind::Random, scale, seed + 4)?;
-    step("random pattern simulated");
-    let estimation = estimate(&rec, &configs, &opts).map_err(analysis("estimation"))?;
-    step("estimation");
+    let estimation = estimation(joint, run, &c, progress)?;
     Ok(JointResult {
         letter,
-        loops,
+        loops: c.loops,
         rate,
         relaxation,
         estimation,
+        simulated_tau_s: joint.scenario.plant.relaxation.tau_s * run.scale,
     })
 }
 
 fn run_control(
     joint: &SimJoint,
-    scale: f64,
+    run: Run,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<ControlResult, ReproduceError> {
     let j = &joint.design.joint;
-    let rec = simulate(joint, ProtocolKind::Characterization, scale, 31)?;
+    let rec = simulate(joint, ProtocolKind::Characterization, run, 31)?;
     progress("Joint D: characterization simulated");
-    let opts = options(scale, CONTROL_ORDER, rec.samples.len());
+    let opts = options(run, CONTROL_ORDER, rec.samples.len());
     let planes =
         planes(&rec, j, &joint.design.file.name).map_err(|source| ReproduceError::Analysis {
             joint: 'D',
@@ -385,7 +657,10 @@ fn run_control(
     // keeps the loop stable at the paper's gains; no output filter.
     config.output_filter = FilterConfig::None;
     let mut sc = without_drift(
-        scaled(&joint.scenario, ProtocolKind::Random, scale, 32),
+        repeated(
+            scaled(&joint.scenario, ProtocolKind::Random, run.scale, 32),
+            run.repeats,
+        ),
         ProtocolKind::Random,
     );
     if let Some(max_strain) = characterized_max_strain(&config.sensor.model) {

@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 use super::paper::{RATE_CORRELATION, TABLE_IV, TWO_SENSOR_RMSE};
-use super::{joints, Reproduction};
+use super::Reproduction;
 use crate::control::PAPER_TABLE_VI;
 use crate::sensor::{Sensor, Sensors};
 
@@ -308,12 +308,8 @@ fn rate_independence(r: &Reproduction) -> Vec<Pattern> {
 /// Fig. 6: the relaxation time constant comes back.
 fn relaxation_tau(r: &Reproduction) -> Vec<Pattern> {
     let mut out = Vec::new();
-    let sims = joints();
     for j in &r.joints {
-        let simulated = sims
-            .iter()
-            .find(|s| s.letter == j.letter)
-            .map(|s| s.scenario.plant.relaxation.tau_s * r.settings.duration_scale);
+        let simulated = Some(j.simulated_tau_s);
         let fitted = j.relaxation.sensors.first().and_then(|s| s.median_tau_s);
         let name = format!(
             "relaxation τ within {:.0} % of the simulated one (Joint {}, Fig. 6)",

@@ -52,18 +52,36 @@ pub fn page(r: &Reproduction) -> Page {
 /// Section IV: the paper's table beside `dlw`'s, why they differ, and the figures.
 pub(super) fn add_sections(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
     let scale = r.settings.duration_scale;
+    let bench = match &r.settings.bench {
+        super::Bench::Ideal => {
+            "Joints A-D of Table I on the ideal bench (--ideal): each with the PI \
+             sensor built from its Table III points (src/sim/pi_default.rs), white ADC and tracker \
+             noise, baseline drift sized to the paper's R₀ spread, and viscoelastic relaxation of \
+             the joint. The simulator's effect sizes (noise, drift, relaxation, backlash) are \
+             illustrative, so the comparison is of patterns and orders of magnitude, not of \
+             decimals"
+                .to_owned()
+        }
+        super::Bench::Twin(file) => format!(
+            "Joints A-D of Table I on the calibrated twin of the paper's bench \
+             ({}: one scenario per joint{}): the sensors' hysteresis shares, the tracker's and \
+             the ADC's noise, each sensor's gain drift, a thermal wander of R₀ and the plants' \
+             relaxation and backlash were moved until the reproduction's Tables IV-VI landed on \
+             the paper's (docs/experiments.md); --ideal runs the clean bench",
+            super::PAPER_BENCH_PATH,
+            file.calibration
+                .as_ref()
+                .map_or(String::new(), |c| format!(", {}", c.method))
+        ),
+    };
     page.text(format!(
         "Every experiment of Section IV runs here on dlw's bench simulator instead of the bench: \
-         Joints A-D of Table I, each with the PI sensor built from its Table III points \
-         (src/sim/pi_default.rs), white ADC and tracker noise, baseline drift sized to the paper's \
-         R₀ spread, and viscoelastic relaxation of the joint. The protocols are the paper's, \
-         five repetitions each, with every timing times {scale} ({} s characterization, {} s of \
-         each other protocol). The paper's numbers come from real joints; the simulator's effect \
-         sizes (noise, drift, relaxation, backlash) are illustrative, chosen from the paper where \
-         it gives them, so the comparison is of patterns and orders of magnitude, not of \
-         decimals. Each table says where and why the two differ.",
-        (10.0 + 1000.0) * scale,
-        (10.0 + 3000.0) * scale
+         {bench}. The protocols are the paper's, {} repetitions each, with every timing times \
+         {scale} ({} s characterization, {} s of each other protocol). Each table says where and \
+         why the two differ.",
+        r.settings.repeats,
+        (10.0 + 200.0 * f64::from(r.settings.repeats)) * scale,
+        (10.0 + 600.0 * f64::from(r.settings.repeats)) * scale
     ));
     if scale < 1.0 {
         page.text(format!(

@@ -17,6 +17,7 @@ use crate::report::{Page, PAGE_FILE};
 #[derive(Serialize)]
 struct Json<'a> {
     duration_scale: f64,
+    bench: &'static str,
     patterns: Vec<patterns::Pattern>,
     seconds: f64,
     joints: Vec<JointNumbers<'a>>,
@@ -46,6 +47,7 @@ impl Serialize for Reproduction {
         let [open, closed] = self.control.run.metrics;
         Json {
             duration_scale: self.settings.duration_scale,
+            bench: self.settings.bench.name(),
             patterns: patterns::patterns(self),
             seconds: self.seconds,
             joints: self

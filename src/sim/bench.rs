@@ -7,6 +7,7 @@
 
 use dlw_geometry::{Divider, Joint};
 
+use super::correlated::Ar1;
 use super::measure::{Adc, Tracker};
 use super::plant::Plant;
 use super::rng::{streams, Stream};
@@ -26,10 +27,11 @@ pub struct Reading {
     pub volts: [f64; 2],
 }
 
-/// One sensor's chain: sensor model, divider, ADC.
+/// One sensor's chain: sensor model, its temperature coefficient, divider, ADC.
 #[derive(Debug, Clone)]
 struct Channel {
     sensor: Sensor,
+    tcr_per_k: f64,
     divider: Divider,
     adc: Adc,
 }
@@ -42,6 +44,8 @@ pub struct Bench {
     plant: Plant,
     channels: Vec<Channel>,
     tracker: Tracker,
+    /// The bench's temperature deviation (K), shared by the sensors, when `[temperature]` is on.
+    temperature: Option<Ar1>,
     supply_v: f64,
 }
 
@@ -61,6 +65,7 @@ impl Bench {
                 let drift = Stream::new(sc.seed, streams::DRIFT + i);
                 Ok(Channel {
                     sensor: Sensor::new(p, i as usize + 1, dt_s, drift)?,
+                    tcr_per_k: p.tcr_per_k,
                     divider: Divider {
                         fixed_ohm: p.divider_ohm.unwrap_or(f64::NAN),
                         supply_v: sc.supply_v,
@@ -74,6 +79,15 @@ impl Bench {
             plant: Plant::new(&sc.plant, joint, dt_s),
             channels,
             tracker: Tracker::for_seed(&sc.tracker, sc.seed, dt_s),
+            temperature: sc.temperature.enabled.then(|| {
+                let w = &sc.temperature;
+                Ar1::new(
+                    w.sigma_k,
+                    w.tau_s,
+                    dt_s,
+                    Stream::new(sc.seed, streams::TEMPERATURE),
+                )
+            }),
             supply_v: sc.supply_v,
         })
     }
@@ -93,8 +107,9 @@ impl Bench {
         let angle_rad = self.plant.step(stroke_mm);
         let strain = self.joint.strain(angle_rad);
         let mut volts = [0.0; 2];
+        let kelvin = self.temperature.as_mut().map_or(0.0, Ar1::next_value);
         for (c, ch) in self.channels.iter_mut().enumerate() {
-            let ohm = ch.sensor.step(strain);
+            let ohm = ch.sensor.step(strain) * (1.0 + ch.tcr_per_k * kelvin);
             if !(ohm.is_finite() && ohm > 0.0) {
                 return Err(SimError::Resistance {
                     sensor: c + 1,

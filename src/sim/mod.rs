@@ -67,7 +67,7 @@ pub use correlated::Ar1;
 /// The divider, ADC and EM tracker models.
 pub use measure::{Adc, Tracker};
 /// Default PI sensor models from the paper's Table III.
-pub use pi_default::{PiCharacteristics, JOINT_A_PI, JOINT_C_PI};
+pub use pi_default::{PiCharacteristics, DEFAULT_HYSTERESIS_SHARE, JOINT_A_PI, JOINT_C_PI};
 /// Stroke → angle with backlash, relaxation and the notch limit.
 pub use plant::Plant;
 /// Stroke profiles of the paper's protocols and from CSV.
@@ -82,7 +82,8 @@ pub use rng::{streams, Stream};
 pub use scenario::{
     AdcCorrelated, AdcParams, Backlash, Creep, Drift, NotchLimit, Overrides, PlantParams,
     RateDependence, RateForm, Relaxation, Saturation, Scenario, ScenarioError, SensorModelKind,
-    SensorParams, TrackerCorrelated, TrackerParams, SIGNED_RATE_LEAD_S,
+    SensorParams, Temperature, TrackerCorrelated, TrackerParams, DEFAULT_TCR_PER_K, MAX_TCR_PER_K,
+    SIGNED_RATE_LEAD_S,
 };
 /// Strain → resistance with saturation, drift, rate dependence and creep.
 pub use sensor::Sensor;
@@ -412,5 +413,58 @@ mod tests {
         let text = toml::to_string(&rig).unwrap();
         let back: Rig = toml::from_str(&text).unwrap();
         assert_eq!(back, rig);
+    }
+
+    /// `[temperature]`: both sensors of a BSN joint at rest read `R₀·(1 + tcr·T)` with one
+    /// shared `T` of the configured spread, so Eq. 7's difference of the relative changes
+    /// cancels it when the two coefficients are equal; switching it on leaves every other
+    /// stream's draws alone.
+    #[test]
+    fn temperature_wander_moves_both_sensors_together() {
+        let design = test_design(NotchStyle::Bsn);
+        let mut sc = scenario(ProtocolKind::Characterization, 400.0);
+        sc.protocols.rest_start_s = 400.0;
+        sc.adc.enabled = false;
+        sc.tracker.enabled = false;
+        sc.temperature = Temperature {
+            enabled: true,
+            sigma_k: 2.0,
+            tau_s: 5.0,
+        };
+        let plan = plan(&design, sc, None).unwrap();
+        let run = plan.run().unwrap();
+        let d1 = Divider::new(99.6e3, 5.0).unwrap();
+        let d2 = Divider::new(102.5e3, 5.0).unwrap();
+        let relative = |i: usize| {
+            let r1 = d1.resistance(run.samples.volts[0][i]).unwrap() / 74.0e3 - 1.0;
+            let r2 = d2.resistance(run.samples.volts[1][i]).unwrap() / 88.9e3 - 1.0;
+            (r1, r2)
+        };
+        let kelvin: Vec<f64> = (0..run.samples.len())
+            .map(|i| {
+                let (r1, r2) = relative(i);
+                assert_relative_eq!(r1, r2, epsilon = 1e-12);
+                r1 / DEFAULT_TCR_PER_K
+            })
+            .collect();
+        // 400 s of a 5 s process: 80 correlation times, the spread within about 10 %.
+        let (sd, r1) = correlated::sd_and_autocorrelation(&kelvin, 1);
+        assert_relative_eq!(sd, 2.0, max_relative = 0.2);
+        assert!((r1 - (-0.002f64 / 5.0).exp()).abs() < 1e-4, "{r1}");
+        // Off, the same seed's ADC and tracker draws are unchanged.
+        let mut noisy = scenario(ProtocolKind::Random, 20.0);
+        let white = plan_run(&design, noisy.clone());
+        noisy.temperature.enabled = true;
+        noisy.sensor1.tcr_per_k = 0.0;
+        noisy.sensor2 = Some(SensorParams {
+            tcr_per_k: 0.0,
+            ..SensorParams::default()
+        });
+        // (`assert!`, not `assert_eq!`: a failure would print every sample.)
+        assert!(plan_run(&design, noisy) == white);
+    }
+
+    fn plan_run(design: &Design, sc: Scenario) -> Samples {
+        plan(design, sc, None).unwrap().run().unwrap().samples
     }
 }

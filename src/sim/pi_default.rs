@@ -59,18 +59,28 @@ pub const JOINT_C_PI: PiCharacteristics = PiCharacteristics {
 
 /// Plays in a default model (the paper's `N`).
 const PLAYS: usize = 10;
-/// Weight of the zero-radius play.
-const ELASTIC_WEIGHT: f64 = 0.8;
+/// The default share of the weight on the plays of non-zero radius (the hysteretic part); the
+/// zero-radius play carries the rest.
+pub const DEFAULT_HYSTERESIS_SHARE: f64 = 0.2;
 
 impl PiCharacteristics {
     /// The default model for these characteristics (see the module doc for every choice).
     pub fn to_config(&self) -> PiConfig {
+        self.to_config_with_hysteresis(DEFAULT_HYSTERESIS_SHARE)
+    }
+
+    /// The model with `share` (in `[0, 1)`) of the weight spread evenly over the nine plays of
+    /// non-zero radius and `1 − share` on the zero-radius play: 0 is a loop without hysteresis
+    /// (the tanh alone), the default 0.2 the module doc's loop. The weights sum to 1 whatever
+    /// the share, so the curve's amplitude stays the tanh's.
+    pub fn to_config_with_hysteresis(&self, share: f64) -> PiConfig {
+        let share = share.clamp(0.0, 0.99);
         let a1 = self.peak_ohm - self.center_ohm;
         let a2 = self.center_slope_ohm / a1;
         let rho_max = a1 * (a2 * self.peak_strain).tanh();
         let mut radii = [0.0; PLAYS];
-        let mut weights = [(1.0 - ELASTIC_WEIGHT) / (PLAYS - 1) as f64; PLAYS];
-        weights[0] = ELASTIC_WEIGHT;
+        let mut weights = [share / (PLAYS - 1) as f64; PLAYS];
+        weights[0] = 1.0 - share;
         for (i, r) in radii.iter_mut().enumerate() {
             *r = rho_max * i as f64 / (PLAYS - 1) as f64;
         }
@@ -133,6 +143,36 @@ mod tests {
         let width = unload_c - load_c;
         assert!((1.0e3..6.0e3).contains(&width), "loop width {width}");
         assert!(end > 200e3 && end < 225e3, "{end}");
+    }
+
+    /// The loop's width at `ε_c` grows with the hysteresis share, and a share of 0 has none.
+    #[test]
+    fn the_hysteresis_share_sets_the_loops_width() {
+        let width = |share: f64| {
+            let c = PiCharacteristics { ..JOINT_A_PI };
+            let mut pi = GeneralizedPi::new(&c.to_config_with_hysteresis(share)).unwrap();
+            let n = 2000;
+            let (mut up, mut down) = (0.0, 0.0);
+            for i in (0..=n).chain((0..=n).rev()) {
+                let e = c.peak_strain * i as f64 / n as f64;
+                let r = pi.step(e);
+                if (e - c.center_strain).abs() < c.peak_strain / n as f64 / 2.0 {
+                    if up == 0.0 {
+                        up = r;
+                    } else {
+                        down = r;
+                    }
+                }
+            }
+            down - up
+        };
+        let widths = [0.0, 0.1, 0.2, 0.4].map(width);
+        assert!(widths[0].abs() < 1.0, "{widths:?}");
+        assert!(widths.windows(2).all(|w| w[1] > w[0] + 100.0), "{widths:?}");
+        assert_eq!(
+            JOINT_A_PI.to_config(),
+            JOINT_A_PI.to_config_with_hysteresis(0.2)
+        );
     }
 
     #[test]

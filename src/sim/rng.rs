@@ -24,6 +24,8 @@ pub mod streams {
     pub const ADC_CORRELATED: u64 = 6;
     /// The EM tracker's correlated error.
     pub const TRACKER_CORRELATED: u64 = 8;
+    /// The bench's temperature wander, shared by the sensors.
+    pub const TEMPERATURE: u64 = 9;
 }
 
 /// One seeded random stream.

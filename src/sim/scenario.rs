@@ -145,6 +145,9 @@ pub struct Scenario {
     pub adc: AdcParams,
     /// The EM tracker that records the ground-truth angle.
     pub tracker: TrackerParams,
+    /// The bench's slow temperature wander, which moves every sensor's resistance by its
+    /// `tcr_per_k`.
+    pub temperature: Temperature,
     /// Timing of each protocol.
     pub protocols: ProtocolParams,
 }
@@ -162,6 +165,7 @@ impl Default for Scenario {
             sensor2: None,
             adc: AdcParams::default(),
             tracker: TrackerParams::default(),
+            temperature: Temperature::default(),
             protocols: ProtocolParams::default(),
         }
     }
@@ -310,6 +314,9 @@ pub struct SensorParams {
     pub creep: Creep,
     /// The sensitivity fading over the run (fatigue).
     pub gain_drift: GainDrift,
+    /// Temperature coefficient of the resistance (1/K): under the bench's `[temperature]`
+    /// wander `T(t)` the resistance is `R·(1 + tcr_per_k·T)`.
+    pub tcr_per_k: f64,
 }
 
 impl Default for SensorParams {
@@ -326,9 +333,58 @@ impl Default for SensorParams {
             rate: RateDependence::default(),
             creep: Creep::default(),
             gain_drift: GainDrift::default(),
+            tcr_per_k: DEFAULT_TCR_PER_K,
         }
     }
 }
+
+/// The default temperature coefficient of a sensor's resistance (1/K): −0.1 %/K, the order of
+/// magnitude reported for laser-induced graphene on polyimide (its resistance falls as it
+/// warms). Illustrative: the paper names temperature as an open question and gives no number.
+pub const DEFAULT_TCR_PER_K: f64 = -1e-3;
+
+/// The largest `|tcr_per_k|` (1/K): 1 %/K, ten times the default, far beyond any carbon
+/// film's.
+pub const MAX_TCR_PER_K: f64 = 0.01;
+
+/// The bench's temperature wander (`[temperature]`): a first-order autoregressive (sampled
+/// Ornstein-Uhlenbeck) temperature deviation `T(t)` in kelvin, stationary standard deviation
+/// `sigma_k` and correlation time `tau_s`, shared by every sensor of the joint (they sit on
+/// one tube), each of which reads `R·(1 + tcr_per_k·T)`. A slow wander of `R₀` that the
+/// characterization's fit cannot know: the paper names temperature as open (Section V).
+/// Common to both sensors of a BSN joint, it moves their resistances the same way while the
+/// bending moves them opposite ways, so Eq. 7's difference cancels it.
+///
+/// | key | default | why |
+/// |---|---|---|
+/// | `enabled` | false (the table absent); true when present | old recordings keep their draws |
+/// | `sigma_k` | 0.5 | a lab's air-conditioning cycle and the motor's warmth: tenths of a kelvin to a kelvin |
+/// | `tau_s` | 600 | minutes: slower than every hold and ramp, faster than the 3000 s run |
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Temperature {
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
+    pub enabled: bool,
+    /// Stationary RMS of the temperature deviation (K).
+    pub sigma_k: f64,
+    /// Correlation time (s).
+    pub tau_s: f64,
+}
+
+impl Default for Temperature {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            sigma_k: 0.5,
+            tau_s: 600.0,
+        }
+    }
+}
+
+/// The largest `temperature.sigma_k` (K): a wander of 20 K is no longer a bench at room
+/// temperature.
+pub const MAX_TEMPERATURE_SIGMA_K: f64 = 20.0;
 
 /// Gain drift (`[sensorN.gain_drift]`): the sensor's resistance change `ΔR` is scaled by
 /// `1 − fade_per_hour·t/3600 s`, a sensitivity that fades over the run (fatigue of the
@@ -797,6 +853,13 @@ impl Scenario {
             c.positive(&k("creep.tau_s"), s.creep.tau_s);
             c.finite(&k("creep.fast_fraction"), s.creep.fast_fraction);
             c.positive(&k("creep.fast_tau_s"), s.creep.fast_tau_s);
+            c.finite(&k("tcr_per_k"), s.tcr_per_k);
+            c.at_most(
+                &k("tcr_per_k"),
+                s.tcr_per_k.abs(),
+                MAX_TCR_PER_K,
+                "|tcr_per_k| at most 0.01 (1 %/K)",
+            );
         }
         for (i, s) in self.sensors().enumerate() {
             let table = |name: &str| format!("sensor{}.{name}", i + 1);
@@ -828,6 +891,15 @@ impl Scenario {
         c.non_negative("tracker.noise_deg", t.noise_deg);
         c.non_negative("tracker.correlated.sigma_deg", t.correlated.sigma_deg);
         c.positive("tracker.correlated.tau_s", t.correlated.tau_s);
+        let w = &self.temperature;
+        c.non_negative("temperature.sigma_k", w.sigma_k);
+        c.at_most(
+            "temperature.sigma_k",
+            w.sigma_k,
+            MAX_TEMPERATURE_SIGMA_K,
+            "at most 20 K",
+        );
+        c.positive("temperature.tau_s", w.tau_s);
         self.protocols
             .check(&mut |key, value, limit| c.fail(format!("protocols.{key}"), value, limit));
         c.finish()
@@ -999,6 +1071,11 @@ mod tests {
                 "sensor1.rate.ohm_per_strain_per_s",
             ),
             ("[protocols]\nrest_start_s = -1.0", "protocols.rest_start_s"),
+            ("[temperature]\nsigma_k = -1.0", "temperature.sigma_k"),
+            ("[temperature]\nsigma_k = 50.0", "temperature.sigma_k"),
+            ("[temperature]\ntau_s = 0.0", "temperature.tau_s"),
+            ("[sensor1]\ntcr_per_k = 0.5", "sensor1.tcr_per_k"),
+            ("[sensor1]\ntcr_per_k = nan", "sensor1.tcr_per_k"),
         ];
         for (text, key) in table {
             let s: Scenario = toml::from_str(text).unwrap();
@@ -1015,7 +1092,7 @@ mod tests {
     #[test]
     fn a_present_effect_table_is_on_unless_it_says_off() {
         type Switch = fn(&Scenario) -> bool;
-        let tables: [(&str, bool, Switch); 14] = [
+        let tables: [(&str, bool, Switch); 15] = [
             ("[plant.backlash]", false, |s| s.plant.backlash.enabled),
             ("[plant.relaxation]\nfraction = 0.1", false, |s| {
                 s.plant.relaxation.enabled
@@ -1047,6 +1124,9 @@ mod tests {
             }),
             ("[sensor2.saturation]", false, |s| {
                 s.sensor2.as_ref().is_some_and(|p| p.saturation.enabled)
+            }),
+            ("[temperature]\nsigma_k = 1.0", false, |s| {
+                s.temperature.enabled
             }),
         ];
         let bsn = test_design(NotchStyle::Bsn);

@@ -571,6 +571,7 @@ fn characterize<'py>(
         min_hold_s,
         paper_processing,
         decimation: None,
+        models: &dlw_core::fit::ModelKind::ALL,
     };
     let result = py
         .detach(|| {

@@ -1,0 +1,87 @@
+//! `dlw calibrate -o DIR (paper-bench.toml, calibration.json, evaluations.json) [--design-points N] [--rounds R] [--local-points K] [--full-checks C]
+//! [--seed S] [--json]`: the paper's bench as a calibrated twin.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Context;
+use dlw::calibrate::{Calibration, CalibrationResult, Options, Space};
+
+/// Arguments of `dlw calibrate`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Output folder: paper-bench.toml (the twin, one scenario per joint) and calibration.json.
+    #[arg(short = 'o', long = "output")]
+    output: PathBuf,
+    /// Replace an existing output.
+    #[arg(long)]
+    force: bool,
+    /// Points of the Latin hypercube (short-sized evaluations).
+    #[arg(long, default_value_t = Options::default().design_points)]
+    design_points: usize,
+    /// Surrogate rounds per full-size check.
+    #[arg(long, default_value_t = Options::default().rounds)]
+    rounds: usize,
+    /// Evaluations per round (the proposal and points around it).
+    #[arg(long, default_value_t = Options::default().local_points)]
+    local_points: usize,
+    /// Full-size checks of the best point (each corrects the short-sized values).
+    #[arg(long, default_value_t = Options::default().full_checks)]
+    full_checks: usize,
+    /// Seed of the design (the simulations use the reproduction's seeds).
+    #[arg(long, default_value_t = Options::default().seed)]
+    seed: u64,
+    /// Print calibration.json to stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let options = Options {
+        design_points: args.design_points,
+        rounds: args.rounds,
+        local_points: args.local_points,
+        full_checks: args.full_checks,
+        seed: args.seed,
+        ..Options::default()
+    };
+    let mut calibration = Calibration::new(Space::paper(), options)?;
+    let start = Instant::now();
+    let count = std::sync::atomic::AtomicUsize::new(0);
+    calibration.log = Some(std::sync::Arc::new(move |_: &str| {
+        let n = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        if n % 10 == 0 {
+            eprintln!("{:7.1} s  {n} evaluations", start.elapsed().as_secs_f64());
+        }
+    }));
+    dlw::output::claim(&args.output, [&args.output; 0], args.force)?;
+    let progress = |msg: &str| eprintln!("{:7.1} s  {msg}", start.elapsed().as_secs_f64());
+    let full = calibration.run_all(&progress)?;
+    let result = CalibrationResult::new(&calibration, &full, start.elapsed().as_secs_f64());
+    let header = format!(
+        "The paper's bench as a calibrated twin, written by `dlw calibrate` (docs/experiments.md).\n\
+         {}\n\
+         One scenario per joint; `dlw reproduce` runs it by default, `--ideal` the clean bench.",
+        result.summary().lines().next().unwrap_or_default()
+    );
+    let toml = result.bench.to_toml(&header)?;
+    let json = dlw::finite::to_json(&result)?;
+    dlw::output::write_folder_atomic(
+        &args.output,
+        &[
+            ("paper-bench.toml".to_owned(), toml.into_bytes()),
+            ("calibration.json".to_owned(), json.clone().into_bytes()),
+            (
+                "evaluations.json".to_owned(),
+                dlw::finite::to_json(&calibration.evaluations)?.into_bytes(),
+            ),
+        ],
+    )
+    .with_context(|| format!("writing {}", args.output.display()))?;
+    if args.json {
+        println!("{json}");
+    } else {
+        print!("{}", result.summary());
+    }
+    Ok(())
+}
