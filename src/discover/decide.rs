@@ -44,6 +44,16 @@ pub(super) struct Calibrated {
     pub(super) rivals: Vec<Rivalry>,
 }
 
+/// What [`ChannelSearch::settle`] judges a candidate with: the round's scored candidates, the
+/// credible ones, their evidence on the observed data and the null's calibration.
+struct Settle<'a> {
+    scored: &'a [Candidate],
+    credible: &'a [&'a Candidate],
+    observed_of: &'a dyn Fn(Effect) -> f64,
+    null: &'a Calibration,
+    round: usize,
+}
+
 impl ChannelSearch<'_, '_> {
     /// The round's verdict by the calibrated rule (module docs).
     pub(super) fn pick_calibrated(&self, mut scored: Vec<Candidate>, round: usize) -> Pick {
@@ -83,8 +93,47 @@ impl ChannelSearch<'_, '_> {
         if !null.passed {
             return Pick::Declined(top.clone(), null);
         }
+        let credible = self.credible(&scored, &observed_of, &null);
+        if credible.is_empty() {
+            return Pick::Declined(top.clone(), null);
+        }
+        let mut excluded: Vec<Effect> = Vec::new();
+        let settle = Settle {
+            scored: &scored,
+            credible: &credible,
+            observed_of: &observed_of,
+            null: &null,
+            round,
+        };
+        for a in &credible {
+            if excluded.contains(&a.effect) {
+                continue;
+            }
+            match self.settle(a, &settle, &excluded) {
+                Some(pick) => return pick,
+                None => excluded.push(a.effect),
+            }
+        }
+        // Every credible candidate was excluded by another: the data shows something none of
+        // them alone produces.
+        Pick::Ambiguous(Ambiguity {
+            channel: self.channel,
+            contenders: credible.iter().map(|c| (c.effect, c.evidence)).collect(),
+            separate: Vec::new(),
+            rivals: Vec::new(),
+        })
+    }
+
+    /// The candidates whose evidence on the observed data clears the screen and the null's
+    /// bound; after a named hysteresis or saturation, over that effect's richer form too.
+    fn credible<'c>(
+        &self,
+        scored: &'c [Candidate],
+        observed_of: &dyn Fn(Effect) -> f64,
+        null: &Calibration,
+    ) -> Vec<&'c Candidate> {
         let flexible = self.flexible_model();
-        let credible: Vec<&Candidate> = scored
+        scored
             .iter()
             .filter(|c| {
                 let e = observed_of(c.effect);
@@ -100,125 +149,121 @@ impl ChannelSearch<'_, '_> {
                         .is_some_and(|e| e >= SCREEN_NATS && e > null.bound_or_inf())
                 })
             })
+            .collect()
+    }
+
+    /// Candidate `a` tested against its credible rivals not yet excluded: the verdict it
+    /// settles (clear, or ambiguous with what would separate them), or `None` when a rival
+    /// excludes it.
+    fn settle(&self, a: &Candidate, settle: &Settle, excluded: &[Effect]) -> Option<Pick> {
+        let rivals: Vec<&Candidate> = settle
+            .credible
+            .iter()
+            .filter(|b| b.effect != a.effect && !excluded.contains(&b.effect))
+            .take(MAX_RIVALS)
+            .copied()
             .collect();
-        if credible.is_empty() {
-            return Pick::Declined(top.clone(), null);
+        let a_shapes = Term::grid(a.effect, self.search.span_of(self.channel));
+        let tests: Vec<Rivalry> = rivals
+            .iter()
+            .filter_map(|b| self.rival(a, &a_shapes, b, settle.round))
+            .collect();
+        if tests.iter().any(|t| t.verdict == Verdict::Rival) {
+            return None;
         }
-        let mut excluded: Vec<Effect> = Vec::new();
-        for a in &credible {
-            if excluded.contains(&a.effect) {
-                continue;
-            }
-            let rivals: Vec<&Candidate> = credible
+        let calibration = Calibration::of(
+            (settle.observed_of)(a.effect),
+            settle.null.null.clone(),
+            SCREEN_NATS,
+        );
+        let ties: Vec<&Rivalry> = tests
+            .iter()
+            .filter(|t| t.verdict == Verdict::Neither)
+            .collect();
+        // A saturation and a hysteresis that cannot be told apart: the memory is not
+        // shown, and the simpler name stands.
+        let only_bends = !ties.is_empty()
+            && ties.iter().all(|t| {
+                matches!(
+                    (t.effect, t.rival),
+                    (Effect::Saturation, Effect::Hysteresis)
+                        | (Effect::Hysteresis, Effect::Saturation)
+                )
+            });
+        if ties.is_empty() || (only_bends && a.effect == Effect::Saturation) {
+            return Some(Pick::Clear(
+                (*a).clone(),
+                runner_up(settle.scored, a),
+                Some(Calibrated {
+                    calibration,
+                    rivals: tests,
+                }),
+            ));
+        }
+        if only_bends {
+            // The hysteresis leads but its loop is not told from a saturation's curve:
+            // name the saturation if it is credible (it is: it is the tie).
+            if let Some(sat) = settle
+                .credible
                 .iter()
-                .filter(|b| b.effect != a.effect && !excluded.contains(&b.effect))
-                .take(MAX_RIVALS)
-                .copied()
-                .collect();
-            let a_shapes = Term::grid(a.effect, self.search.span_of(self.channel));
-            let tests: Vec<Rivalry> = rivals
-                .iter()
-                .filter_map(|b| self.rival(a, &a_shapes, b, round))
-                .collect();
-            if tests.iter().any(|t| t.verdict == Verdict::Rival) {
-                excluded.push(a.effect);
-                continue;
-            }
-            let calibration =
-                Calibration::of(observed_of(a.effect), null.null.clone(), SCREEN_NATS);
-            let ties: Vec<&Rivalry> = tests
-                .iter()
-                .filter(|t| t.verdict == Verdict::Neither)
-                .collect();
-            // A saturation and a hysteresis that cannot be told apart: the memory is not
-            // shown, and the simpler name stands.
-            let only_bends = !ties.is_empty()
-                && ties.iter().all(|t| {
-                    matches!(
-                        (t.effect, t.rival),
-                        (Effect::Saturation, Effect::Hysteresis)
-                            | (Effect::Hysteresis, Effect::Saturation)
-                    )
-                });
-            if ties.is_empty() || (only_bends && a.effect == Effect::Saturation) {
-                return Pick::Clear(
-                    (*a).clone(),
-                    runner_up(&scored, a),
+                .find(|c| c.effect == Effect::Saturation)
+            {
+                return Some(Pick::Clear(
+                    (*sat).clone(),
+                    runner_up(settle.scored, sat),
                     Some(Calibrated {
-                        calibration,
+                        calibration: Calibration::of(
+                            (settle.observed_of)(Effect::Saturation),
+                            settle.null.null.clone(),
+                            SCREEN_NATS,
+                        ),
                         rivals: tests,
                     }),
-                );
+                ));
             }
-            if only_bends {
-                // The hysteresis leads but its loop is not told from a saturation's curve:
-                // name the saturation if it is credible (it is: it is the tie).
-                if let Some(sat) = credible.iter().find(|c| c.effect == Effect::Saturation) {
-                    return Pick::Clear(
-                        (*sat).clone(),
-                        runner_up(&scored, sat),
-                        Some(Calibrated {
-                            calibration: Calibration::of(
-                                observed_of(Effect::Saturation),
-                                null.null.clone(),
-                                SCREEN_NATS,
-                            ),
-                            rivals: tests,
-                        }),
-                    );
-                }
-            }
-            // A one-term creep: its two-term form may settle what one term cannot.
-            if let Some(two) = self.two_term(a) {
-                let shapes = Term::two_term_creeps();
-                let again: Vec<Rivalry> = ties
-                    .iter()
-                    .filter_map(|t| {
-                        let b = rivals.iter().find(|b| b.effect == t.rival)?;
-                        self.rival(&two, &shapes, b, round)
-                    })
-                    .collect();
-                if again.iter().all(|t| t.verdict == Verdict::Named) {
-                    let mut all: Vec<Rivalry> = tests
-                        .iter()
-                        .filter(|t| t.verdict != Verdict::Neither)
-                        .cloned()
-                        .collect();
-                    all.extend(again);
-                    return Pick::Clear(
-                        two.clone(),
-                        runner_up(&scored, a),
-                        Some(Calibrated {
-                            calibration,
-                            rivals: all,
-                        }),
-                    );
-                }
-            }
-            let tau = match a.term {
-                Term::Creep { tau_s, .. } => Some(tau_s),
-                _ => None,
-            };
-            let mut contenders = vec![(a.effect, a.evidence)];
-            contenders.extend(ties.iter().map(|t| (t.rival, t.rival_evidence)));
-            return Pick::Ambiguous(Ambiguity {
-                channel: self.channel,
-                contenders,
-                separate: ties
-                    .iter()
-                    .map(|t| separating_data(t.effect, t.rival, tau))
-                    .collect(),
-                rivals: ties.into_iter().cloned().collect(),
-            });
         }
-        // Every credible candidate was excluded by another: the data shows something none of
-        // them alone produces.
-        Pick::Ambiguous(Ambiguity {
+        // A one-term creep: its two-term form may settle what one term cannot.
+        if let Some(two) = self.two_term(a) {
+            let shapes = Term::two_term_creeps();
+            let again: Vec<Rivalry> = ties
+                .iter()
+                .filter_map(|t| {
+                    let b = rivals.iter().find(|b| b.effect == t.rival)?;
+                    self.rival(&two, &shapes, b, settle.round)
+                })
+                .collect();
+            if again.iter().all(|t| t.verdict == Verdict::Named) {
+                let mut all: Vec<Rivalry> = tests
+                    .iter()
+                    .filter(|t| t.verdict != Verdict::Neither)
+                    .cloned()
+                    .collect();
+                all.extend(again);
+                return Some(Pick::Clear(
+                    two.clone(),
+                    runner_up(settle.scored, a),
+                    Some(Calibrated {
+                        calibration,
+                        rivals: all,
+                    }),
+                ));
+            }
+        }
+        let tau = match a.term {
+            Term::Creep { tau_s, .. } => Some(tau_s),
+            _ => None,
+        };
+        let mut contenders = vec![(a.effect, a.evidence)];
+        contenders.extend(ties.iter().map(|t| (t.rival, t.rival_evidence)));
+        return Some(Pick::Ambiguous(Ambiguity {
             channel: self.channel,
-            contenders: credible.iter().map(|c| (c.effect, c.evidence)).collect(),
-            separate: Vec::new(),
-            rivals: Vec::new(),
-        })
+            contenders,
+            separate: ties
+                .iter()
+                .map(|t| separating_data(t.effect, t.rival, tau))
+                .collect(),
+            rivals: ties.into_iter().cloned().collect(),
+        }));
     }
 
     /// The channel's model with each named effect that has a richer form ([`Term::flexible`])

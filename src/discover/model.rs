@@ -96,7 +96,29 @@ impl ChannelModel {
         let n = data.len();
         let mut columns = vec![vec![1.0; n]];
         let mut labels = vec!["offset"];
-        let (target, input, driver) = match self.channel {
+        let (target, input, driver) = self.inputs(data, proxy);
+        for t in &self.terms {
+            term_columns(t, &driver, &input, data, &mut columns, &mut labels);
+        }
+        columns.insert(1, input);
+        labels.insert(1, "gain");
+        if let Channel::Sensor(_) = self.channel {
+            // The proxy beside the tracker strain: the base may already weigh the noise-free
+            // input against the noisy one, so no candidate gains by denoising the input.
+            columns.insert(2, driver.clone());
+            labels.insert(2, "gain_proxy");
+        }
+        Design {
+            columns,
+            target,
+            labels,
+        }
+    }
+
+    /// The channel's target, its base input and the input its candidate terms are built from
+    /// (after a backlash or a saturation already named).
+    fn inputs(&self, data: &Data, proxy: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        match self.channel {
             Channel::Plant => {
                 let mut u = data.stroke_mm.clone();
                 for t in &self.terms {
@@ -119,111 +141,107 @@ impl ChannelModel {
                 }
                 (data.ohm[sensor.index()].clone(), x, xp)
             }
-        };
-        for t in &self.terms {
-            match t {
-                Term::Relaxation { tau_s } => {
-                    columns.push(low_pass(&driver, *tau_s, data.dt_s));
-                    labels.push("relaxation");
-                }
-                Term::Creep { tau_s, fast_tau_s } => {
-                    columns.push(low_pass(&driver, *tau_s, data.dt_s));
-                    labels.push("creep");
-                    if let Some(f) = fast_tau_s {
-                        columns.push(low_pass(&driver, *f, data.dt_s));
-                        labels.push("creep_fast");
-                    }
-                }
-                Term::Hysteresis {
-                    radii,
-                    center,
-                    width,
-                    memory,
-                    knots,
-                } => {
-                    let nu: Vec<f64> = driver
-                        .iter()
-                        .map(|x| width * ((x - center) / width).tanh())
-                        .collect();
-                    columns.push(nu.clone());
-                    labels.push("curve");
-                    for hat in hats(&driver, knots) {
-                        columns.push(hat);
-                        labels.push("static");
-                    }
-                    if !memory {
-                        continue;
-                    }
-                    for &r in radii {
-                        columns.push(play(&nu, r));
-                        labels.push("play");
-                    }
-                    // The generalized PI's direction switch (Eq. 10): the slope differs
-                    // between loading and unloading. The direction is how far the input sits
-                    // from its smallest play, −1 (unloading) to 1 (loading).
-                    if let Some(&r) = radii.first() {
-                        let p = play(&nu, r);
-                        columns.push(nu.iter().zip(&p).map(|(x, y)| (x - y) / r * x).collect());
-                        labels.push("direction");
-                    }
-                }
-                Term::Rate { signed, tau_s } => {
-                    let r = rate(&driver, data.dt_s);
-                    if *signed {
-                        columns.push(low_pass(&r, *tau_s, data.dt_s));
-                    } else {
-                        let abs: Vec<f64> = r.iter().map(|v| v.abs()).collect();
-                        let smooth = low_pass(&abs, *tau_s, data.dt_s);
-                        columns.push(
-                            driver
-                                .iter()
-                                .zip(&smooth)
-                                .map(|(x, s)| x * (1.0 + s / LOG_REFERENCE_RATE).log10())
-                                .collect(),
-                        );
-                    }
-                    labels.push("rate");
-                }
-                Term::Drift { settle_tau_s } => {
-                    let t0 = data.time_s[0];
-                    columns.push(
-                        data.time_s
-                            .iter()
-                            .map(|t| match settle_tau_s {
-                                None => t - t0,
-                                Some(tau) => 1.0 - (-(t - t0) / tau).exp(),
-                            })
-                            .collect(),
-                    );
-                    labels.push("drift");
-                }
-                Term::GainDrift => {
-                    let t0 = data.time_s[0];
-                    columns.push(
-                        input
-                            .iter()
-                            .zip(&data.time_s)
-                            .map(|(x, t)| x * (t - t0))
-                            .collect(),
-                    );
-                    labels.push("gain_drift");
-                }
-                Term::Backlash { .. } | Term::Saturation { .. } => {}
+        }
+    }
+}
+
+/// The columns one term adds to a design, built from `driver` (a gain drift from `input`).
+fn term_columns(
+    t: &Term,
+    driver: &[f64],
+    input: &[f64],
+    data: &Data,
+    columns: &mut Vec<Vec<f64>>,
+    labels: &mut Vec<&'static str>,
+) {
+    match t {
+        Term::Relaxation { tau_s } => {
+            columns.push(low_pass(driver, *tau_s, data.dt_s));
+            labels.push("relaxation");
+        }
+        Term::Creep { tau_s, fast_tau_s } => {
+            columns.push(low_pass(driver, *tau_s, data.dt_s));
+            labels.push("creep");
+            if let Some(f) = fast_tau_s {
+                columns.push(low_pass(driver, *f, data.dt_s));
+                labels.push("creep_fast");
             }
         }
-        columns.insert(1, input);
-        labels.insert(1, "gain");
-        if let Channel::Sensor(_) = self.channel {
-            // The proxy beside the tracker strain: the base may already weigh the noise-free
-            // input against the noisy one, so no candidate gains by denoising the input.
-            columns.insert(2, driver.clone());
-            labels.insert(2, "gain_proxy");
+        Term::Hysteresis {
+            radii,
+            center,
+            width,
+            memory,
+            knots,
+        } => {
+            let nu: Vec<f64> = driver
+                .iter()
+                .map(|x| width * ((x - center) / width).tanh())
+                .collect();
+            columns.push(nu.clone());
+            labels.push("curve");
+            for hat in hats(driver, knots) {
+                columns.push(hat);
+                labels.push("static");
+            }
+            if !memory {
+                return;
+            }
+            for &r in radii {
+                columns.push(play(&nu, r));
+                labels.push("play");
+            }
+            // The generalized PI's direction switch (Eq. 10): the slope differs
+            // between loading and unloading. The direction is how far the input sits
+            // from its smallest play, −1 (unloading) to 1 (loading).
+            if let Some(&r) = radii.first() {
+                let p = play(&nu, r);
+                columns.push(nu.iter().zip(&p).map(|(x, y)| (x - y) / r * x).collect());
+                labels.push("direction");
+            }
         }
-        Design {
-            columns,
-            target,
-            labels,
+        Term::Rate { signed, tau_s } => {
+            let r = rate(driver, data.dt_s);
+            if *signed {
+                columns.push(low_pass(&r, *tau_s, data.dt_s));
+            } else {
+                let abs: Vec<f64> = r.iter().map(|v| v.abs()).collect();
+                let smooth = low_pass(&abs, *tau_s, data.dt_s);
+                columns.push(
+                    driver
+                        .iter()
+                        .zip(&smooth)
+                        .map(|(x, s)| x * (1.0 + s / LOG_REFERENCE_RATE).log10())
+                        .collect(),
+                );
+            }
+            labels.push("rate");
         }
+        Term::Drift { settle_tau_s } => {
+            let t0 = data.time_s[0];
+            columns.push(
+                data.time_s
+                    .iter()
+                    .map(|t| match settle_tau_s {
+                        None => t - t0,
+                        Some(tau) => 1.0 - (-(t - t0) / tau).exp(),
+                    })
+                    .collect(),
+            );
+            labels.push("drift");
+        }
+        Term::GainDrift => {
+            let t0 = data.time_s[0];
+            columns.push(
+                input
+                    .iter()
+                    .zip(&data.time_s)
+                    .map(|(x, t)| x * (t - t0))
+                    .collect(),
+            );
+            labels.push("gain_drift");
+        }
+        Term::Backlash { .. } | Term::Saturation { .. } => {}
     }
 }
 

@@ -12,6 +12,20 @@ use super::{Discovery, Outcome, CLEAR_RATIO, THRESHOLD_NATS};
 
 /// Adds the discovery's sections to `page`, placed by `at`.
 pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
+    intro_section(page, outcome);
+    result_section(page, outcome, at);
+    calibration_section(page, outcome, at);
+    unexplained_section(page, outcome, at);
+    gap_section(page, outcome, at);
+    noise_section(page, outcome, at);
+    candidates_section(page, outcome, at);
+    for c in &outcome.channels {
+        channel_section(page, c, at);
+    }
+}
+
+/// What is compared, how an effect is named, and the samples.
+fn intro_section(page: &mut Page, outcome: &Outcome) {
     page.text(format!(
         "Each channel is compared on its own: the plant (stroke → tracker angle) and each sensor \
          (tracker angle → resistance). The base model is calibrated on the training blocks, the \
@@ -35,6 +49,10 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         outcome.samples,
         1.0 / outcome.dt_s
     ));
+}
+
+/// The named effects, or why none is, and each ambiguity with what would separate it.
+fn result_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     page.heading(at.titled("Result"));
     if outcome.discovered.is_empty() {
         page.text(if outcome.ambiguous.is_empty() {
@@ -85,7 +103,10 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
                 .collect::<String>()
         ));
     }
-    calibration_section(page, outcome, at);
+}
+
+/// What the generic regressors still find after the named effects.
+fn unexplained_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     if !outcome.unexplained.is_empty() {
         page.heading(at.titled("What the library does not explain"));
         page.text(format!(
@@ -109,6 +130,10 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         }
         page.table(table);
     }
+}
+
+/// The held-out gap before and after each named effect.
+fn gap_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     page.heading(at.titled("Gap between simulation and measurement (held out)"));
     let mut gaps = Table::new([
         "channel",
@@ -136,6 +161,10 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         ]);
     }
     page.table(gaps);
+}
+
+/// The noise model frozen from the rest, per channel.
+fn noise_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     page.heading(at.titled("Noise model (frozen from the rest)"));
     let mut noise = Table::new(["channel", "σ at rest", "AR coefficients φ"]);
     for c in &outcome.channels {
@@ -151,6 +180,10 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         ]);
     }
     page.table(noise);
+}
+
+/// Every round's candidates.
+fn candidates_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     page.heading(at.titled("Candidates"));
     let mut cands = Table::new(["round", "channel", "effect", "shape", "evidence"]);
     for c in &outcome.candidates {
@@ -171,9 +204,6 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
          when its second term adds the threshold over the first; its evidence under Result is \
          then that form's.",
     );
-    for c in &outcome.channels {
-        channel_section(page, c, at);
-    }
 }
 
 /// Each name's calibration (and each declined candidate's): the evidence observed against the
