@@ -63,6 +63,7 @@ pub mod recording;
 pub mod replay;
 pub mod report;
 pub mod reproduce;
+pub mod robot;
 pub mod rules;
 pub mod sensor;
 pub mod sheet;

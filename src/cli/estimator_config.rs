@@ -16,8 +16,12 @@ use dlw_geometry::{Divider, NotchStyle};
 /// Arguments of `dlw estimator-config`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file (TOML).
+    /// Design file (TOML), or a robot file with --joint.
     design: PathBuf,
+    /// For a robot file: the joint (1 = distal) whose own sensors the config is for. A robot's
+    /// own estimator (all joints, the crosstalk matrix) is not written here yet.
+    #[arg(long, value_name = "N")]
+    joint: Option<usize>,
     /// Gauge factor GF of the linear model (Eq. 5), for every sensor unless --second-* is given.
     #[arg(long)]
     gauge_factor: f64,
@@ -52,7 +56,17 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim(&args.output, [&args.design], args.force)?;
     let format = ConfigFormat::of(&args.output)?;
-    let design = Design::load(&args.design)?;
+    let (design, robot_note) = if dlw::robot::is_robot_file(&args.design) {
+        super::robot::joint_for_estimator(&args.design, args.joint)?
+    } else {
+        if args.joint.is_some() {
+            bail!(
+                "--joint picks a joint of a robot file, and {} is a joint design",
+                args.design.display()
+            );
+        }
+        (Design::load(&args.design)?, None)
+    };
     let divider = Divider::new(args.divider_ohm, args.supply_v).context("divider")?;
     let joint = JointConfig::from_joint(&design.joint);
     let mut config =
@@ -82,10 +96,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         _ => {}
     }
-    let note = format!(
+    let mut note = format!(
         "Nominal linear estimator config for {} (design checksum {}),\nwritten by dlw estimator-config before any characterization.",
         design.file.name, design.checksum
     );
+    if let Some(extra) = robot_note {
+        note.push('\n');
+        note.push_str(&extra);
+    }
     let text = config_text(&config, format, &note)?;
     write_atomic(&args.output, text.as_bytes())?;
     println!(

@@ -19,6 +19,7 @@ mod import_recording;
 mod inspect;
 mod program;
 mod reproduce;
+mod robot;
 mod scenario_args;
 mod simulate;
 

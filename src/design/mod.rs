@@ -287,7 +287,7 @@ impl Design {
 }
 
 /// FNV-1a, 64 bit: a stable, dependency-free fingerprint (not a security hash).
-fn fnv1a64(bytes: &[u8]) -> u64 {
+pub(crate) fn fnv1a64(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
     })

@@ -29,6 +29,7 @@ mod pads;
 mod seam;
 mod sensor;
 mod stations;
+mod unrolled;
 
 use geo::{LineString, Polygon};
 
@@ -39,6 +40,10 @@ pub use crate::design::MAX_NOTCH_COUNT;
 pub use error::LayoutError;
 /// Where each feature sits along the tube: the layout's plan in `x`.
 pub use stations::Stations;
+/// The layout before its seam is chosen: every feature with `s` unwrapped.
+pub use unrolled::{NotchRect, Polyline, Unrolled};
+/// The square-spiral pads, for a robot's pad section.
+pub(crate) use pads::{square_spiral, PadSide};
 
 /// The unrolled layout of one joint.
 #[derive(Debug, Clone, PartialEq)]
@@ -73,7 +78,11 @@ pub struct Layout {
 /// One notch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Notch {
-    /// Position along the tube, 0 at the distal end.
+    /// The joint of a robot it belongs to (0 for the distal joint), `None` in a joint's own
+    /// layout and in a one-joint robot's (`crate::robot`); messages then name it
+    /// `joint 2 notch 3`.
+    pub joint: Option<usize>,
+    /// Position along the tube, 0 at the distal end (within its joint, for a robot).
     pub level: usize,
     /// Side: 0 for the notch centred at `s = π·r_o`, 1 for the BSN notch centred at `s = 0`.
     pub side: usize,

@@ -43,6 +43,8 @@ use crate::layout::Layout;
 
 /// A drawing checked against its design, and the joint's numbers as drawn.
 pub use drawing::{check_drawing, check_imported, CheckedDrawing, Derived, DrawingReport};
+pub(crate) use drawing::derive;
+pub(crate) use strain::check as strain_warnings;
 /// How far the joint length may differ from the notch pattern (mm).
 pub use length::LENGTH_TOLERANCE_MM;
 /// How a notch is named in messages.

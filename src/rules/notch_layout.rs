@@ -17,12 +17,16 @@ use crate::layout::{Layout, Notch};
 use super::parts::{closest_on_cylinder, Part};
 use super::Violation;
 
-/// How a notch is named in messages: `notch 4`, or `notch 4 (side 1)` on a BSN joint.
+/// How a notch is named in messages: `notch 4`, or `notch 4 (side 1)` on a BSN joint; on a
+/// robot, `joint 2 notch 4`.
 pub(crate) fn notch_label(notch: &Notch, bsn: bool) -> String {
+    let joint = notch
+        .joint
+        .map_or_else(String::new, |j| format!("joint {} ", j + 1));
     if bsn {
-        format!("notch {} (side {})", notch.level + 1, notch.side)
+        format!("{joint}notch {} (side {})", notch.level + 1, notch.side)
     } else {
-        format!("notch {}", notch.level + 1)
+        format!("{joint}notch {}", notch.level + 1)
     }
 }
 
@@ -167,6 +171,7 @@ mod tests {
     fn a_notch_past_the_parting_line_is_refused() {
         let mut l = joint_a();
         l.notches.push(Notch {
+            joint: None,
             level: 10,
             side: 0,
             outline: vec![Polygon::new(

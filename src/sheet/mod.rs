@@ -3,6 +3,7 @@
 //! operator follows: laser safety, stock and mandrel, fixturing, zeroing against the drawing's frame, the
 //! parameter sets and times, and the steps after the laser.
 
+mod robot;
 mod safety;
 mod setup;
 
@@ -10,3 +11,5 @@ mod setup;
 pub use safety::safety_lines;
 /// The operator's setup sheet and the mandrel it picks.
 pub use setup::{mandrel_mm, setup_sheet, SheetContext, MANDREL_CLEARANCE_MM, MANDREL_SIZES_MM};
+/// The setup sheet of a robot: the joint's sheet with the robot's zeroing and a joint table.
+pub use robot::{robot_sheet, SheetJoint};

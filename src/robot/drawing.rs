@@ -1,0 +1,223 @@
+//! A robot's drawing read back (`dlw import-dxf ROBOT.dxf --design ROBOT`, `dlw program
+//! --from-dxf ROBOT.dxf --design ROBOT`): the layout the DXF reader made, told which joint each
+//! notch belongs to and which sensor each trace, then checked against the robot the way a
+//! joint's drawing is checked against its design.
+//!
+//! - Each notch belongs to the joint whose notched section holds its centre; its level ranks
+//!   its distal edge among that joint's (edges within 1 µm share one), its side is the nearer
+//!   of the joint's turned `s = π·r_o` (0) and `s = 0` (1). So an edited drawing still
+//!   describes itself.
+//! - Traces keep the sensor their XDATA gives (the robot-wide number); when the drawing has
+//!   lost its XDATA, each trace takes the sensor of the robot's own trace of its kind whose ends
+//!   are nearest its ends.
+//! - The drawing must be of this robot (name, radius, sensor count, a notch in every joint),
+//!   and keeps the layout rules at the robot's clearance and the router's property.
+
+use geo::{Area, BoundingRect, Coord};
+
+use crate::drawing::{ImportedDxf, Provenance};
+use crate::layout::{Layout, Trace};
+use crate::rules;
+
+use super::checked::CheckedRobot;
+use super::error::{RobotError, RobotViolation};
+use super::property::check_property;
+
+/// Notch edges closer than this share a level (mm), as the DXF reader's.
+const SAME_LEVEL_MM: f64 = 1e-3;
+
+/// A robot drawing that passed every rule of its robot.
+#[derive(Debug, Clone)]
+pub struct CheckedRobotDrawing {
+    /// The drawn layout, with the robot's kerf and trace width, notches and traces labelled.
+    pub layout: Layout,
+    /// Where it came from, how it differs from the robot's own layout, each joint as drawn.
+    pub provenance: Provenance,
+    /// Warnings for the joints as drawn.
+    pub warnings: Vec<String>,
+}
+
+/// Labels `imported`'s layout by `robot`'s joints and sensors and checks it.
+///
+/// # Errors
+/// [`RobotError::Rules`] listing what does not match the robot and every rule broken.
+pub fn check_robot_drawing(
+    robot: &CheckedRobot,
+    imported: &ImportedDxf,
+    file_name: &str,
+    bytes: &[u8],
+) -> Result<CheckedRobotDrawing, RobotError> {
+    let refuse = |v: Vec<String>| RobotError::Rules {
+        robot: robot.robot.name.clone(),
+        violations: v.into_iter().map(RobotViolation::Drawing).collect(),
+    };
+    let mut layout = imported.layout.clone();
+    layout.kerf_mm = robot.layout.kerf_mm;
+    layout.trace_width_mm = robot.layout.trace_width_mm;
+    let mut errors = mismatches(robot, &layout);
+    if !errors.is_empty() {
+        return Err(refuse(errors));
+    }
+    errors.extend(label_notches(robot, &mut layout));
+    if imported.untagged > 0 {
+        label_traces(&robot.layout, &mut layout);
+    }
+    if !errors.is_empty() {
+        return Err(refuse(errors));
+    }
+    errors.extend(
+        rules::check_layout(&layout, robot.robot.clearance_mm())
+            .iter()
+            .map(|v| format!("breaks a rule: {v}")),
+    );
+    errors.extend(
+        check_property(&layout)
+            .into_iter()
+            .map(|v| format!("breaks the router's property: {v}")),
+    );
+    let mut derived = Vec::new();
+    let mut warnings = Vec::new();
+    for (j, joint) in robot.robot.joints.iter().enumerate() {
+        let mut sub = layout.clone();
+        sub.notches.retain(|n| n.joint.unwrap_or(0) == j);
+        match rules::derive(joint.design(), &sub) {
+            Ok(d) => {
+                for line in d.summary(joint.design()) {
+                    derived.push(format!("joint {} {line}", j + 1));
+                }
+                let mut w = Vec::new();
+                rules::strain_warnings(&d.design, &mut w);
+                warnings.extend(w.iter().map(|w| format!("joint {} as drawn: {w}", j + 1)));
+            }
+            Err(v) => errors.push(format!("joint {}: {v}", j + 1)),
+        }
+    }
+    if !errors.is_empty() {
+        return Err(refuse(errors));
+    }
+    let mut labelled = imported.clone();
+    labelled.layout = layout.clone();
+    let provenance =
+        Provenance::new(file_name, bytes, &labelled, &robot.layout).with_derived(derived);
+    Ok(CheckedRobotDrawing {
+        layout,
+        provenance,
+        warnings,
+    })
+}
+
+/// The drawing must be of this robot.
+fn mismatches(robot: &CheckedRobot, layout: &Layout) -> Vec<String> {
+    let mut out = Vec::new();
+    if layout.name != robot.robot.name {
+        out.push(format!(
+            "is of {:?}, not of the robot {:?}",
+            layout.name, robot.robot.name
+        ));
+    }
+    if (layout.outer_radius_mm - robot.layout.outer_radius_mm).abs() > 1e-9 {
+        out.push(format!(
+            "has outer radius {} mm, the robot's tube {} mm",
+            layout.outer_radius_mm, robot.layout.outer_radius_mm
+        ));
+    }
+    let (drawn, own) = (layout.sensor_count(), robot.layout.sensor_count());
+    if drawn != own {
+        out.push(format!("has {drawn} sensors, the robot {own}"));
+    }
+    out
+}
+
+/// Gives each notch its joint, level and side.
+fn label_notches(robot: &CheckedRobot, layout: &mut Layout) -> Vec<String> {
+    let r = &robot.robot;
+    let multi = r.joints.len() > 1;
+    let r_o = layout.outer_radius_mm;
+    let mut errors = Vec::new();
+    let mut edges: Vec<Vec<f64>> = vec![Vec::new(); r.joints.len()];
+    let mut placed: Vec<Option<(usize, f64)>> = Vec::new();
+    for n in &layout.notches {
+        let boxes: Vec<_> = n.outline.iter().filter_map(|p| p.bounding_rect()).collect();
+        let x0 = boxes.iter().map(|b| b.min().x).fold(f64::INFINITY, f64::min);
+        let x1 = boxes.iter().map(|b| b.max().x).fold(f64::NEG_INFINITY, f64::max);
+        let centre = (x0 + x1) / 2.0;
+        let joint = r
+            .joints
+            .iter()
+            .position(|j| centre >= j.x_start_mm() - 1e-9 && centre <= j.x_end_mm() + 1e-9);
+        match joint {
+            Some(j) => {
+                edges[j].push(x0);
+                placed.push(Some((j, x0)));
+            }
+            None => {
+                errors.push(format!(
+                    "has a notch at x = {x0:.4} … {x1:.4} mm outside every joint's notched section"
+                ));
+                placed.push(None);
+            }
+        }
+    }
+    for e in &mut edges {
+        e.sort_by(f64::total_cmp);
+        e.dedup_by(|a, b| (*a - *b).abs() <= SAME_LEVEL_MM);
+    }
+    for (n, place) in layout.notches.iter_mut().zip(placed) {
+        let Some((j, x0)) = place else { continue };
+        let joint = &r.joints[j];
+        let level = edges[j].partition_point(|e| *e < x0 - SAME_LEVEL_MM);
+        // Area-weighted: the notch's centre nearer the joint's s = 0 (side 1) or s = π·r_o.
+        let rot = joint.rotation_rad();
+        let cos: f64 = n
+            .outline
+            .iter()
+            .filter_map(|p| p.bounding_rect().map(|b| (b, p.unsigned_area())))
+            .map(|(b, a)| a * (b.center().y / r_o - rot).cos())
+            .sum();
+        let bsn = joint.design().joint.style().notches_per_level() == 2;
+        n.joint = multi.then_some(j);
+        n.level = level;
+        n.side = usize::from(bsn && cos > 0.0);
+    }
+    for (j, joint) in r.joints.iter().enumerate() {
+        if edges[j].is_empty() {
+            errors.push(format!(
+                "has no notch in joint {}'s notched section (x = {:.4} … {:.4} mm): it would not bend",
+                j + 1,
+                joint.x_start_mm(),
+                joint.x_end_mm()
+            ));
+        }
+    }
+    errors
+}
+
+/// Gives every trace the sensor of the robot's own trace of its kind whose ends are nearest.
+fn label_traces(own: &Layout, layout: &mut Layout) {
+    let c = own.circumference_mm;
+    let ends = |t: &Trace| -> Option<(Coord, Coord)> {
+        let first = *t.pieces.first()?.0.first()?;
+        let last = *t.pieces.last()?.0.last()?;
+        Some((first, last))
+    };
+    let d = |a: Coord, b: Coord| {
+        let ds = (a.y - b.y + c / 2.0).rem_euclid(c) - c / 2.0;
+        (a.x - b.x).hypot(ds)
+    };
+    for (mine, theirs) in [
+        (&own.sensors, &mut layout.sensors),
+        (&own.leads, &mut layout.leads),
+        (&own.pads, &mut layout.pads),
+    ] {
+        for t in theirs.iter_mut() {
+            let Some((a, b)) = ends(t) else { continue };
+            let best = mine
+                .iter()
+                .filter_map(|m| ends(m).map(|(p, q)| (m.sensor, (d(a, p) + d(b, q)).min(d(a, q) + d(b, p)))))
+                .min_by(|x, y| x.1.total_cmp(&y.1));
+            if let Some((sensor, _)) = best {
+                t.sensor = sensor;
+            }
+        }
+    }
+}
