@@ -141,7 +141,7 @@ fn a_one_joint_robot_is_its_joint_byte_for_byte() {
 #[test]
 fn build_writes_every_file_and_the_dxf_passes_ezdxf_and_its_crosstalk() {
     let dir = tempfile::tempdir().unwrap();
-    for (stem, joints) in [("robot-bc", 2), ("robot-cdb", 3)] {
+    for (stem, joints) in [("robot-bc", 2), ("robot-bdb", 3)] {
         let out = dir.path().join(stem);
         dlw_ok(&["build", &arg(&designs().join(format!("{stem}.toml"))), "-o", &arg(&out)]);
         let mut names: Vec<String> = std::fs::read_dir(&out)
@@ -211,7 +211,7 @@ fn build_writes_every_file_and_the_dxf_passes_ezdxf_and_its_crosstalk() {
         // The program names each joint in its header.
         let program = std::fs::read_to_string(out.join(format!("{stem}.ngc"))).unwrap();
         assert!(program.contains(&format!("(robot of {joints} joints on one tube")));
-        assert!(program.contains("(joint 2 notch 1 (side "), "joint-labelled notch paths");
+        assert!(program.contains("(joint 2 notch 1 [side 0]: "), "joint-labelled notch paths");
     }
 }
 
@@ -235,7 +235,7 @@ fn python(args: &[&str]) {
 fn a_robot_drawing_reads_back_into_the_same_program() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let robot = designs().join("robot-cdb.toml");
+    let robot = designs().join("robot-bdb.toml");
     let dxf = d.join("r.dxf");
     dlw_ok(&["draw", &arg(&robot), "--dxf", &arg(&dxf)]);
     let o = dlw_ok(&["import-dxf", &arg(&dxf), "--design", &arg(&robot)]);
@@ -262,7 +262,7 @@ fn a_robot_drawing_reads_back_into_the_same_program() {
     python(&["resave", &arg(&dxf), &arg(&moved), "--move-notch", "0", "0.05"]);
     let o = dlw_ok(&["import-dxf", &arg(&moved), "--design", &arg(&robot)]);
     let text = String::from_utf8(o.stdout).unwrap();
-    assert!(text.contains("- joint 1 notch 1 (side 0) moved by dx = +0.0000 mm, ds = +0.0500 mm"), "{text}");
+    assert!(text.contains("- joint 1 notch 1 moved by dx = +0.0000 mm, ds = +0.0500 mm"), "{text}");
 }
 
 #[test]
@@ -355,4 +355,54 @@ fn a_pad_section_that_does_not_fit_is_refused() {
             && e.contains("room for 1 lead at 0.130 mm pitch; 1 too many"),
         "{e}"
     );
+}
+
+/// The robot sheet: each joint labelled with its number, design, style and rotation; every
+/// sensor's traces in one colour of its own; an end view with the bending plane per joint.
+#[test]
+fn the_robot_svg_labels_joints_colours_sensors_and_marks_bending_planes() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg_path = dir.path().join("r.svg");
+    dlw_ok(&["draw", &arg(&designs().join("robot-bdb.toml")), "--svg", &arg(&svg_path)]);
+    let text = std::fs::read_to_string(&svg_path).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let texts: Vec<String> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .map(|n| n.descendants().filter_map(|d| d.text()).collect::<String>())
+        .collect();
+    for want in [
+        "joint 1: Joint B (UAN), 0.0°",
+        "joint 2: Joint D (UAN), 120.0°",
+        "joint 3: Joint B (UAN), 240.0°",
+        "joint 2: plane at 120°, bends toward −y2",
+    ] {
+        assert!(texts.iter().any(|t| t == want), "{want:?} not in {texts:#?}");
+    }
+    // Every piece of one sensor (U-trace, leads, pads) in that sensor's colour, and the three
+    // sensors in three colours.
+    let robot = dlw::robot::CheckedRobot::load(&designs().join("robot-bdb.toml")).unwrap();
+    let strokes = |class: &str| -> Vec<String> {
+        doc.descendants()
+            .filter(|n| n.attribute("class") == Some(class))
+            .map(|n| n.attribute("stroke").unwrap().to_string())
+            .collect()
+    };
+    let l = &robot.layout;
+    let colour_of = |t: &dlw::layout::Trace| dlw::drawing::svg::sensor_colour(t.sensor).to_string();
+    for (class, traces) in [("sensor", &l.sensors), ("lead", &l.leads), ("pad", &l.pads)] {
+        let want: Vec<String> = traces
+            .iter()
+            .flat_map(|t| std::iter::repeat(colour_of(t)).take(t.pieces.len()))
+            .collect();
+        assert_eq!(strokes(class), want, "{class}");
+    }
+    let mut colours = strokes("sensor");
+    colours.dedup();
+    assert_eq!(colours.len(), 3);
+    let ends = doc
+        .descendants()
+        .filter(|n| n.attribute("class") == Some("end-view"))
+        .count();
+    assert_eq!(ends, 3, "one end view per joint");
 }

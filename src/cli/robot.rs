@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
 use dlw::drawing::svg::{robot_svg, section_svg};
-use dlw::drawing::{layout_to_dxf, layout_to_dxf_with, DxfNotes, LayoutNumbers, Provenance};
+use dlw::drawing::{LayoutNumbers, Provenance};
 use dlw::job::Job;
 use dlw::layout::Layout;
 use dlw::machine::{MachineLibrary, MachineProfile};
@@ -70,60 +70,9 @@ pub(crate) fn inspect(path: &Path, json: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The robot's DXF: a joint's drawing for a one-joint robot, else titled as a robot with each
-/// joint labelled above the tube.
+/// The robot's DXF of `layout`.
 pub(crate) fn dxf(robot: &CheckedRobot, layout: &Layout) -> anyhow::Result<Vec<u8>> {
-    let clearance = robot.robot.clearance_mm();
-    if robot.robot.joints.len() == 1 {
-        return layout_to_dxf(layout, clearance).context("drawing the DXF");
-    }
-    let notes = DxfNotes {
-        title: Some(format!(
-            "unrolled robot, {} joints (sensor numbers robot-wide)",
-            robot.robot.joints.len()
-        )),
-        labels: robot
-            .robot
-            .joints
-            .iter()
-            .enumerate()
-            .map(|(i, j)| {
-                (
-                    j.x_start_mm(),
-                    format!(
-                        "joint {}: {} ({}), rotated {} deg",
-                        i + 1,
-                        j.design().file.name,
-                        j.style_name(),
-                        j.rotation_deg
-                    ),
-                )
-            })
-            .collect(),
-    };
-    layout_to_dxf_with(layout, clearance, &notes).context("drawing the DXF")
-}
-
-/// The section sheets: one per joint, `STEM-section.svg` for a one-joint robot (as a joint's)
-/// and `STEM-joint-N-section.svg` otherwise.
-pub(crate) fn sections(robot: &CheckedRobot, stem: &str) -> anyhow::Result<Vec<(String, Vec<u8>)>> {
-    let one = robot.robot.joints.len() == 1;
-    robot
-        .robot
-        .joints
-        .iter()
-        .enumerate()
-        .map(|(i, j)| {
-            let name = if one {
-                format!("{stem}-section.svg")
-            } else {
-                format!("{stem}-joint-{}-section.svg", i + 1)
-            };
-            let svg = section_svg(j.design())
-                .with_context(|| format!("drawing joint {}'s section", i + 1))?;
-            Ok((name, svg.into_bytes()))
-        })
-        .collect()
+    dlw::robot::files::dxf(robot, layout).context("drawing the DXF")
 }
 
 /// `dlw draw ROBOT …`: the files to write (outputs already claimed).
@@ -225,23 +174,14 @@ pub(crate) fn job(inputs: &RobotInputs, program_file: &str) -> anyhow::Result<Jo
 }
 
 /// `dlw build ROBOT -o DIR`: the files to write.
-pub(crate) fn build_files(path: &Path, stem: &str, machine: Option<&str>) -> anyhow::Result<Vec<(String, Vec<u8>)>> {
+pub(crate) fn build_files(
+    path: &Path,
+    stem: &str,
+    machine: Option<&str>,
+) -> anyhow::Result<Vec<(String, Vec<u8>)>> {
     let inputs = resolve(path, None, machine)?;
-    let program_file = dlw::job::program_file_name(stem, &inputs.profile);
-    let job = job(&inputs, &program_file)?;
-    let mut files = vec![
-        (format!("{stem}.dxf"), dxf(&inputs.robot, &inputs.layout)?),
-        (
-            format!("{stem}-layout.svg"),
-            robot_svg(&inputs.robot)
-                .context("drawing the robot SVG")?
-                .into_bytes(),
-        ),
-    ];
-    files.extend(sections(&inputs.robot, stem)?);
-    files.push((program_file, job.program.into_bytes()));
-    files.push((format!("{stem}-setup.md"), job.sheet.into_bytes()));
-    Ok(files)
+    dlw::robot::files::build_files(&inputs.robot, stem, &inputs.sets, &inputs.profile)
+        .with_context(|| format!("building {:?}", inputs.robot.robot.name))
 }
 
 /// `dlw import-dxf DRAWING --design ROBOT`.

@@ -125,12 +125,19 @@ pub(crate) fn order(from: &[f64], to: &[f64], c: f64, pitch: f64) -> Result<Jogs
 }
 
 /// Assigns the leads at `from` (unwrapped) to `lanes` (any turn), keeping their order round
-/// the tube: every cyclic shift is tried, with the winding that moves the leads least, and the
-/// one that moves them least in total among those whose jogs can be ordered wins.
+/// the tube: every cyclic shift is tried, with the winding that moves the leads least; among
+/// those whose jogs can be ordered, the one with the least `score` of the targets wins, then
+/// the one that moves the leads least.
 ///
 /// # Errors
 /// A crossing pair of the last shift tried, when no shift can be ordered.
-pub(crate) fn assign(from: &[f64], lanes: &[f64], c: f64, pitch: f64) -> Result<Jogs, Crossing> {
+pub(crate) fn assign(
+    from: &[f64],
+    lanes: &[f64],
+    c: f64,
+    pitch: f64,
+    score: &dyn Fn(&[f64]) -> f64,
+) -> Result<Jogs, Crossing> {
     let n = from.len();
     debug_assert_eq!(n, lanes.len());
     if n == 0 {
@@ -144,7 +151,7 @@ pub(crate) fn assign(from: &[f64], lanes: &[f64], c: f64, pitch: f64) -> Result<
     by_s.sort_by(|&a, &b| from[a].rem_euclid(c).total_cmp(&from[b].rem_euclid(c)));
     let mut q: Vec<f64> = lanes.iter().map(|s| s.rem_euclid(c)).collect();
     q.sort_by(f64::total_cmp);
-    let mut best: Option<(f64, Jogs)> = None;
+    let mut best: Option<(f64, f64, Jogs)> = None;
     let mut last_err = (0, 0);
     for k in 0..n {
         let delta: Vec<f64> = (0..n)
@@ -171,19 +178,22 @@ pub(crate) fn assign(from: &[f64], lanes: &[f64], c: f64, pitch: f64) -> Result<
             };
         }
         let cost: f64 = (0..n).map(|i| (to[i] - from[i]).abs()).sum();
+        let s = score(&to);
         match order(from, &to, c, pitch) {
             Ok(jogs) => {
-                let better = best.as_ref().map_or(true, |(b, j)| {
-                    cost < b - 1e-9 || (cost <= b + 1e-9 && jogs.steps < j.steps)
+                let better = best.as_ref().map_or(true, |(bs, b, j)| {
+                    s < bs - 1e-12
+                        || (s <= bs + 1e-12
+                            && (cost < b - 1e-9 || (cost <= b + 1e-9 && jogs.steps < j.steps)))
                 });
                 if better {
-                    best = Some((cost, jogs));
+                    best = Some((s, cost, jogs));
                 }
             }
             Err(e) => last_err = e,
         }
     }
-    best.map(|(_, j)| j).ok_or(last_err)
+    best.map(|(_, _, j)| j).ok_or(last_err)
 }
 
 /// The `x` of step `k` of `steps` spread evenly over `[x0, x1]` (mm): one step sits in the
@@ -217,10 +227,10 @@ mod tests {
 
     #[test]
     fn assignment_keeps_the_order_and_moves_least() {
-        let j = assign(&[0.2, 9.8], &[0.5, 9.5], C, 0.13).unwrap();
+        let j = assign(&[0.2, 9.8], &[0.5, 9.5], C, 0.13, &|_| 0.0).unwrap();
         assert!((j.to[0] - 0.5).abs() < 1e-12 && (j.to[1] - 9.5).abs() < 1e-12);
         // Seen across the seam: 9.8 is just below 0.2 round the tube.
-        let j = assign(&[-0.2, 0.2], &[5.0, 0.0], C, 0.13).unwrap();
+        let j = assign(&[-0.2, 0.2], &[5.0, 0.0], C, 0.13, &|_| 0.0).unwrap();
         let moved: f64 = j.to.iter().zip([-0.2, 0.2]).map(|(t, f)| (t - f).abs()).sum();
         assert!((moved - 5.0).abs() < 1e-9, "{j:?}");
     }

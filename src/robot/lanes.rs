@@ -126,24 +126,25 @@ fn neutral_lines(r_o: f64, y_bar: f64, lo: f64, hi: f64) -> Vec<f64> {
     out
 }
 
-/// The least `Σ |y − ȳ|` of `k` lanes `pitch` apart in `corridor`, and where the first lies.
-fn best_block(
+/// Where the first of `k` lanes `pitch` apart in `corridor` may lie, to try: the corridor's
+/// ends, each lane on a line `y = ȳ`, and evenly spaced samples between; empty when they do
+/// not fit.
+fn block_candidates(
     corridor: Corridor,
     k: usize,
     pitch: f64,
     r_o: f64,
     y_bar: f64,
-) -> Option<(f64, f64)> {
+) -> Vec<f64> {
     if k == 0 {
-        return Some((0.0, corridor.lo));
+        return vec![corridor.lo];
     }
     let span = (k - 1) as f64 * pitch;
     let (lo, hi) = (corridor.lo, corridor.hi - span);
     if hi < lo - 1e-12 {
-        return None;
+        return Vec::new();
     }
     let hi = hi.max(lo);
-    let cost = |u: f64| (0..k).map(|m| lane_cost(u + m as f64 * pitch, r_o, y_bar)).sum::<f64>();
     let mut candidates = vec![lo, hi];
     for s in neutral_lines(r_o, y_bar, lo, hi + span) {
         for m in 0..k {
@@ -152,8 +153,26 @@ fn best_block(
     }
     candidates.extend((0..=SAMPLES).map(|i| lo + (hi - lo) * i as f64 / SAMPLES as f64));
     candidates
+}
+
+/// `Σ |y − ȳ|` of `k` lanes `pitch` apart from `u`.
+fn block_cost(u: f64, k: usize, pitch: f64, r_o: f64, y_bar: f64) -> f64 {
+    (0..k)
+        .map(|m| lane_cost(u + m as f64 * pitch, r_o, y_bar))
+        .sum()
+}
+
+/// The least `Σ |y − ȳ|` of `k` lanes `pitch` apart in `corridor`, and where the first lies.
+fn best_block(
+    corridor: Corridor,
+    k: usize,
+    pitch: f64,
+    r_o: f64,
+    y_bar: f64,
+) -> Option<(f64, f64)> {
+    block_candidates(corridor, k, pitch, r_o, y_bar)
         .into_iter()
-        .map(|u| (cost(u), u))
+        .map(|u| (block_cost(u, k, pitch, r_o, y_bar), u))
         .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
 }
 
@@ -166,22 +185,49 @@ pub(crate) struct NoRoom {
     pub widths: Vec<f64>,
 }
 
-/// `n` lanes over `joint`, in the robot's `s` (mm), sorted; each as near the joint's neutral
-/// plane as its corridor allows. Lanes are added one at a time to the corridor where the
-/// total `Σ |y − ȳ|` grows least.
-pub(crate) fn lanes_over(
+/// Lanes over one joint: its corridors (its own frame), how many lanes each holds, and where
+/// each corridor's block of lanes starts; with the other starts worth trying.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct LanePlan {
+    pub corridors: Vec<Corridor>,
+    pub counts: Vec<usize>,
+    pub starts: Vec<f64>,
+    pub candidates: Vec<Vec<f64>>,
+    pitch: f64,
+    rotation_s: f64,
+    c: f64,
+}
+
+impl LanePlan {
+    /// The lanes in the robot's `s` (mm), sorted, with the blocks starting at `starts`.
+    pub fn lanes(&self, starts: &[f64]) -> Vec<f64> {
+        let mut lanes = Vec::new();
+        for (i, &k) in self.counts.iter().enumerate() {
+            lanes.extend(
+                (0..k).map(|m| (starts[i] + m as f64 * self.pitch + self.rotation_s).rem_euclid(self.c)),
+            );
+        }
+        lanes.sort_by(f64::total_cmp);
+        lanes
+    }
+}
+
+/// `n` lanes over `joint`: lanes are added one at a time to the corridor where the total
+/// `Σ |y − ȳ|` grows least, each corridor's block placed where that sum is least.
+pub(crate) fn plan_lanes(
     joint: &RobotJoint,
     n: usize,
     pitch_mm: f64,
     cut_reach_mm: f64,
-) -> Result<Vec<f64>, NoRoom> {
+) -> Result<LanePlan, NoRoom> {
     let corridors = corridors(joint, pitch_mm, cut_reach_mm);
     let room: usize = corridors.iter().map(|c| c.room(pitch_mm)).sum();
+    let no_room = || NoRoom {
+        room,
+        widths: corridors.iter().map(|c| c.hi - c.lo).collect(),
+    };
     if room < n {
-        return Err(NoRoom {
-            room,
-            widths: corridors.iter().map(|c| c.hi - c.lo).collect(),
-        });
+        return Err(no_room());
     }
     let section = joint.design().joint.section();
     let (r_o, y_bar) = (section.outer_radius_mm(), section.neutral_axis_mm());
@@ -197,23 +243,24 @@ pub(crate) fn lanes_over(
             .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         match pick {
             Some((_, i)) => counts[i] += 1,
-            None => {
-                return Err(NoRoom {
-                    room,
-                    widths: corridors.iter().map(|c| c.hi - c.lo).collect(),
-                })
-            }
+            None => return Err(no_room()),
         }
     }
-    let c = section.circumference_mm();
-    let mut lanes = Vec::with_capacity(n);
-    for (i, &k) in counts.iter().enumerate() {
-        if let Some((_, u)) = block(i, k).filter(|_| k > 0) {
-            lanes.extend((0..k).map(|m| joint.s(u + m as f64 * pitch_mm).rem_euclid(c)));
-        }
-    }
-    lanes.sort_by(f64::total_cmp);
-    Ok(lanes)
+    let starts = (0..corridors.len())
+        .map(|i| block(i, counts[i]).map_or(corridors[i].lo, |(_, u)| u))
+        .collect();
+    let candidates = (0..corridors.len())
+        .map(|i| block_candidates(corridors[i], counts[i], pitch_mm, r_o, y_bar))
+        .collect();
+    Ok(LanePlan {
+        corridors,
+        counts,
+        starts,
+        candidates,
+        pitch: pitch_mm,
+        rotation_s: joint.s(0.0),
+        c: section.circumference_mm(),
+    })
 }
 
 /// Lanes for leads arriving at `arrivals` (sorted, increasing) in the interval `[lo, hi]`,

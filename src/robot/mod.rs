@@ -41,6 +41,7 @@ mod crosstalk;
 mod drawing;
 mod error;
 mod file;
+pub mod files;
 mod inspect;
 pub mod job;
 mod jogs;

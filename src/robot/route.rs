@@ -22,7 +22,7 @@ use crate::layout::{square_spiral, NotchRect, PadSide, Polyline, Unrolled};
 use super::assemble::{Robot, RobotJoint};
 use super::error::RobotViolation;
 use super::jogs::{self, Jogs};
-use super::lanes::{corridors, lanes_near, lanes_over};
+use super::lanes::{corridors, lanes_near, plan_lanes, LanePlan};
 use super::pads;
 use super::sensors::{list_leads, Arm, LeadName};
 
@@ -132,21 +132,32 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
         joint_leads.push(mine);
     }
 
+    // What each sensor's U-trace reads of its own joint: the crosstalk's denominator.
+    let r_o = first.file.outer_radius_mm;
+    let own_sums: Vec<f64> = sensors
+        .iter()
+        .map(|u| {
+            let j = &robot.joints[robot_sensors[u.sensor].joint];
+            let height = |s: f64| r_o * (s / r_o - j.rotation_rad()).cos() - j.neutral_axis_mm();
+            height(u.points[0].y) + height(u.points[u.points.len() - 1].y)
+        })
+        .collect();
     // Over each joint after the first: the leads from every joint before it.
     let mut active: Vec<usize> = Vec::new();
     for ji in 1..robot.joints.len() {
         active.extend(&joint_leads[ji - 1]);
         let (prev, joint) = (&robot.joints[ji - 1], &robot.joints[ji]);
         let names: Vec<LeadName> = active.iter().map(|&i| leads[i].name).collect();
-        let lanes = match lanes_over(joint, active.len(), pitch.lead_mm, pitch.cut_mm) {
-            Ok(lanes) => lanes,
+        let plan = match plan_lanes(joint, active.len(), pitch.lead_mm, pitch.cut_mm) {
+            Ok(plan) => plan,
             Err(no) => {
                 violations.push(backbone(ji, joint, &names, no.room, &no.widths, pitch));
                 return Err(violations);
             }
         };
         let from: Vec<f64> = active.iter().map(|&i| leads[i].s()).collect();
-        let jogs = match jogs::assign(&from, &lanes, pitch.c, pitch.lead_mm) {
+        let sensor_of: Vec<usize> = names.iter().map(|n| n.sensor.index).collect();
+        let jogs = match choose_lanes(&plan, joint, &from, &sensor_of, &own_sums, pitch) {
             Ok(j) => j,
             Err((a, b)) => {
                 violations.push(crossing(format!("before joint {}", ji + 1), ji, &names, a, b));
@@ -296,6 +307,61 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
         lead_names,
         pad_rows,
     })
+}
+
+/// The lanes over `joint` and which lead takes which: each corridor's block of lanes is moved
+/// through its candidate places, one corridor at a time, and the place kept where the leads'
+/// crosstalk onto the joint, `Σ_sensors (Σ_leads (y − ȳ) / own)²`, is least (squared, so no
+/// one sensor takes it all), then their `Σ |y − ȳ|`. Leads of one sensor on either side of
+/// the neutral plane cancel; a lone lead is best on it.
+fn choose_lanes(
+    plan: &LanePlan,
+    joint: &RobotJoint,
+    from: &[f64],
+    sensor_of: &[usize],
+    own: &[f64],
+    pitch: Pitch,
+) -> Result<Jogs, jogs::Crossing> {
+    let r_o = joint.design().file.outer_radius_mm;
+    let (rot, y_bar) = (joint.rotation_rad(), joint.neutral_axis_mm());
+    let height = |t: f64| r_o * (t / r_o - rot).cos() - y_bar;
+    let score = |to: &[f64]| -> f64 {
+        let mut sums = vec![0.0; own.len()];
+        for (k, t) in to.iter().enumerate() {
+            sums[sensor_of[k]] += height(*t);
+        }
+        sums.iter().zip(own).map(|(s, o)| (s / o).powi(2)).sum()
+    };
+    let near = |to: &[f64]| to.iter().map(|t| height(*t).abs()).sum::<f64>();
+    let evaluate = |starts: &[f64]| -> Result<(f64, f64, Jogs), jogs::Crossing> {
+        let lanes = plan.lanes(starts);
+        let j = jogs::assign(from, &lanes, pitch.c, pitch.lead_mm, &score)?;
+        Ok((score(&j.to), near(&j.to), j))
+    };
+    let better = |a: &(f64, f64, Jogs), b: &(f64, f64, Jogs)| {
+        a.0 < b.0 - 1e-12 || (a.0 <= b.0 + 1e-12 && a.1 < b.1 - 1e-12)
+    };
+    let mut starts = plan.starts.clone();
+    let mut best = evaluate(&starts);
+    for _round in 0..3 {
+        let mut improved = false;
+        for i in (0..plan.corridors.len()).filter(|&i| plan.counts[i] > 0) {
+            for &u in &plan.candidates[i] {
+                let mut trial = starts.clone();
+                trial[i] = u;
+                let Ok(found) = evaluate(&trial) else { continue };
+                if best.as_ref().map_or(true, |b| better(&found, b)) {
+                    best = Ok(found);
+                    starts = trial;
+                    improved = true;
+                }
+            }
+        }
+        if !improved {
+            break;
+        }
+    }
+    best.map(|(_, _, j)| j)
 }
 
 /// Adds each jog of `jogs` to its lead: along the tube to its step's `x`, round to its lane.

@@ -8,7 +8,7 @@ fn designs() -> PathBuf {
 
 #[test]
 fn robots_route_and_print() {
-  for f in ["robot-bc.toml", "robot-cdb.toml"] {
+  for f in ["robot-bc.toml", "robot-bdb.toml"] {
     let r = CheckedRobot::load(&designs().join(f)).unwrap();
     let i = RobotInspection::of(&r);
     println!("{}", serde_json::to_string_pretty(&i).unwrap());
