@@ -11,6 +11,8 @@
 //! - [`explore`]: from requirements to joints: a grid of candidates scored with the mechanics
 //!   and the sensing model, the design rules, the Pareto front (`dlw explore`);
 //! - [`rules`]: the design rules every command runs (errors block output, warnings are printed);
+//! - [`robot`]: several joints on one tube: the robot file, its leads routed to one pad section,
+//!   the crosstalk, one layout and one program for the whole robot (`docs/robots.md`);
 //! - [`process`], [`machine`]: laser parameter sets (Table II) and machine profiles;
 //! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting);
 //! - [`sheet`]: the operator's setup sheet, an emitter like the posts;

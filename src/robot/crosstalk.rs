@@ -43,15 +43,17 @@ pub struct SensorReport {
     pub trace_length_mm: f64,
     /// `crosstalk[j]` for every joint `j`, distal first (`crosstalk[own] = 1`).
     pub crosstalk: Vec<f64>,
-    /// The share of `crosstalk[j]` each lead carries, `[lead A, lead B]` per joint.
+    /// The share of `crosstalk[j]` each lead carries, `[lead A, lead B]` per joint (the
+    /// sensor's first lead in the layout, and the others).
     #[serde(skip)]
     pub by_lead: Vec<[f64; 2]>,
 }
 
-/// A sensor's pieces: its U-trace and its leads A and B, each a list of polylines.
+/// A sensor's pieces: its U-trace, and its leads in the layout's order, each a list of
+/// polylines (a drawing read back may hold a lead in several pieces; the first is lead A's).
 struct Circuit<'a> {
     u: Vec<&'a [Coord]>,
-    leads: [Vec<&'a [Coord]>; 2],
+    leads: Vec<Vec<&'a [Coord]>>,
 }
 
 /// `Σ ℓ·(y − ȳ_j)/L_j` over the axial segments of `lines` over joint `j` of `robot`.
@@ -105,16 +107,12 @@ pub fn reports(robot: &Robot, layout: &Layout) -> Result<Vec<SensorReport>, Robo
         .sensors()
         .iter()
         .map(|s| {
-            let mut leads = pieces(&layout.leads, s.index).into_iter();
             Circuit {
                 u: pieces(&layout.sensors, s.index)
                     .into_iter()
                     .flatten()
                     .collect(),
-                leads: [
-                    leads.next().unwrap_or_default(),
-                    leads.next().unwrap_or_default(),
-                ],
+                leads: pieces(&layout.leads, s.index),
             }
         })
         .collect::<Vec<_>>();
@@ -130,11 +128,6 @@ pub(crate) fn reports_unrolled(
         .sensors()
         .iter()
         .map(|s| {
-            let mut leads = unrolled
-                .leads
-                .iter()
-                .filter(|l| l.sensor == s.index)
-                .map(|l| vec![l.points.as_slice()]);
             Circuit {
                 u: unrolled
                     .sensors
@@ -142,10 +135,12 @@ pub(crate) fn reports_unrolled(
                     .filter(|l| l.sensor == s.index)
                     .map(|l| l.points.as_slice())
                     .collect(),
-                leads: [
-                    leads.next().unwrap_or_default(),
-                    leads.next().unwrap_or_default(),
-                ],
+                leads: unrolled
+                    .leads
+                    .iter()
+                    .filter(|l| l.sensor == s.index)
+                    .map(|l| vec![l.points.as_slice()])
+                    .collect(),
             }
         })
         .collect::<Vec<_>>();
@@ -167,14 +162,19 @@ fn compute(robot: &Robot, circuits: &[Circuit]) -> Result<Vec<SensorReport>, Rob
             let mut by_lead = Vec::with_capacity(n);
             for j in 0..n {
                 let u = sum_over(robot, j, &circuit.u);
-                let a = sum_over(robot, j, &circuit.leads[0]);
-                let b = sum_over(robot, j, &circuit.leads[1]);
+                let per_lead: Vec<f64> = circuit
+                    .leads
+                    .iter()
+                    .map(|l| sum_over(robot, j, l))
+                    .collect();
+                let a = per_lead.first().copied().unwrap_or(0.0);
+                let b: f64 = per_lead.iter().skip(1).sum();
                 // `+ 0.0` turns a −0 (no piece over the joint, a negative own sum) into 0.
                 crosstalk.push((u + a + b) / own + 0.0);
                 by_lead.push([a / own + 0.0, b / own + 0.0]);
             }
             let u_len = length(&circuit.u);
-            let leads_len = length(&circuit.leads[0]) + length(&circuit.leads[1]);
+            let leads_len: f64 = circuit.leads.iter().map(|l| length(l)).sum();
             Ok(SensorReport {
                 sensor,
                 u_trace_length_mm: u_len,

@@ -54,14 +54,14 @@ pub fn check_robot_drawing(
     let mut layout = imported.layout.clone();
     layout.kerf_mm = robot.layout.kerf_mm;
     layout.trace_width_mm = robot.layout.trace_width_mm;
+    if imported.untagged > 0 {
+        label_traces(&robot.layout, &mut layout);
+    }
     let mut errors = mismatches(robot, &layout);
     if !errors.is_empty() {
         return Err(refuse(errors));
     }
     errors.extend(label_notches(robot, &mut layout));
-    if imported.untagged > 0 {
-        label_traces(&robot.layout, &mut layout);
-    }
     if !errors.is_empty() {
         return Err(refuse(errors));
     }
@@ -192,17 +192,29 @@ fn label_notches(robot: &CheckedRobot, layout: &mut Layout) -> Vec<String> {
     errors
 }
 
-/// Gives every trace the sensor of the robot's own trace of its kind whose ends are nearest.
+/// Gives every trace the sensor of the robot's own trace of its kind that it lies on: the one
+/// from which its farthest point is nearest, round the cylinder (a drawing's pieces split at
+/// the seam are traces of their own there).
 fn label_traces(own: &Layout, layout: &mut Layout) {
     let c = own.circumference_mm;
-    let ends = |t: &Trace| -> Option<(Coord, Coord)> {
-        let first = *t.pieces.first()?.0.first()?;
-        let last = *t.pieces.last()?.0.last()?;
-        Some((first, last))
+    let to_segment = |p: Coord, a: Coord, b: Coord| {
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
+        let len2 = dx * dx + dy * dy;
+        let t = if len2 > 0.0 {
+            (((p.x - a.x) * dx + (p.y - a.y) * dy) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (qx, qy) = (a.x + t * dx, a.y + t * dy);
+        let ds = (p.y - qy + c / 2.0).rem_euclid(c) - c / 2.0;
+        (p.x - qx).hypot(ds)
     };
-    let d = |a: Coord, b: Coord| {
-        let ds = (a.y - b.y + c / 2.0).rem_euclid(c) - c / 2.0;
-        (a.x - b.x).hypot(ds)
+    let to_trace = |p: Coord, t: &Trace| {
+        t.pieces
+            .iter()
+            .flat_map(|l| l.0.windows(2))
+            .map(|w| to_segment(p, w[0], w[1]))
+            .fold(f64::INFINITY, f64::min)
     };
     for (mine, theirs) in [
         (&own.sensors, &mut layout.sensors),
@@ -210,10 +222,17 @@ fn label_traces(own: &Layout, layout: &mut Layout) {
         (&own.pads, &mut layout.pads),
     ] {
         for t in theirs.iter_mut() {
-            let Some((a, b)) = ends(t) else { continue };
             let best = mine
                 .iter()
-                .filter_map(|m| ends(m).map(|(p, q)| (m.sensor, (d(a, p) + d(b, q)).min(d(a, q) + d(b, p)))))
+                .map(|m| {
+                    let far = t
+                        .pieces
+                        .iter()
+                        .flat_map(|l| l.0.iter())
+                        .map(|p| to_trace(*p, m))
+                        .fold(0.0, f64::max);
+                    (m.sensor, far)
+                })
                 .min_by(|x, y| x.1.total_cmp(&y.1));
             if let Some((sensor, _)) = best {
                 t.sensor = sensor;

@@ -105,8 +105,7 @@ impl RobotFile {
 pub fn is_robot_toml(text: &str) -> bool {
     toml::from_str::<toml::Table>(text)
         .ok()
-        .and_then(|t| t.get("joint").map(|j| j.is_array()))
-        .unwrap_or(false)
+        .is_some_and(|t| t.get("joint").is_some_and(toml::Value::is_array))
 }
 
 /// Whether the file at `path` is a robot file ([`is_robot_toml`]); `false` when it cannot be

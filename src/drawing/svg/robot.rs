@@ -330,7 +330,7 @@ fn side_view(sheet: &mut Sheet, robot: &CheckedRobot, top: f64) -> f64 {
         sheet.arrowhead("side", tip, (-ux, -uy));
         sheet.text(
             "labels",
-            (cx + glyph + sheet.paper(2.0), cy + sheet.paper(0.7)),
+            (cx + 1.6 * glyph + sheet.paper(2.5), cy + sheet.paper(0.7)),
             &format!(
                 "joint {}: plane at {}°, bends toward −y_{{{}}}",
                 i + 1,
@@ -444,4 +444,43 @@ fn footer(sheet: &mut Sheet, robot: &CheckedRobot, top: f64) {
     let x = robot.layout.length_mm.max(sheet.paper(160.0)) - table.size(sheet).0;
     table.draw(sheet, "labels", (x.max(sheet.paper(150.0)), top + sheet.paper(2.0)));
     let _ = below_bar;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn robot(name: &str) -> CheckedRobot {
+        CheckedRobot::load(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("designs")
+                .join(name),
+        )
+        .unwrap()
+    }
+
+    /// `docs/img/robot-bc.svg` is this code's output; rerun with `DLW_UPDATE_DOCS=1` to
+    /// regenerate it after a deliberate change (and look at it: `docs/robots.md`).
+    #[test]
+    fn docs_robot_figure_is_current() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img/robot-bc.svg");
+        let svg = robot_svg(&robot("robot-bc.toml")).unwrap();
+        if std::env::var_os("DLW_UPDATE_DOCS").is_some() {
+            crate::output::write_atomic(&path, svg.as_bytes()).unwrap();
+        }
+        let on_disk = std::fs::read_to_string(&path)
+            .unwrap_or_else(|e| panic!("{}: {e}; run with DLW_UPDATE_DOCS=1", path.display()));
+        assert!(
+            on_disk == svg,
+            "{} is stale; regenerate with DLW_UPDATE_DOCS=1 cargo test --lib drawing::svg::robot",
+            path.display()
+        );
+    }
+
+    #[test]
+    fn the_sheet_names_the_robot() {
+        let svg = robot_svg(&robot("robot-bc.toml")).unwrap();
+        assert!(svg.contains("<title>Robot BC — unrolled robot, 2 joints, scale"));
+    }
 }
