@@ -36,7 +36,9 @@ fn bench(c: &mut Criterion) {
     let dir = tempfile::tempdir().expect("temp folder");
     let path = robot_file(dir.path());
     let designs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("designs/robot-bc.toml");
-    let profile = MachineLibrary::beside(&designs).find(None).expect("profile");
+    let profile = MachineLibrary::beside(&designs)
+        .find(None)
+        .expect("profile");
     let build = || {
         let robot = CheckedRobot::load(&path).expect("the five-joint robot routes");
         let sets = ProcessLibrary::beside(&designs)

@@ -78,10 +78,16 @@ fn inspect_reports_joints_with_their_own_keys_and_sensors_with_crosstalk() {
     let c0 = sensors[0]["crosstalk"][1].as_f64().unwrap();
     assert!(c0.abs() < 1e-9, "{c0}");
     assert_eq!(sensors[1]["crosstalk"][0].as_f64().unwrap(), 0.0);
-    assert!(r["warnings"].as_array().unwrap().len() >= 2, "Joint C's own warnings");
+    assert!(
+        r["warnings"].as_array().unwrap().len() >= 2,
+        "Joint C's own warnings"
+    );
     // The text report says the same.
     let text = String::from_utf8(dlw_ok(&["inspect", &arg(&robot)]).stdout).unwrap();
-    assert!(text.contains("joint 2") && text.contains("crosstalk"), "{text}");
+    assert!(
+        text.contains("joint 2") && text.contains("crosstalk"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -134,7 +140,11 @@ fn a_one_joint_robot_is_its_joint_byte_for_byte() {
         // The sheet names the program file, which differs by name only.
         let a = std::fs::read_to_string(d.join("joint.md")).unwrap();
         let b = std::fs::read_to_string(d.join("robot.md")).unwrap();
-        assert_eq!(a.replace("joint.ngc", "X"), b.replace("robot.ngc", "X"), "joint {j}");
+        assert_eq!(
+            a.replace("joint.ngc", "X"),
+            b.replace("robot.ngc", "X"),
+            "joint {j}"
+        );
         let a = std::fs::read(d.join("joint-section.svg")).unwrap();
         let b = std::fs::read(d.join("robot-section.svg")).unwrap();
         assert!(a == b, "joint {j}: section");
@@ -184,7 +194,12 @@ fn build_writes_every_file_and_the_dxf_passes_ezdxf_and_its_crosstalk() {
     let dir = tempfile::tempdir().unwrap();
     for (stem, joints) in [("robot-bc", 2), ("robot-bdb", 3)] {
         let out = dir.path().join(stem);
-        dlw_ok(&["build", &arg(&designs().join(format!("{stem}.toml"))), "-o", &arg(&out)]);
+        dlw_ok(&[
+            "build",
+            &arg(&designs().join(format!("{stem}.toml"))),
+            "-o",
+            &arg(&out),
+        ]);
         let mut names: Vec<String> = std::fs::read_dir(&out)
             .unwrap()
             .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -199,7 +214,8 @@ fn build_writes_every_file_and_the_dxf_passes_ezdxf_and_its_crosstalk() {
         want.extend((1..=joints).map(|j| format!("{stem}-joint-{j}-section.svg")));
         want.sort();
         assert_eq!(names, want);
-        let robot = dlw::robot::CheckedRobot::load(&designs().join(format!("{stem}.toml"))).unwrap();
+        let robot =
+            dlw::robot::CheckedRobot::load(&designs().join(format!("{stem}.toml"))).unwrap();
         let dxf = out.join(format!("{stem}.dxf"));
         // ezdxf's audit, layers, entity counts and notch area.
         let l = &robot.layout;
@@ -211,7 +227,11 @@ fn build_writes_every_file_and_the_dxf_passes_ezdxf_and_its_crosstalk() {
             .iter()
             .map(|j| {
                 let f = &j.design().file;
-                let sides = if f.style == dlw_geometry::NotchStyle::Bsn { 2.0 } else { 1.0 };
+                let sides = if f.style == dlw_geometry::NotchStyle::Bsn {
+                    2.0
+                } else {
+                    1.0
+                };
                 f64::from(f.notch_count) * f.notch_width_mm * f.notch_arc_mm * sides
             })
             .sum();
@@ -225,7 +245,11 @@ fn build_writes_every_file_and_the_dxf_passes_ezdxf_and_its_crosstalk() {
         );
         python(&["audit", &arg(&dxf), &expect]);
         // The crosstalk from the drawing's traces, computed in Python, against inspect --json.
-        let r = json(&["inspect", &arg(&designs().join(format!("{stem}.toml"))), "--json"]);
+        let r = json(&[
+            "inspect",
+            &arg(&designs().join(format!("{stem}.toml"))),
+            "--json",
+        ]);
         let ybar: Vec<f64> = r["joints"]
             .as_array()
             .unwrap()
@@ -247,12 +271,18 @@ fn build_writes_every_file_and_the_dxf_passes_ezdxf_and_its_crosstalk() {
         assert!(!sheet.contains("This is a BSN joint") && !sheet.contains("(this is a UAN joint)"));
         assert!(sheet.contains("### The robot's joints (distal first)"));
         for j in 1..=joints {
-            assert!(sheet.contains(&format!("\n| {j} | Joint ")), "joint {j} row:\n{sheet}");
+            assert!(
+                sheet.contains(&format!("\n| {j} | Joint ")),
+                "joint {j} row:\n{sheet}"
+            );
         }
         // The program names each joint in its header.
         let program = std::fs::read_to_string(out.join(format!("{stem}.ngc"))).unwrap();
         assert!(program.contains(&format!("(robot of {joints} joints on one tube")));
-        assert!(program.contains("(joint 2 notch 1 [side 0]: "), "joint-labelled notch paths");
+        assert!(
+            program.contains("(joint 2 notch 1 [side 0]: "),
+            "joint-labelled notch paths"
+        );
     }
 }
 
@@ -281,10 +311,21 @@ fn a_robot_drawing_reads_back_into_the_same_program() {
     dlw_ok(&["draw", &arg(&robot), "--dxf", &arg(&dxf)]);
     let o = dlw_ok(&["import-dxf", &arg(&dxf), "--design", &arg(&robot)]);
     let text = String::from_utf8(o.stdout).unwrap();
-    assert!(text.contains("differences from the design's own layout: none"), "{text}");
+    assert!(
+        text.contains("differences from the design's own layout: none"),
+        "{text}"
+    );
     assert!(text.contains("joint 3 as drawn: 10 notch levels"), "{text}");
     dlw_ok(&["program", &arg(&robot), "-o", &arg(&d.join("a.ngc"))]);
-    dlw_ok(&["program", "--from-dxf", &arg(&dxf), "--design", &arg(&robot), "-o", &arg(&d.join("b.ngc"))]);
+    dlw_ok(&[
+        "program",
+        "--from-dxf",
+        &arg(&dxf),
+        "--design",
+        &arg(&robot),
+        "-o",
+        &arg(&d.join("b.ngc")),
+    ]);
     let a = std::fs::read_to_string(d.join("a.ngc")).unwrap();
     let b = std::fs::read_to_string(d.join("b.ngc")).unwrap();
     // The same program after the header, where b says where its layout came from.
@@ -295,15 +336,33 @@ fn a_robot_drawing_reads_back_into_the_same_program() {
     // the traces' ends; the program is the same.
     let stripped = d.join("s.dxf");
     python(&["resave", &arg(&dxf), &arg(&stripped), "--strip-xdata"]);
-    dlw_ok(&["program", "--from-dxf", &arg(&stripped), "--design", &arg(&robot), "-o", &arg(&d.join("c.ngc"))]);
+    dlw_ok(&[
+        "program",
+        "--from-dxf",
+        &arg(&stripped),
+        "--design",
+        &arg(&robot),
+        "-o",
+        &arg(&d.join("c.ngc")),
+    ]);
     let c = std::fs::read_to_string(d.join("c.ngc")).unwrap();
     assert_eq!(body(&a), body(&c));
     // A notch moved by 0.05 mm round the tube is read where it was moved and named by joint.
     let moved = d.join("m.dxf");
-    python(&["resave", &arg(&dxf), &arg(&moved), "--move-notch", "0", "0.05"]);
+    python(&[
+        "resave",
+        &arg(&dxf),
+        &arg(&moved),
+        "--move-notch",
+        "0",
+        "0.05",
+    ]);
     let o = dlw_ok(&["import-dxf", &arg(&moved), "--design", &arg(&robot)]);
     let text = String::from_utf8(o.stdout).unwrap();
-    assert!(text.contains("- joint 1 notch 1 moved by dx = +0.0000 mm, ds = +0.0500 mm"), "{text}");
+    assert!(
+        text.contains("- joint 1 notch 1 moved by dx = +0.0000 mm, ds = +0.0500 mm"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -311,16 +370,54 @@ fn estimator_config_takes_one_joint_of_a_robot() {
     let dir = tempfile::tempdir().unwrap();
     let robot = designs().join("robot-bc.toml");
     let out = dir.path().join("j2.toml");
-    let o = dlw(&["estimator-config", &arg(&robot), "--gauge-factor", "1.28", "--r0-ohm", "74e3", "-o", &arg(&out)]);
+    let o = dlw(&[
+        "estimator-config",
+        &arg(&robot),
+        "--gauge-factor",
+        "1.28",
+        "--r0-ohm",
+        "74e3",
+        "-o",
+        &arg(&out),
+    ]);
     assert!(!o.status.success());
     let e = stderr(&o);
-    assert!(e.contains("robot of 2 joints (1 = Joint B, 2 = Joint C)") && e.contains("--joint N"), "{e}");
+    assert!(
+        e.contains("robot of 2 joints (1 = Joint B, 2 = Joint C)") && e.contains("--joint N"),
+        "{e}"
+    );
     assert!(!out.exists());
-    dlw_ok(&["estimator-config", &arg(&robot), "--joint", "2", "--gauge-factor", "1.28", "--r0-ohm", "74e3", "-o", &arg(&out)]);
+    dlw_ok(&[
+        "estimator-config",
+        &arg(&robot),
+        "--joint",
+        "2",
+        "--gauge-factor",
+        "1.28",
+        "--r0-ohm",
+        "74e3",
+        "-o",
+        &arg(&out),
+    ]);
     let text = std::fs::read_to_string(&out).unwrap();
     assert!(text.contains("Joint 2 of the robot \"Robot BC\""), "{text}");
-    let o = dlw(&["estimator-config", &arg(&robot), "--joint", "3", "--gauge-factor", "1", "--r0-ohm", "1e5", "-o", &arg(&dir.path().join("x.toml"))]);
-    assert!(stderr(&o).contains("--joint 3 must be from 1 to 2"), "{}", stderr(&o));
+    let o = dlw(&[
+        "estimator-config",
+        &arg(&robot),
+        "--joint",
+        "3",
+        "--gauge-factor",
+        "1",
+        "--r0-ohm",
+        "1e5",
+        "-o",
+        &arg(&dir.path().join("x.toml")),
+    ]);
+    assert!(
+        stderr(&o).contains("--joint 3 must be from 1 to 2"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 /// Each robot rule refuses with a message that names the joint (or the leads) and the
@@ -404,7 +501,12 @@ fn a_pad_section_that_does_not_fit_is_refused() {
 fn the_robot_svg_labels_joints_colours_sensors_and_marks_bending_planes() {
     let dir = tempfile::tempdir().unwrap();
     let svg_path = dir.path().join("r.svg");
-    dlw_ok(&["draw", &arg(&designs().join("robot-bdb.toml")), "--svg", &arg(&svg_path)]);
+    dlw_ok(&[
+        "draw",
+        &arg(&designs().join("robot-bdb.toml")),
+        "--svg",
+        &arg(&svg_path),
+    ]);
     let text = std::fs::read_to_string(&svg_path).unwrap();
     let doc = roxmltree::Document::parse(&text).unwrap();
     let texts: Vec<String> = doc
@@ -423,7 +525,10 @@ fn the_robot_svg_labels_joints_colours_sensors_and_marks_bending_planes() {
         "joint 3: Joint B (UAN), 240.0°",
         "joint 2: plane at 120°, bends toward −y2",
     ] {
-        assert!(texts.iter().any(|t| t == want), "{want:?} not in {texts:#?}");
+        assert!(
+            texts.iter().any(|t| t == want),
+            "{want:?} not in {texts:#?}"
+        );
     }
     // Every piece of one sensor (U-trace, leads, pads) in that sensor's colour, and the three
     // sensors in three colours.

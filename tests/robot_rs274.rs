@@ -33,15 +33,21 @@ fn shipped_robots_run_in_rs274_and_cut_what_they_draw() {
             .map(|m| m.path.as_str())
             .collect();
         let sensors = e.layout.sensor_count();
-        assert_eq!(sensor_paths.len(), sensors, "{what}: one written line per sensor");
+        assert_eq!(
+            sensor_paths.len(),
+            sensors,
+            "{what}: one written line per sensor"
+        );
         // Every joint's notches are cut, named by joint.
-        let joints = dlw::robot::CheckedRobot::load(&robot).unwrap().robot.joints.len();
+        let joints = dlw::robot::CheckedRobot::load(&robot)
+            .unwrap()
+            .robot
+            .joints
+            .len();
         for j in 1..=joints {
             assert!(
-                canon
-                    .moves
-                    .iter()
-                    .any(|m| m.operation == "notches" && m.path.starts_with(&format!("joint {j} notch "))),
+                canon.moves.iter().any(|m| m.operation == "notches"
+                    && m.path.starts_with(&format!("joint {j} notch "))),
                 "{what}: no notch of joint {j}"
             );
         }

@@ -91,7 +91,11 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    if let Some(robot) = args.design.as_deref().filter(|p| dlw::robot::is_robot_file(p)) {
+    if let Some(robot) = args
+        .design
+        .as_deref()
+        .filter(|p| dlw::robot::is_robot_file(p))
+    {
         return super::robot::import_dxf(&args.dxf, robot, &args.drawing);
     }
     let (imported, layout, clearance_mm, drawing) = match &args.design {

@@ -129,7 +129,8 @@ pub(crate) fn resolve(
             (drawing.layout, Some(drawing.provenance))
         }
     };
-    let sets = ProcessLibrary::beside(path).resolve(&robot.robot.joints[0].design().file.process)?;
+    let sets =
+        ProcessLibrary::beside(path).resolve(&robot.robot.joints[0].design().file.process)?;
     let profile = MachineLibrary::beside(path).find(machine)?;
     Ok(RobotInputs {
         robot,

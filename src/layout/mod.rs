@@ -38,12 +38,12 @@ use geo::{LineString, Polygon};
 pub use crate::design::MAX_NOTCH_COUNT;
 /// Why a design could not be laid out.
 pub use error::LayoutError;
+/// The square-spiral pads, for a robot's pad section.
+pub(crate) use pads::{square_spiral, PadSide};
 /// Where each feature sits along the tube: the layout's plan in `x`.
 pub use stations::Stations;
 /// The layout before its seam is chosen: every feature with `s` unwrapped.
 pub use unrolled::{NotchRect, Polyline, Unrolled};
-/// The square-spiral pads, for a robot's pad section.
-pub(crate) use pads::{square_spiral, PadSide};
 
 /// The unrolled layout of one joint.
 #[derive(Debug, Clone, PartialEq)]

@@ -264,16 +264,15 @@ fn same_tube(joints: &[RobotJoint]) -> Vec<RobotViolation> {
     let f = &first.design().file;
     for (i, j) in joints.iter().enumerate().skip(1) {
         let d = &j.design().file;
-        let tube = |quantity: &'static str, value: String, first_value: String| {
-            RobotViolation::Tube {
+        let tube =
+            |quantity: &'static str, value: String, first_value: String| RobotViolation::Tube {
                 joint: i + 1,
                 name: d.name.clone(),
                 first: f.name.clone(),
                 quantity,
                 value,
                 first_value,
-            }
-        };
+            };
         if (d.outer_radius_mm - f.outer_radius_mm).abs() > SAME_RADIUS_MM {
             out.push(tube(
                 "outer radius",
@@ -295,16 +294,15 @@ fn same_tube(joints: &[RobotJoint]) -> Vec<RobotViolation> {
                 f.materials.tube.name().into(),
             ));
         }
-        let laser = |quantity: &'static str, value: String, first_value: String| {
-            RobotViolation::Laser {
+        let laser =
+            |quantity: &'static str, value: String, first_value: String| RobotViolation::Laser {
                 joint: i + 1,
                 name: d.name.clone(),
                 first: f.name.clone(),
                 quantity,
                 value,
                 first_value,
-            }
-        };
+            };
         let (df, ff) = (&d.fabrication, &f.fabrication);
         for (quantity, a, b) in [
             ("trace_width_mm", df.trace_width_mm, ff.trace_width_mm),

@@ -13,7 +13,7 @@ use super::error::{RobotError, RobotViolation};
 use super::property::check_property;
 use super::route::route;
 use super::sensors::LeadName;
-use super::suggest::suggestion;
+use super::suggest::suggestions;
 
 /// A robot that passed every rule, with its layout, what each sensor reads, and warnings.
 #[derive(Debug, Clone)]
@@ -31,7 +31,8 @@ pub struct CheckedRobot {
     pub sensors: Vec<SensorReport>,
     /// Crosstalk above 5 %.
     pub findings: Vec<CrosstalkFinding>,
-    /// Warnings to print: each joint's own (named with the joint), then the crosstalk ones.
+    /// Warnings to print: each joint's own (named with the joint), then one per crosstalk
+    /// above 5 % (without the rotation search: [`Self::warnings_with_advice`]).
     pub warnings: Vec<String>,
 }
 
@@ -80,9 +81,7 @@ impl CheckedRobot {
                 warnings.push(format!("joint {} ({}): {w}", i + 1, j.design().file.name));
             }
         }
-        for f in &findings {
-            warnings.push(suggestion(&robot, &layout, f));
-        }
+        warnings.extend(suggestions(&robot, &layout, &findings, false));
         Ok(Self {
             robot,
             layout,
@@ -92,6 +91,22 @@ impl CheckedRobot {
             findings,
             warnings,
         })
+    }
+
+    /// The warnings with, for each crosstalk above 5 %, the rotation that would lower it most
+    /// (or that none does), found by routing the robot again with the joint concerned, and the
+    /// sensor's own joint, turned in 15° steps: what `dlw inspect` prints. [`Self::warnings`]
+    /// has the same findings without that search, which takes a route per joint and step.
+    pub fn warnings_with_advice(&self) -> Vec<String> {
+        let own: Vec<String> = self
+            .warnings
+            .iter()
+            .take(self.warnings.len() - self.findings.len())
+            .cloned()
+            .collect();
+        own.into_iter()
+            .chain(suggestions(&self.robot, &self.layout, &self.findings, true))
+            .collect()
     }
 
     /// The crosstalk matrix `C`: one row per sensor ([`Robot::sensors`]), one column per joint.

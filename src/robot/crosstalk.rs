@@ -106,14 +106,12 @@ pub fn reports(robot: &Robot, layout: &Layout) -> Result<Vec<SensorReport>, Robo
     let circuits = robot
         .sensors()
         .iter()
-        .map(|s| {
-            Circuit {
-                u: pieces(&layout.sensors, s.index)
-                    .into_iter()
-                    .flatten()
-                    .collect(),
-                leads: pieces(&layout.leads, s.index),
-            }
+        .map(|s| Circuit {
+            u: pieces(&layout.sensors, s.index)
+                .into_iter()
+                .flatten()
+                .collect(),
+            leads: pieces(&layout.leads, s.index),
         })
         .collect::<Vec<_>>();
     compute(robot, &circuits)
@@ -127,21 +125,19 @@ pub(crate) fn reports_unrolled(
     let circuits = robot
         .sensors()
         .iter()
-        .map(|s| {
-            Circuit {
-                u: unrolled
-                    .sensors
-                    .iter()
-                    .filter(|l| l.sensor == s.index)
-                    .map(|l| l.points.as_slice())
-                    .collect(),
-                leads: unrolled
-                    .leads
-                    .iter()
-                    .filter(|l| l.sensor == s.index)
-                    .map(|l| vec![l.points.as_slice()])
-                    .collect(),
-            }
+        .map(|s| Circuit {
+            u: unrolled
+                .sensors
+                .iter()
+                .filter(|l| l.sensor == s.index)
+                .map(|l| l.points.as_slice())
+                .collect(),
+            leads: unrolled
+                .leads
+                .iter()
+                .filter(|l| l.sensor == s.index)
+                .map(|l| vec![l.points.as_slice()])
+                .collect(),
         })
         .collect::<Vec<_>>();
     compute(robot, &circuits)

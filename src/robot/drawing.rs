@@ -26,6 +26,11 @@ use super::property::check_property;
 /// Notch edges closer than this share a level (mm), as the DXF reader's.
 const SAME_LEVEL_MM: f64 = 1e-3;
 
+/// A piece of a drawing without XDATA farther than this from every trace of the robot's own
+/// (mm) is taken as drawn by hand: it keeps the reader's sensor and stays a trace of its own.
+/// A millimetre is several trace pitches: far more than an edit that moves a trace a little.
+const SAME_TRACE_MM: f64 = 1.0;
+
 /// A robot drawing that passed every rule of its robot.
 #[derive(Debug, Clone)]
 pub struct CheckedRobotDrawing {
@@ -138,8 +143,14 @@ fn label_notches(robot: &CheckedRobot, layout: &mut Layout) -> Vec<String> {
     let mut placed: Vec<Option<(usize, f64)>> = Vec::new();
     for n in &layout.notches {
         let boxes: Vec<_> = n.outline.iter().filter_map(|p| p.bounding_rect()).collect();
-        let x0 = boxes.iter().map(|b| b.min().x).fold(f64::INFINITY, f64::min);
-        let x1 = boxes.iter().map(|b| b.max().x).fold(f64::NEG_INFINITY, f64::max);
+        let x0 = boxes
+            .iter()
+            .map(|b| b.min().x)
+            .fold(f64::INFINITY, f64::min);
+        let x1 = boxes
+            .iter()
+            .map(|b| b.max().x)
+            .fold(f64::NEG_INFINITY, f64::max);
         let centre = (x0 + x1) / 2.0;
         let joint = r
             .joints
@@ -192,11 +203,15 @@ fn label_notches(robot: &CheckedRobot, layout: &mut Layout) -> Vec<String> {
     errors
 }
 
-/// Gives every trace the sensor of the robot's own trace of its kind that it lies on: the one
-/// from which its farthest point is nearest, round the cylinder (a drawing's pieces split at
-/// the seam are traces of their own there).
+/// Gives the traces of a drawing that lost its XDATA back their robot identity: each piece
+/// belongs to the robot's own trace of its kind that it lies on (the one from which its
+/// farthest point is nearest, round the cylinder), and takes its sensor; the pieces of one own
+/// trace (a drawing holds a lead split at the seam as pieces of their own) become one trace
+/// again, in order along it, in the robot's order of traces. Pieces that lie on none stay
+/// traces of their own, after the others.
 fn label_traces(own: &Layout, layout: &mut Layout) {
     let c = own.circumference_mm;
+    // Distance from p to segment a-b round the cylinder, and where along the segment.
     let to_segment = |p: Coord, a: Coord, b: Coord| {
         let (dx, dy) = (b.x - a.x, b.y - a.y);
         let len2 = dx * dx + dy * dy;
@@ -207,36 +222,59 @@ fn label_traces(own: &Layout, layout: &mut Layout) {
         };
         let (qx, qy) = (a.x + t * dx, a.y + t * dy);
         let ds = (p.y - qy + c / 2.0).rem_euclid(c) - c / 2.0;
-        (p.x - qx).hypot(ds)
+        ((p.x - qx).hypot(ds), t * len2.sqrt())
     };
+    // Distance from p to a trace, and how far along it (mm) the nearest point is.
     let to_trace = |p: Coord, t: &Trace| {
-        t.pieces
-            .iter()
-            .flat_map(|l| l.0.windows(2))
-            .map(|w| to_segment(p, w[0], w[1]))
-            .fold(f64::INFINITY, f64::min)
+        let mut along = 0.0;
+        let mut best = (f64::INFINITY, 0.0);
+        for w in t.pieces.iter().flat_map(|l| l.0.windows(2)) {
+            let (d, at) = to_segment(p, w[0], w[1]);
+            if d < best.0 {
+                best = (d, along + at);
+            }
+            along += (w[1].x - w[0].x).hypot(w[1].y - w[0].y);
+        }
+        best
     };
     for (mine, theirs) in [
         (&own.sensors, &mut layout.sensors),
         (&own.leads, &mut layout.leads),
         (&own.pads, &mut layout.pads),
     ] {
-        for t in theirs.iter_mut() {
-            let best = mine
-                .iter()
-                .map(|m| {
-                    let far = t
-                        .pieces
-                        .iter()
-                        .flat_map(|l| l.0.iter())
-                        .map(|p| to_trace(*p, m))
-                        .fold(0.0, f64::max);
-                    (m.sensor, far)
-                })
-                .min_by(|x, y| x.1.total_cmp(&y.1));
-            if let Some((sensor, _)) = best {
-                t.sensor = sensor;
+        let mut groups: Vec<Vec<(f64, geo::LineString<f64>)>> = vec![Vec::new(); mine.len()];
+        let mut strays = Vec::new();
+        for t in theirs.drain(..) {
+            for piece in t.pieces {
+                let n = piece.0.len().max(1) as f64;
+                let best = mine
+                    .iter()
+                    .enumerate()
+                    .map(|(i, m)| {
+                        let far = piece.0.iter().map(|p| to_trace(*p, m).0).fold(0.0, f64::max);
+                        let along = piece.0.iter().map(|p| to_trace(*p, m).1).sum::<f64>() / n;
+                        (i, far, along)
+                    })
+                    .min_by(|x, y| x.1.total_cmp(&y.1));
+                match best {
+                    Some((i, far, along)) if far < SAME_TRACE_MM => groups[i].push((along, piece)),
+                    _ => strays.push(Trace {
+                        sensor: t.sensor,
+                        pieces: vec![piece],
+                    }),
+                }
             }
         }
+        for (i, mut pieces) in groups.into_iter().enumerate() {
+            if pieces.is_empty() {
+                continue;
+            }
+            pieces.sort_by(|a, b| a.0.total_cmp(&b.0));
+            theirs.push(Trace {
+                sensor: mine[i].sensor,
+                pieces: pieces.into_iter().map(|(_, p)| p).collect(),
+            });
+        }
+        theirs.extend(strays);
     }
 }

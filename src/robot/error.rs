@@ -72,7 +72,9 @@ pub enum RobotViolation {
         value: f64,
     },
     /// The first joint has a gap.
-    #[error("joint 1 is the distal joint, at x = 0: gap_mm = {gap_mm} belongs to the joints after it")]
+    #[error(
+        "joint 1 is the distal joint, at x = 0: gap_mm = {gap_mm} belongs to the joints after it"
+    )]
     GapOnFirst {
         /// The value given (mm).
         gap_mm: f64,

@@ -54,11 +54,12 @@ impl RobotFile {
     /// # Errors
     /// [`RobotError::Read`] or [`RobotError::Parse`] naming the file.
     pub fn read(path: &Path) -> Result<Self, RobotError> {
-        let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES)
-            .map_err(|source| RobotError::Read {
+        let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
+            |source| RobotError::Read {
                 path: path.to_path_buf(),
                 source,
-            })?;
+            },
+        )?;
         Self::from_toml(&text).map_err(|message| RobotError::Parse {
             path: path.to_path_buf(),
             message,

@@ -24,7 +24,7 @@ pub struct RobotInspection {
     pub joints: Vec<JointInspection>,
     /// One object per sensor, by joint, then sensor 1 before 2.
     pub sensors: Vec<SensorInspection>,
-    /// Every warning: each joint's own, then crosstalk above 5 %.
+    /// Every warning: each joint's own, then crosstalk above 5 % with what would lower it.
     pub warnings: Vec<String>,
 }
 
@@ -100,7 +100,7 @@ impl RobotInspection {
             pad_rows: checked.pad_rows,
             joints,
             sensors,
-            warnings: checked.warnings.clone(),
+            warnings: checked.warnings_with_advice(),
         }
     }
 }

@@ -79,10 +79,12 @@ pub fn make_job(
     for j in &robot.robot.joints {
         let violations = rules::check_wall(&j.design().file, sets);
         if !violations.is_empty() {
-            return Err(JobError::Toolpath(ToolpathError::Rules(rules::RulesError {
-                name: j.design().file.name.clone(),
-                violations,
-            })));
+            return Err(JobError::Toolpath(ToolpathError::Rules(
+                rules::RulesError {
+                    name: j.design().file.name.clone(),
+                    violations,
+                },
+            )));
         }
     }
     let joints = sheet_joints(robot);

@@ -127,16 +127,18 @@ pub(crate) fn order(from: &[f64], to: &[f64], c: f64, pitch: f64) -> Result<Jogs
 /// Assigns the leads at `from` (unwrapped) to `lanes` (any turn), keeping their order round
 /// the tube: every cyclic shift is tried, with the winding that moves the leads least; among
 /// those whose jogs can be ordered, the one with the least `score` of the targets wins, then
-/// the one that moves the leads least.
+/// the one that moves the leads least. Shifts scoring above `bound` are not tried (a caller
+/// comparing lane sets passes the best score it has).
 ///
 /// # Errors
-/// A crossing pair of the last shift tried, when no shift can be ordered.
+/// A crossing pair of the last shift tried, when no shift within the bound can be ordered.
 pub(crate) fn assign(
     from: &[f64],
     lanes: &[f64],
     c: f64,
     pitch: f64,
     score: &dyn Fn(&[f64]) -> f64,
+    bound: f64,
 ) -> Result<Jogs, Crossing> {
     let n = from.len();
     debug_assert_eq!(n, lanes.len());
@@ -151,49 +153,56 @@ pub(crate) fn assign(
     by_s.sort_by(|&a, &b| from[a].rem_euclid(c).total_cmp(&from[b].rem_euclid(c)));
     let mut q: Vec<f64> = lanes.iter().map(|s| s.rem_euclid(c)).collect();
     q.sort_by(f64::total_cmp);
-    let mut best: Option<(f64, f64, Jogs)> = None;
-    let mut last_err = (0, 0);
-    for k in 0..n {
-        let delta: Vec<f64> = (0..n)
-            .map(|i| {
-                let t = q[(i + k) % n] + c * ((i + k) / n) as f64;
-                t - from[by_s[i]].rem_euclid(c)
-            })
-            .collect();
-        let winding = [-2.0, -1.0, 0.0, 1.0, 2.0]
-            .into_iter()
-            .min_by(|a, b| {
-                let worst = |m: f64| delta.iter().map(|d| (d - m * c).abs()).fold(0.0, f64::max);
-                worst(*a).total_cmp(&worst(*b))
-            })
-            .unwrap_or(0.0);
-        let mut to = vec![0.0; n];
-        for (i, d) in delta.iter().enumerate() {
-            let lead = by_s[i];
-            let d = d - winding * c;
-            to[lead] = if d.abs() <= MOVE_TOL_MM {
-                from[lead]
-            } else {
-                from[lead] + d
-            };
-        }
-        let cost: f64 = (0..n).map(|i| (to[i] - from[i]).abs()).sum();
-        let s = score(&to);
-        match order(from, &to, c, pitch) {
-            Ok(jogs) => {
-                let better = best.as_ref().map_or(true, |(bs, b, j)| {
-                    s < bs - 1e-12
-                        || (s <= bs + 1e-12
-                            && (cost < b - 1e-9 || (cost <= b + 1e-9 && jogs.steps < j.steps)))
-                });
-                if better {
-                    best = Some((s, cost, jogs));
-                }
+    // Every shift's targets, scored; then the jogs ordered best first, until one can be.
+    let mut shifts: Vec<(f64, f64, Vec<f64>)> = (0..n)
+        .map(|k| {
+            let delta: Vec<f64> = (0..n)
+                .map(|i| {
+                    let t = q[(i + k) % n] + c * ((i + k) / n) as f64;
+                    t - from[by_s[i]].rem_euclid(c)
+                })
+                .collect();
+            let winding = [-2.0, -1.0, 0.0, 1.0, 2.0]
+                .into_iter()
+                .min_by(|a, b| {
+                    let worst =
+                        |m: f64| delta.iter().map(|d| (d - m * c).abs()).fold(0.0, f64::max);
+                    worst(*a).total_cmp(&worst(*b))
+                })
+                .unwrap_or(0.0);
+            let mut to = vec![0.0; n];
+            for (i, d) in delta.iter().enumerate() {
+                let lead = by_s[i];
+                let d = d - winding * c;
+                to[lead] = if d.abs() <= MOVE_TOL_MM {
+                    from[lead]
+                } else {
+                    from[lead] + d
+                };
             }
+            let cost: f64 = (0..n).map(|i| (to[i] - from[i]).abs()).sum();
+            (score(&to), cost, to)
+        })
+        .collect();
+    shifts.sort_by(|a, b| {
+        let same = (a.0 - b.0).abs() <= 1e-12;
+        if same {
+            a.1.total_cmp(&b.1)
+        } else {
+            a.0.total_cmp(&b.0)
+        }
+    });
+    let mut last_err = (0, 0);
+    for (s, _, to) in &shifts {
+        if *s > bound + 1e-12 {
+            break;
+        }
+        match order(from, to, c, pitch) {
+            Ok(jogs) => return Ok(jogs),
             Err(e) => last_err = e,
         }
     }
-    best.map(|(_, _, j)| j).ok_or(last_err)
+    Err(last_err)
 }
 
 /// The `x` of step `k` of `steps` spread evenly over `[x0, x1]` (mm): one step sits in the
@@ -227,11 +236,15 @@ mod tests {
 
     #[test]
     fn assignment_keeps_the_order_and_moves_least() {
-        let j = assign(&[0.2, 9.8], &[0.5, 9.5], C, 0.13, &|_| 0.0).unwrap();
+        let j = assign(&[0.2, 9.8], &[0.5, 9.5], C, 0.13, &|_| 0.0, f64::INFINITY).unwrap();
         assert!((j.to[0] - 0.5).abs() < 1e-12 && (j.to[1] - 9.5).abs() < 1e-12);
         // Seen across the seam: 9.8 is just below 0.2 round the tube.
-        let j = assign(&[-0.2, 0.2], &[5.0, 0.0], C, 0.13, &|_| 0.0).unwrap();
-        let moved: f64 = j.to.iter().zip([-0.2, 0.2]).map(|(t, f)| (t - f).abs()).sum();
+        let j = assign(&[-0.2, 0.2], &[5.0, 0.0], C, 0.13, &|_| 0.0, f64::INFINITY).unwrap();
+        let moved: f64 =
+            j.to.iter()
+                .zip([-0.2, 0.2])
+                .map(|(t, f)| (t - f).abs())
+                .sum();
         assert!((moved - 5.0).abs() < 1e-9, "{j:?}");
     }
 

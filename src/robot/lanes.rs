@@ -93,15 +93,26 @@ pub(crate) fn corridors(joint: &RobotJoint, pitch_mm: f64, cut_reach_mm: f64) ->
     let half_sensor = section.sensor_arc_mm() / 2.0;
     let mut forbidden = Vec::new();
     for side in 0..design.joint.style().notches_per_level() as usize {
-        let centre = if side == 0 { std::f64::consts::PI * r_o } else { 0.0 };
+        let centre = if side == 0 {
+            std::f64::consts::PI * r_o
+        } else {
+            0.0
+        };
         forbidden.push((
             centre - half_notch - cut_reach_mm,
             centre + half_notch + cut_reach_mm,
         ));
     }
     for sensor in 0..joint.sensor_count() {
-        let centre = if sensor == 0 { 0.0 } else { std::f64::consts::PI * r_o };
-        forbidden.push((centre - half_sensor - pitch_mm, centre + half_sensor + pitch_mm));
+        let centre = if sensor == 0 {
+            0.0
+        } else {
+            std::f64::consts::PI * r_o
+        };
+        forbidden.push((
+            centre - half_sensor - pitch_mm,
+            centre + half_sensor + pitch_mm,
+        ));
     }
     free_arcs(&forbidden, c)
 }
@@ -129,13 +140,7 @@ fn neutral_lines(r_o: f64, y_bar: f64, lo: f64, hi: f64) -> Vec<f64> {
 /// Where the first of `k` lanes `pitch` apart in `corridor` may lie, to try: the corridor's
 /// ends, each lane on a line `y = ȳ`, and evenly spaced samples between; empty when they do
 /// not fit.
-fn block_candidates(
-    corridor: Corridor,
-    k: usize,
-    pitch: f64,
-    r_o: f64,
-    y_bar: f64,
-) -> Vec<f64> {
+fn block_candidates(corridor: Corridor, k: usize, pitch: f64, r_o: f64, y_bar: f64) -> Vec<f64> {
     if k == 0 {
         return vec![corridor.lo];
     }
@@ -204,7 +209,9 @@ impl LanePlan {
         let mut lanes = Vec::new();
         for (i, &k) in self.counts.iter().enumerate() {
             lanes.extend(
-                (0..k).map(|m| (starts[i] + m as f64 * self.pitch + self.rotation_s).rem_euclid(self.c)),
+                (0..k).map(|m| {
+                    (starts[i] + m as f64 * self.pitch + self.rotation_s).rem_euclid(self.c)
+                }),
             );
         }
         lanes.sort_by(f64::total_cmp);

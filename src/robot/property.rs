@@ -51,14 +51,8 @@ fn clear_of_notches(layout: &Layout) -> Vec<String> {
                                 y: p.y + k * c,
                             };
                             let seg = Line::new(shift(w[0]), shift(w[1]));
-                            let (lo, hi) = (
-                                seg.start.y.min(seg.end.y),
-                                seg.start.y.max(seg.end.y),
-                            );
-                            let (xl, xh) = (
-                                seg.start.x.min(seg.end.x),
-                                seg.start.x.max(seg.end.x),
-                            );
+                            let (lo, hi) = (seg.start.y.min(seg.end.y), seg.start.y.max(seg.end.y));
+                            let (xl, xh) = (seg.start.x.min(seg.end.x), seg.start.x.max(seg.end.x));
                             if hi < rect.min().y - reach
                                 || lo > rect.max().y + reach
                                 || xh < rect.min().x - reach

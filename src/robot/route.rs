@@ -22,7 +22,7 @@ use crate::layout::{square_spiral, NotchRect, PadSide, Polyline, Unrolled};
 use super::assemble::{Robot, RobotJoint};
 use super::error::RobotViolation;
 use super::jogs::{self, Jogs};
-use super::lanes::{corridors, lanes_near, plan_lanes, LanePlan};
+use super::lanes::{lanes_near, plan_lanes, LanePlan};
 use super::pads;
 use super::sensors::{list_leads, Arm, LeadName};
 
@@ -160,7 +160,13 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
         let jogs = match choose_lanes(&plan, joint, &from, &sensor_of, &own_sums, pitch) {
             Ok(j) => j,
             Err((a, b)) => {
-                violations.push(crossing(format!("before joint {}", ji + 1), ji, &names, a, b));
+                violations.push(crossing(
+                    format!("before joint {}", ji + 1),
+                    ji,
+                    &names,
+                    a,
+                    b,
+                ));
                 return Err(violations);
             }
         };
@@ -207,13 +213,7 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
     let jogs = match jogs::order(&from, &to, pitch.c, pitch.lead_mm) {
         Ok(j) => j,
         Err((a, b)) => {
-            violations.push(crossing(
-                "before the pads".into(),
-                last_index,
-                &names,
-                a,
-                b,
-            ));
+            violations.push(crossing("before the pads".into(), last_index, &names, a, b));
             return Err(violations);
         }
     };
@@ -333,23 +333,26 @@ fn choose_lanes(
         sums.iter().zip(own).map(|(s, o)| (s / o).powi(2)).sum()
     };
     let near = |to: &[f64]| to.iter().map(|t| height(*t).abs()).sum::<f64>();
-    let evaluate = |starts: &[f64]| -> Result<(f64, f64, Jogs), jogs::Crossing> {
+    let evaluate = |starts: &[f64], bound: f64| -> Result<(f64, f64, Jogs), jogs::Crossing> {
         let lanes = plan.lanes(starts);
-        let j = jogs::assign(from, &lanes, pitch.c, pitch.lead_mm, &score)?;
+        let j = jogs::assign(from, &lanes, pitch.c, pitch.lead_mm, &score, bound)?;
         Ok((score(&j.to), near(&j.to), j))
     };
     let better = |a: &(f64, f64, Jogs), b: &(f64, f64, Jogs)| {
         a.0 < b.0 - 1e-12 || (a.0 <= b.0 + 1e-12 && a.1 < b.1 - 1e-12)
     };
     let mut starts = plan.starts.clone();
-    let mut best = evaluate(&starts);
+    let mut best = evaluate(&starts, f64::INFINITY);
     for _round in 0..3 {
         let mut improved = false;
         for i in (0..plan.corridors.len()).filter(|&i| plan.counts[i] > 0) {
             for &u in &plan.candidates[i] {
                 let mut trial = starts.clone();
                 trial[i] = u;
-                let Ok(found) = evaluate(&trial) else { continue };
+                let bound = best.as_ref().map_or(f64::INFINITY, |b| b.0);
+                let Ok(found) = evaluate(&trial, bound) else {
+                    continue;
+                };
                 if best.as_ref().map_or(true, |b| better(&found, b)) {
                     best = Ok(found);
                     starts = trial;
@@ -410,7 +413,12 @@ fn row_zero_targets(
     }
     // Own leads in order round the tube; passing leads grouped by the own lead before them.
     let mut own_order: Vec<usize> = (0..own.len()).collect();
-    own_order.sort_by(|&a, &b| own_t[a].0.rem_euclid(c).total_cmp(&own_t[b].0.rem_euclid(c)));
+    own_order.sort_by(|&a, &b| {
+        own_t[a]
+            .0
+            .rem_euclid(c)
+            .total_cmp(&own_t[b].0.rem_euclid(c))
+    });
     for (o, &a) in own_order.iter().enumerate() {
         let b = own_order[(o + 1) % own_order.len()];
         let fa = own_t[a].0.rem_euclid(c);
@@ -533,8 +541,8 @@ fn rows(
     for offset in tried {
         let mut targets = unwrap(offset);
         // The same winding for every lead: bring the whole set to within half a turn.
-        let mean: f64 = targets.iter().zip(&g).map(|(t, gi)| t - gi).sum::<f64>()
-            / targets.len() as f64;
+        let mean: f64 =
+            targets.iter().zip(&g).map(|(t, gi)| t - gi).sum::<f64>() / targets.len() as f64;
         let k = (mean / c).round();
         for t in &mut targets {
             *t -= k * c;
@@ -634,13 +642,4 @@ fn crossing(place: String, ji: usize, names: &[LeadName], a: usize, b: usize) ->
             ji + 1
         ),
     }
-}
-
-/// The corridors over `joint` in its own frame, with the robot's pitch: for messages and docs.
-#[allow(dead_code)]
-pub(crate) fn corridor_widths(joint: &RobotJoint, lead_mm: f64, cut_mm: f64) -> Vec<f64> {
-    corridors(joint, lead_mm, cut_mm)
-        .iter()
-        .map(|c| c.hi - c.lo)
-        .collect()
 }

@@ -57,7 +57,9 @@ pub(crate) fn list_leads(leads: &[LeadName]) -> String {
     let mut i = 0;
     while i < leads.len() {
         let l = leads[i];
-        let pair = leads.get(i + 1).filter(|m| m.sensor == l.sensor && m.arm != l.arm);
+        let pair = leads
+            .get(i + 1)
+            .filter(|m| m.sensor == l.sensor && m.arm != l.arm);
         if pair.is_some() {
             parts.push(format!("{} leads A and B", l.sensor));
             i += 2;

@@ -2,6 +2,8 @@
 //! why it is not on the neutral plane, and a rotation that would lower it, found by routing
 //! the robot again with that joint (or the sensor's own joint) turned in 15° steps.
 
+use std::collections::HashMap;
+
 use crate::layout::Layout;
 
 use super::assemble::Robot;
@@ -17,8 +19,55 @@ const ROTATION_STEP_DEG: f64 = 15.0;
 /// less is within what another route changes anyway.
 const WORTH: f64 = 0.005;
 
-/// The warning for `f`, with where its lead runs and what would lower it.
-pub(crate) fn suggestion(robot: &Robot, layout: &Layout, f: &CrosstalkFinding) -> String {
+/// The crosstalk matrices of the robot with one joint turned to another rotation, routed on
+/// demand and kept: `(joint, rotation) → C` (`None` where it does not route).
+#[derive(Default)]
+pub(crate) struct Turns {
+    routed: HashMap<(usize, u32), Option<Vec<Vec<f64>>>>,
+}
+
+impl Turns {
+    /// `C` of `robot` with joint `j` at `k` rotation steps.
+    fn matrix(&mut self, robot: &Robot, j: usize, k: u32) -> Option<&Vec<Vec<f64>>> {
+        self.routed
+            .entry((j, k))
+            .or_insert_with(|| {
+                let mut turned = robot.clone();
+                turned.joints[j].rotation_deg = f64::from(k) * ROTATION_STEP_DEG;
+                let routed = route(&turned).ok()?;
+                let reports = reports_unrolled(&turned, &routed.unrolled).ok()?;
+                Some(reports.into_iter().map(|r| r.crosstalk).collect())
+            })
+            .as_ref()
+    }
+}
+
+/// The warnings for `findings`, each with where its lead runs and, when `advise`, what would
+/// lower it (routing the robot again with joints turned: `dlw inspect` does, the other commands
+/// say where to look).
+pub(crate) fn suggestions(
+    robot: &Robot,
+    layout: &Layout,
+    findings: &[CrosstalkFinding],
+    advise: bool,
+) -> Vec<String> {
+    let mut turns = Turns::default();
+    findings
+        .iter()
+        .map(|f| {
+            let head = describe(robot, layout, f);
+            if advise {
+                format!("{head}. {}", rotation_advice(robot, f, &mut turns))
+            } else {
+                format!("{head}; dlw inspect names a rotation that would lower it, if one does")
+            }
+        })
+        .collect()
+}
+
+/// Which sensor reads how much of which joint through which lead, where that lead runs and
+/// why it is not on the neutral plane.
+fn describe(robot: &Robot, layout: &Layout, f: &CrosstalkFinding) -> String {
     let joint = &robot.joints[f.joint];
     let r_o = robot.outer_radius_mm();
     let y_bar = joint.neutral_axis_mm();
@@ -78,7 +127,7 @@ pub(crate) fn suggestion(robot: &Robot, layout: &Layout, f: &CrosstalkFinding) -
             if joint.sensor_count() == 1 { "" } else { "s" }
         )
     };
-    let head = format!(
+    format!(
         "{} reads {:.1} % of joint {}'s bending (crosstalk {:+.4}), {:.1} % of it through {}, which runs over joint {} at y = {:.3} mm, {:.3} mm {} its neutral plane ȳ = {:.3} mm ({why})",
         f.sensor,
         f.value.abs() * 100.0,
@@ -91,13 +140,12 @@ pub(crate) fn suggestion(robot: &Robot, layout: &Layout, f: &CrosstalkFinding) -
         (y - y_bar).abs(),
         if y >= y_bar { "above" } else { "below" },
         y_bar
-    );
-    format!("{head}. {}", rotation_advice(robot, f))
+    )
 }
 
 /// Routes the robot with one joint turned at a time and says which turn lowers the finding's
 /// crosstalk most.
-fn rotation_advice(robot: &Robot, f: &CrosstalkFinding) -> String {
+fn rotation_advice(robot: &Robot, f: &CrosstalkFinding, turns: &mut Turns) -> String {
     let mut candidates = vec![f.joint];
     if f.sensor.joint != f.joint {
         candidates.push(f.sensor.joint);
@@ -105,20 +153,15 @@ fn rotation_advice(robot: &Robot, f: &CrosstalkFinding) -> String {
     let mut best: Option<(f64, usize, f64)> = None;
     for &j in &candidates {
         let now = robot.joints[j].rotation_deg.rem_euclid(360.0);
-        for k in 0..(360.0 / ROTATION_STEP_DEG) as usize {
-            let rotation = k as f64 * ROTATION_STEP_DEG;
+        for k in 0..(360.0 / ROTATION_STEP_DEG) as u32 {
+            let rotation = f64::from(k) * ROTATION_STEP_DEG;
             if (rotation - now).abs() < 1e-9 {
                 continue;
             }
-            let mut turned = robot.clone();
-            turned.joints[j].rotation_deg = rotation;
-            let Ok(routed) = route(&turned) else {
+            let Some(matrix) = turns.matrix(robot, j, k) else {
                 continue;
             };
-            let Ok(reports) = reports_unrolled(&turned, &routed.unrolled) else {
-                continue;
-            };
-            let value = reports[f.sensor.index].crosstalk[f.joint];
+            let value = matrix[f.sensor.index][f.joint];
             if best.map_or(true, |(b, _, _)| value.abs() < b.abs()) {
                 best = Some((value, j, rotation));
             }

@@ -8,14 +8,14 @@ fn designs() -> PathBuf {
 
 #[test]
 fn robots_route_and_print() {
-  for f in ["robot-bc.toml", "robot-bdb.toml"] {
-    let r = CheckedRobot::load(&designs().join(f)).unwrap();
-    let i = RobotInspection::of(&r);
-    println!("{}", serde_json::to_string_pretty(&i).unwrap());
-    for l in &r.layout.leads {
-        println!("lead sensor {}: {:?}", l.sensor, l.pieces);
+    for f in ["robot-bc.toml", "robot-bdb.toml"] {
+        let r = CheckedRobot::load(&designs().join(f)).unwrap();
+        let i = RobotInspection::of(&r);
+        println!("{}", serde_json::to_string_pretty(&i).unwrap());
+        for l in &r.layout.leads {
+            println!("lead sensor {}: {:?}", l.sensor, l.pieces);
+        }
     }
-  }
 }
 
 /// A robot of one joint at 0° lays out exactly as the joint: the router's own leads, the pads
@@ -29,13 +29,20 @@ fn a_one_joint_robot_lays_out_as_its_joint() {
         let robot = dir.path().join("one.toml");
         std::fs::write(
             &robot,
-            format!("name = \"one\"\n[[joint]]\ndesign = {:?}\nrotation_deg = 0.0\n", path.display().to_string()),
+            format!(
+                "name = \"one\"\n[[joint]]\ndesign = {:?}\nrotation_deg = 0.0\n",
+                path.display().to_string()
+            ),
         )
         .unwrap();
         let r = CheckedRobot::load(&robot).unwrap();
         let mut own = r.robot.joints[0].checked.layout.clone();
         own.name = "one".into();
-        assert!(r.layout == own, "joint {j}: {:?}", r.layout.max_difference_mm(&own));
+        assert!(
+            r.layout == own,
+            "joint {j}: {:?}",
+            r.layout.max_difference_mm(&own)
+        );
         assert_eq!(r.robot.checksum, r.robot.joints[0].design().checksum);
     }
 }
@@ -48,7 +55,10 @@ fn a_turned_one_joint_robot_is_its_joint_turned() {
     let robot = dir.path().join("one.toml");
     std::fs::write(
         &robot,
-        format!("name = \"one\"\n[[joint]]\ndesign = {:?}\nrotation_deg = 90.0\n", path.display().to_string()),
+        format!(
+            "name = \"one\"\n[[joint]]\ndesign = {:?}\nrotation_deg = 90.0\n",
+            path.display().to_string()
+        ),
     )
     .unwrap();
     let r = CheckedRobot::load(&robot).unwrap();

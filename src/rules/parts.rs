@@ -73,6 +73,17 @@ impl Part {
         part
     }
 
+    /// Range of `x` the part covers (mm).
+    fn x_range(&self) -> Option<(f64, f64)> {
+        self.segments
+            .iter()
+            .flat_map(|seg| [seg.line.start.x, seg.line.end.x])
+            .fold(None, |acc, x| match acc {
+                None => Some((x, x)),
+                Some((lo, hi)) => Some((lo.min(x), hi.max(x))),
+            })
+    }
+
     /// Range of `s` the part covers (mm).
     fn s_range(&self) -> Option<(f64, f64)> {
         self.segments
@@ -113,6 +124,12 @@ impl Part {
 /// The closest approach of `a` to `b` on a cylinder of circumference `c_mm`, looking only at
 /// copies of `b` that could come within `reach_mm` of `a`.
 pub(crate) fn closest_on_cylinder(a: &Part, b: &Part, c_mm: f64, reach_mm: f64) -> Option<Closest> {
+    // Parts further apart along the tube than the reach have no copy within it (the fills lie
+    // inside their outlines, which are segments too).
+    let ((axlo, axhi), (bxlo, bxhi)) = (a.x_range()?, b.x_range()?);
+    if bxlo > axhi + reach_mm || axlo > bxhi + reach_mm {
+        return None;
+    }
     let ((alo, ahi), (blo, bhi)) = (a.s_range()?, b.s_range()?);
     let k_min = ((alo - bhi - reach_mm) / c_mm).floor() as i64;
     let k_max = ((ahi - blo + reach_mm) / c_mm).ceil() as i64;

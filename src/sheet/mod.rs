@@ -7,9 +7,9 @@ mod robot;
 mod safety;
 mod setup;
 
+/// The setup sheet of a robot: the joint's sheet with the robot's zeroing and a joint table.
+pub use robot::{robot_sheet, SheetJoint};
 /// The sheet's laser-safety section.
 pub use safety::safety_lines;
 /// The operator's setup sheet and the mandrel it picks.
 pub use setup::{mandrel_mm, setup_sheet, SheetContext, MANDREL_CLEARANCE_MM, MANDREL_SIZES_MM};
-/// The setup sheet of a robot: the joint's sheet with the robot's zeroing and a joint table.
-pub use robot::{robot_sheet, SheetJoint};

@@ -131,7 +131,8 @@ fn notch_times(plan: &Plan, profile: &crate::machine::MachineProfile, joints: us
             }
             MoveKind::Rapid => {
                 let tx = (mv.to.x_mm - mv.from.x_mm).abs() / limits.x_speed_max_mm_s;
-                let ta = (mv.to.a_rad - mv.from.a_rad).abs().to_degrees() / limits.a_speed_max_deg_s;
+                let ta =
+                    (mv.to.a_rad - mv.from.a_rad).abs().to_degrees() / limits.a_speed_max_deg_s;
                 tx.max(ta)
             }
         };

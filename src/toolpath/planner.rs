@@ -522,11 +522,14 @@ mod tests {
         let split = notches
             .paths
             .iter()
-            .find(|p| p.feature == Feature::Notch {
-                    joint: None,
-                    level: 0,
-                    side: 1,
-                })
+            .find(|p| {
+                p.feature
+                    == Feature::Notch {
+                        joint: None,
+                        level: 0,
+                        side: 1,
+                    }
+            })
             .unwrap();
         let cut = &split.forward[1..];
         let (mut x0, mut x1, mut s0, mut s1) = (

@@ -90,7 +90,12 @@ fn draw(robot: &CheckedRobot, scale: f64) -> Drawn {
         let (x0, x1) = (j.x_start_mm(), j.x_end_mm());
         let margin = d.fabrication.distal_margin_mm;
         let (_, y) = pt(0.0, wrap(j.rotation_s_mm()));
-        sheet.line("guides", (x0 - margin / 2.0, y), (x1 + margin / 2.0, y), &guide);
+        sheet.line(
+            "guides",
+            (x0 - margin / 2.0, y),
+            (x1 + margin / 2.0, y),
+            &guide,
+        );
         sheet.text(
             "labels",
             (x1 + margin / 2.0 + sheet.paper(1.0), y + sheet.paper(0.7)),
@@ -124,8 +129,7 @@ fn draw(robot: &CheckedRobot, scale: f64) -> Drawn {
     let edge = sheet.pen(palette::NOTCH_EDGE, 0.15, None);
     for n in &layout.notches {
         for poly in &n.outline {
-            let mut pts: Vec<(f64, f64)> =
-                poly.exterior().coords().map(|p| pt(p.x, p.y)).collect();
+            let mut pts: Vec<(f64, f64)> = poly.exterior().coords().map(|p| pt(p.x, p.y)).collect();
             if pts.len() > 1 && pts.first() == pts.last() {
                 pts.pop();
             }
@@ -261,7 +265,12 @@ fn side_view(sheet: &mut Sheet, robot: &CheckedRobot, top: f64) -> f64 {
         "side-tube",
     );
     let axis = sheet.pen(palette::GUIDE, THIN_MM, Some(&[6.0, 1.5, 1.0, 1.5]));
-    sheet.line("side", side(-sheet.paper(3.0), 0.0), side(length + sheet.paper(3.0), 0.0), &axis);
+    sheet.line(
+        "side",
+        side(-sheet.paper(3.0), 0.0),
+        side(length + sheet.paper(3.0), 0.0),
+        &axis,
+    );
     let edge = sheet.pen(palette::NOTCH_EDGE, 0.15, None);
     for n in &layout.notches {
         let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -274,7 +283,9 @@ fn side_view(sheet: &mut Sheet, robot: &CheckedRobot, top: f64) -> f64 {
             }
             let (a, b) = ss
                 .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(*s), b.max(*s)));
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| {
+                    (a.min(*s), b.max(*s))
+                });
             // The height range of the arc [a, b] on the surface: cos over it.
             let (pa, pb) = (a / r_o, b / r_o);
             let mut ys = vec![pa.cos(), pb.cos()];
@@ -310,7 +321,14 @@ fn side_view(sheet: &mut Sheet, robot: &CheckedRobot, top: f64) -> f64 {
         // Direction of the surface point at φ, seen from the tip: (−sin φ, cos φ), y up.
         let dir = |phi: f64| (-phi.sin(), -phi.cos());
         let (ux, uy) = dir(phi);
-        sheet.circle("side", (cx, cy), glyph, Some("#ffffff"), Some(&ring), "end-view");
+        sheet.circle(
+            "side",
+            (cx, cy),
+            glyph,
+            Some("#ffffff"),
+            Some(&ring),
+            "end-view",
+        );
         sheet.line(
             "side",
             (cx - 1.3 * glyph * ux, cy - 1.3 * glyph * uy),
@@ -442,7 +460,11 @@ fn footer(sheet: &mut Sheet, robot: &CheckedRobot, top: f64) {
     };
     let _ = TEXT_MM;
     let x = robot.layout.length_mm.max(sheet.paper(160.0)) - table.size(sheet).0;
-    table.draw(sheet, "labels", (x.max(sheet.paper(150.0)), top + sheet.paper(2.0)));
+    table.draw(
+        sheet,
+        "labels",
+        (x.max(sheet.paper(150.0)), top + sheet.paper(2.0)),
+    );
     let _ = below_bar;
 }
 
@@ -463,8 +485,7 @@ mod tests {
     /// regenerate it after a deliberate change (and look at it: `docs/robots.md`).
     #[test]
     fn docs_robot_figure_is_current() {
-        let path =
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img/robot-bc.svg");
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img/robot-bc.svg");
         let svg = robot_svg(&robot("robot-bc.toml")).unwrap();
         if std::env::var_os("DLW_UPDATE_DOCS").is_some() {
             crate::output::write_atomic(&path, svg.as_bytes()).unwrap();
