@@ -251,7 +251,11 @@ fn label_traces(own: &Layout, layout: &mut Layout) {
                     .iter()
                     .enumerate()
                     .map(|(i, m)| {
-                        let far = piece.0.iter().map(|p| to_trace(*p, m).0).fold(0.0, f64::max);
+                        let far = piece
+                            .0
+                            .iter()
+                            .map(|p| to_trace(*p, m).0)
+                            .fold(0.0, f64::max);
                         let along = piece.0.iter().map(|p| to_trace(*p, m).1).sum::<f64>() / n;
                         (i, far, along)
                     })

@@ -59,7 +59,9 @@ pub fn robot_svg_with(robot: &CheckedRobot, options: &SvgOptions) -> Result<Stri
         return super::layout_svg_with(&robot.layout, only.design(), options);
     }
     super::layout::check(&robot.layout)?;
-    options.draw(|scale| draw(robot, scale))
+    // The tube alone is `length` wide on the sheet: no scale above page width / length fits.
+    let largest = super::options::PAGE_MM.0 / robot.layout.length_mm;
+    options.draw_at_most(largest, |scale| draw(robot, scale))
 }
 
 fn draw(robot: &CheckedRobot, scale: f64) -> Drawn {
