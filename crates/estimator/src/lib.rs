@@ -110,6 +110,8 @@ pub use continuous_pi::{
 };
 /// Divider voltage to sensor resistance (Eq. 4), flagging the rails.
 pub use divider::divider_resistance;
+/// The robot's kinematics (from `dlw-geometry`), re-exported for the robot estimator's users.
+pub use dlw_geometry::{BendingSection, Kinematics, KinematicsError, Pose, MAX_JOINTS};
 /// Why a configuration was refused.
 pub use error::EstimatorError;
 /// The runtime estimator and its per-sample output.
@@ -139,7 +141,5 @@ pub use robot::{
     RobotError, RobotEstimate, RobotEstimator, RobotEstimatorConfig, RobotJointConfig,
     RobotSensorConfig, Unmixing, DEFAULT_MAX_CONDITION_NUMBER, MAX_SENSORS,
 };
-/// The robot's kinematics (from `dlw-geometry`), re-exported for the robot estimator's users.
-pub use dlw_geometry::{BendingSection, Kinematics, KinematicsError, Pose, MAX_JOINTS};
 /// The direction-switched tanh input and its inverse (Eqs. 10 and 14).
 pub use tanh_input::{TanhBranch, TanhInput, ATANH_BOUND};

@@ -9,7 +9,7 @@ use crate::error::EstimatorError;
 /// The storage is filled with copies of the first value pushed, so `T` needs no default. With
 /// the `serde` feature it reads and writes as a plain sequence (`[[joint]]` tables in TOML); a
 /// longer sequence is refused with an error naming the limit.
-#[derive(Clone, Copy, PartialEq)]
+#[derive(Clone, Copy)]
 pub struct List<T: Copy, const CAP: usize> {
     items: Option<[T; CAP]>,
     len: usize,
@@ -67,6 +67,14 @@ impl<T: Copy, const CAP: usize> List<T, CAP> {
             Some(items) => &mut items[..self.len],
             None => &mut [],
         }
+    }
+}
+
+/// Lists are equal when their values are: the unused slots (copies of whatever was pushed
+/// first) do not count.
+impl<T: Copy + PartialEq, const CAP: usize> PartialEq for List<T, CAP> {
+    fn eq(&self, other: &Self) -> bool {
+        self.as_slice() == other.as_slice()
     }
 }
 
@@ -153,6 +161,13 @@ mod tests {
         assert_eq!(&*list, &[7, 8, 9]);
         list.as_mut_slice()[1] = 1;
         assert_eq!(list.as_slice(), &[7, 1, 9]);
+        // Equal values, different unused slots.
+        let (mut a, mut b) = (List::<u32, 3>::new(), List::<u32, 3>::new());
+        a.push(1);
+        b.push(2);
+        b.as_mut_slice()[0] = 1;
+        assert_eq!(a, b);
+        assert_ne!(a, List::new());
         assert_eq!(
             List::<f64, 2>::from_slice("crosstalk", &[1.0, 2.0, 3.0]),
             Err(EstimatorError::TooMany {

@@ -226,7 +226,10 @@ impl RobotEstimatorConfig {
 
     fn joint_of(&self, index: usize) -> Result<&RobotJointConfig, RobotError> {
         let s = &self.sensor[index];
-        match (s.joint as usize).checked_sub(1).and_then(|j| self.joint.get(j)) {
+        match (s.joint as usize)
+            .checked_sub(1)
+            .and_then(|j| self.joint.get(j))
+        {
             Some(joint) => Ok(joint),
             None => Err(RobotError::SensorJoint {
                 sensor: index + 1,
@@ -251,13 +254,10 @@ impl RobotEstimatorConfig {
     pub(crate) fn resolve(&self) -> Result<Resolved, RobotError> {
         let joints = self.joint.len();
         for (j, joint) in self.joint.iter().enumerate() {
-            joint
-                .geometry
-                .to_joint()
-                .map_err(|e| RobotError::Joint {
-                    joint: j + 1,
-                    error: e.into(),
-                })?;
+            joint.geometry.to_joint().map_err(|e| RobotError::Joint {
+                joint: j + 1,
+                error: e.into(),
+            })?;
         }
         let kinematics = self.kinematics()?;
         if self.sensor.len() < joints {

@@ -112,8 +112,10 @@ impl RobotEstimator {
         let resolved = config.resolve()?;
         let mut chains: [Option<Chain>; MAX_SENSORS] = core::array::from_fn(|_| None);
         for (i, (slot, c)) in chains.iter_mut().zip(resolved.chains.iter()).enumerate() {
-            let estimator =
-                Estimator::new(c).map_err(|error| RobotError::Sensor { sensor: i + 1, error })?;
+            let estimator = Estimator::new(c).map_err(|error| RobotError::Sensor {
+                sensor: i + 1,
+                error,
+            })?;
             *slot = Some(Chain::from(estimator));
         }
         let (joints, sensors) = (config.joint_count(), config.sensor_count());

@@ -8,9 +8,10 @@ pub const MAX_SENSORS: usize = 2 * MAX_JOINTS;
 
 /// The condition number a crosstalk matrix may have unless the config says otherwise. The
 /// geometric crosstalk of `dlw inspect` is a few percent (issue 33 warns above 5 %), which
-/// gives condition numbers near 1.1; 10 still admits fitted matrices with crosstalk of order 1,
-/// while refusing ones that would turn a 1 % error of a sensor into more than 10 % on the
-/// joint angles.
+/// gives condition numbers near 1 for one sensor per joint and near √2 where a BSN joint's two
+/// sensors give it two rows (the test robots measure 1.0-1.5); 10 still admits fitted matrices
+/// with crosstalk of order 1, while refusing ones that could turn a 1 % error of the sensors
+/// into more than 10 % on the joint angles.
 pub const DEFAULT_MAX_CONDITION_NUMBER: f64 = 10.0;
 
 /// Most sweeps of the singular value decomposition of the (at most 16 × 8) crosstalk matrix.
@@ -88,7 +89,8 @@ impl Unmixing {
         let sigma = svd.singular_values;
         let (largest, smallest) = (sigma[0], sigma[joints - 1]);
         let threshold = sensors.max(joints) as f64 * f64::EPSILON * largest;
-        if !(smallest > threshold) {
+        // Written to refuse a NaN too.
+        if smallest.partial_cmp(&threshold) != Some(core::cmp::Ordering::Greater) {
             return Err(RobotError::RankDeficient {
                 smallest,
                 threshold,
@@ -128,10 +130,8 @@ impl Unmixing {
                 largest_entry = largest_entry.max(p.abs());
             }
         }
-        let rounding = ROUNDING_ALLOWANCE
-            * f64::EPSILON
-            * condition_number
-            * sensors.max(joints) as f64;
+        let rounding =
+            ROUNDING_ALLOWANCE * f64::EPSILON * condition_number * sensors.max(joints) as f64;
         for j in 0..joints {
             for i in 0..sensors {
                 if out.pseudo_inverse[j][i].abs() <= rounding * largest_entry {
@@ -142,7 +142,7 @@ impl Unmixing {
             }
         }
         let error = out.self_check_error();
-        if !(error <= rounding) {
+        if error.is_nan() || error > rounding {
             return Err(RobotError::SelfCheck {
                 error,
                 limit: rounding,
