@@ -1,6 +1,6 @@
 use core::fmt;
 
-use nalgebra::{Unit, UnitQuaternion, Vector3};
+use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
 
 /// Most joints a robot's kinematics (and the robot estimator) holds; storage is inline.
 pub const MAX_JOINTS: usize = 8;
@@ -331,10 +331,17 @@ impl Kinematics {
         let mut position = Vector3::zeros();
         let mut turn = UnitQuaternion::identity();
         for stretch in &self.stretches[..2 * self.joints] {
-            let (curvature, plane) = self.bend(stretch, angles_rad);
-            position += turn * along_arc(curvature, &plane, stretch.length_mm);
-            if stretch.joint.is_some() {
-                turn *= UnitQuaternion::from_axis_angle(&plane.axis, curvature * stretch.length_mm);
+            match stretch.joint {
+                Some(j) => {
+                    let (moved, turned) = arc(
+                        angles_rad[j] / stretch.length_mm,
+                        &self.planes[j],
+                        stretch.length_mm,
+                    );
+                    position += turn * moved;
+                    turn *= turned;
+                }
+                None => position += turn * (Vector3::z() * stretch.length_mm),
             }
         }
         Ok(pose(position, turn))
@@ -381,10 +388,9 @@ impl Kinematics {
                 points_mm[next] = [p.x, p.y, p.z];
                 next += 1;
             }
-            position += turn * along_arc(curvature, &plane, stretch.length_mm);
-            if stretch.joint.is_some() {
-                turn *= UnitQuaternion::from_axis_angle(&plane.axis, curvature * stretch.length_mm);
-            }
+            let (moved, turned) = arc(curvature, &plane, stretch.length_mm);
+            position += turn * moved;
+            turn *= turned;
             start_mm += stretch.length_mm;
         }
         points_mm[count - 1] = [position.x, position.y, position.z];
@@ -401,6 +407,20 @@ fn along_arc(curvature: f64, plane: &Plane, length_mm: f64) -> Vector3<f64> {
     plane.toward * (length_mm * half * sinc * sinc) + Vector3::z() * (length_mm * sinc * cos)
 }
 
+/// [`along_arc`] over the whole `length` and the rotation the arc turns the frame by,
+/// `Rot(x_j, κ·length)`, from one sine and cosine of the half angle `h`, which the unit
+/// quaternion `(cos h, sin h·x_j)` shares.
+#[inline]
+fn arc(curvature: f64, plane: &Plane, length_mm: f64) -> (Vector3<f64>, UnitQuaternion<f64>) {
+    let half = 0.5 * curvature * length_mm;
+    let (sinc, cos) = sinc_cos(half);
+    let moved =
+        plane.toward * (length_mm * half * sinc * sinc) + Vector3::z() * (length_mm * sinc * cos);
+    let axis = plane.axis.into_inner() * (half * sinc);
+    let turned = UnitQuaternion::new_unchecked(Quaternion::new(cos, axis.x, axis.y, axis.z));
+    (moved, turned)
+}
+
 /// `(sin(h)/h, cos(h))`, by series near 0 so that `h = 0` needs no division.
 #[inline]
 fn sinc_cos(half_rad: f64) -> (f64, f64) {
@@ -411,7 +431,8 @@ fn sinc_cos(half_rad: f64) -> (f64, f64) {
             1.0 - h2 / 2.0 + h2 * h2 / 24.0,
         )
     } else {
-        (libm::sin(half_rad) / half_rad, libm::cos(half_rad))
+        let (sin, cos) = libm::sincos(half_rad);
+        (sin / half_rad, cos)
     }
 }
 
