@@ -46,6 +46,16 @@ fn worst_error(
 
 #[test]
 fn linear_sensors_recover_the_angles_with_crosstalk_undone() {
+    // docs/robot-runtime.md: one sensor per joint gives κ near 1, a BSN pair near √2.
+    let kappa = |c| {
+        RobotEstimator::new(&c)
+            .unwrap()
+            .unmixing()
+            .condition_number()
+    };
+    let (bbb, bcb) = (kappa(bbb_linear()), kappa(bcb_linear()));
+    assert!(bbb > 1.0 && bbb < 1.1, "{bbb}");
+    assert!((bcb - 2f64.sqrt()).abs() < 0.05, "{bcb}");
     for config in [bcb_linear(), bbb_linear()] {
         let (worst, kept) = worst_error(&config, 2000, 0.5, |f| f.iter().all(|f| f.is_empty()));
         assert_eq!(kept, 2000, "no sample flagged");
@@ -336,6 +346,14 @@ fn refusals_name_the_sensor_the_value_and_the_limit() {
         (
             {
                 let mut c = base;
+                c.joint.as_mut_slice()[1].geometry.inner_radius_mm = 1.5;
+                c
+            },
+            "joint 2: inner_radius_mm = 1.5 must be smaller than outer_radius_mm = 0.8",
+        ),
+        (
+            {
+                let mut c = base;
                 c.sensor.as_mut_slice()[1].joint = 4;
                 c
             },
@@ -429,6 +447,10 @@ fn refusals_name_the_sensor_the_value_and_the_limit() {
             sensors: 2,
             joints: 3
         })
+    );
+    assert_eq!(
+        too_few.validate().unwrap_err().to_string(),
+        "2 sensors cannot tell 3 joint angles apart (needs at least 3 sensors)"
     );
 }
 

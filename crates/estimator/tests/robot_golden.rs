@@ -147,7 +147,10 @@ fn golden_file_is_what_the_runtime_computes() {
     // And the stored inputs are the fixture's (to serde_json's parsing, within an ulp), so a
     // change of the fixture is seen.
     let d = difference(&generated["volts"], &stored["volts"]).expect("volts' shape");
-    assert!(d <= 1e-12, "the fixture changed by {d:e}: regenerate with DLW_BLESS=1");
+    assert!(
+        d <= 1e-12,
+        "the fixture changed by {d:e}: regenerate with DLW_BLESS=1"
+    );
     assert_eq!(generated["config_toml"], stored["config_toml"]);
     // Every flag kind the file exercises appears at least once.
     let flags: Vec<Vec<u8>> = serde_json::from_value(stored["flags"].clone()).unwrap();
