@@ -68,8 +68,8 @@ impl RobotEstimate {
         &self.sensor_flags[..self.sensors]
     }
 
-    /// Root mean square of the least-squares residual `a − C·θ` (rad): 0 to rounding with one
-    /// sensor per joint; with more sensors than joints, how far they disagree.
+    /// Root mean square of the least-squares residual `a − C·θ` (rad): 0 with as many sensors
+    /// as joints (the solution is exact); with more sensors than joints, how far they disagree.
     pub fn residual_rad(&self) -> f64 {
         self.residual_rad
     }
@@ -166,7 +166,8 @@ impl RobotEstimator {
     /// extra voltages are ignored.
     #[inline]
     pub fn step(&mut self, volts: &[f64]) -> RobotEstimate {
-        let mut estimate = self.last;
+        // Built in place over the last estimate: a joint that cannot be computed keeps it.
+        let estimate = &mut self.last;
         for (i, chain) in self.chains[..self.sensors].iter_mut().enumerate() {
             if let Some(chain) = chain {
                 let e = chain.step(volts.get(i).copied().unwrap_or(f64::NAN));
@@ -190,14 +191,16 @@ impl RobotEstimator {
             }
             estimate.flags[j] = flags;
         }
-        let residual = self
-            .unmixing
-            .residual_rms(&estimate.mixed_rad, &estimate.angles_rad);
-        if residual.is_finite() {
-            estimate.residual_rad = residual;
+        // With as many sensors as joints the least squares is exact: its residual is 0.
+        if self.sensors > self.joints {
+            let residual = self
+                .unmixing
+                .residual_rms(&estimate.mixed_rad, &estimate.angles_rad);
+            if residual.is_finite() {
+                estimate.residual_rad = residual;
+            }
         }
-        self.last = estimate;
-        estimate
+        *estimate
     }
 
     /// The tip's pose at an estimate's angles.
