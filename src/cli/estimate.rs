@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
+use anyhow::{bail, Context};
 use dlw::fluoro::read_angles;
 use dlw::output::write_atomic;
 use dlw::recording::Recording;
@@ -123,6 +123,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .clone()
         .unwrap_or_else(|| args.recording.join(DEFAULT_OUTPUT));
     dlw::output::claim(&output, inputs, args.force)?;
+    if dlw::replay::is_robot_config(&args.config) {
+        if args.truth.is_some() || args.filter.is_some() {
+            bail!("--truth and --filter are for a joint's config; a robot's config sets its filters in the file (docs/robot-runtime.md)");
+        }
+        return super::robot_sensing::estimate(
+            &args.config,
+            &args.recording,
+            &output,
+            args.precision,
+            args.json,
+        );
+    }
     let mut config = load_config(&args.config)?;
     if let Some(filter) = args.filter {
         config.output_filter = filter;

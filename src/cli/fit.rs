@@ -16,7 +16,8 @@ use dlw::sensor::Sensors;
 /// Arguments of `dlw fit`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file of the recorded joint (TOML).
+    /// Design file of the recorded joint (TOML), or a robot file (each sensor's model and the
+    /// crosstalk matrix, from a robot recording).
     #[arg(long)]
     design: PathBuf,
     /// Recording folder (rig.toml + data.csv), e.g. a characterization run.
@@ -81,6 +82,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         bail!(
             "--order {} must lie between {MIN_ORDER} and {MAX_ORDER} play operators",
             args.order
+        );
+    }
+    if dlw::robot::is_robot_file(&args.design) {
+        if args.compare || args.validate.is_some() || args.sensor.is_some() || args.report.is_some()
+        {
+            bail!("--compare, --validate, --sensor and --report are for a joint's fit; a robot's fit takes --model, --order and --prefilter");
+        }
+        return super::robot_sensing::fit(
+            &args.design,
+            &args.recording,
+            args.model,
+            args.order,
+            args.prefilter,
+            &args.output,
+            format,
+            args.json,
         );
     }
     let design = Design::load(&args.design)?;

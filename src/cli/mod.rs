@@ -20,6 +20,7 @@ mod inspect;
 mod program;
 mod reproduce;
 mod robot;
+mod robot_sensing;
 mod scenario_args;
 mod simulate;
 

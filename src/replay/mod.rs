@@ -17,6 +17,7 @@
 //! [`config_file`] reads and writes estimator configs as TOML or JSON.
 
 mod config_file;
+pub mod robot;
 pub mod truth;
 
 use dlw_estimator::{Estimator, EstimatorConfig, EstimatorError, Flags};
@@ -26,7 +27,10 @@ use crate::fixed::push_fixed;
 use crate::recording::Recording;
 
 /// Estimator config files in TOML or JSON.
-pub use config_file::{config_text, load_config, ConfigFileError, ConfigFormat};
+pub use config_file::{
+    config_text, is_robot_config, load_config, load_robot_config, robot_config_text,
+    ConfigFileError, ConfigFormat,
+};
 /// Comparing estimates with a ground truth at other times.
 pub use truth::{
     compare_with_truth, interpolate_at, replay_against_truth, TruthMetrics, TruthReplay,

@@ -40,6 +40,7 @@ mod checked;
 mod crosstalk;
 mod drawing;
 mod error;
+pub mod estimator_config;
 mod file;
 pub mod files;
 mod inspect;
