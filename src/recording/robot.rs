@@ -495,7 +495,7 @@ mod tests {
             let t = i as f64 * 0.002;
             samples.time_s.push(t);
             for j in 0..2 {
-                samples.stroke_mm[j].push(0.1 * i as f64 + j as f64);
+                samples.stroke_mm[j].push(0.125 * i as f64 + j as f64);
                 samples.angle_deg[j].push(1.5 * i as f64 - j as f64);
             }
             for c in 0..3 {
