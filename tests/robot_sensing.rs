@@ -431,6 +431,7 @@ fn fit_recovers_each_sensors_gauge_factor_and_crosstalk_from_another_generator()
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let sensors = v["sensors"].as_array().unwrap();
     assert_eq!(sensors.len(), 3);
+    eprintln!("fitted: {}", serde_json::to_string(sensors).unwrap());
     for (i, s) in sensors.iter().enumerate() {
         let gf = s["gauge_factor"].as_f64().unwrap();
         let want = GENERATOR.gauge_factor[i];
@@ -498,4 +499,98 @@ fn fit_recovers_each_sensors_gauge_factor_and_crosstalk_from_another_generator()
         "{err}"
     );
     assert!(!d.join("same.toml").exists());
+}
+
+/// `crates/estimator/tests/data/robot-runtime.json` holds a robot config (linear, PI and
+/// continuous PI sensors), voltages and the runtime's angles and tip, which the Python tests
+/// (`dlw.RobotEstimator`, `dlw.tip`) and, through the same runtime, the C example
+/// (`crates/estimator-ffi/tests/c_example.rs`) match to 1e-9. `dlw estimate` over the same
+/// voltages, written as a robot recording, matches it to 1e-9 too: its first 30 rows, before the
+/// golden's rail and NaN samples, which a recording refuses at the reader.
+#[test]
+fn dlw_estimate_agrees_with_the_runtime_golden_file_that_c_and_python_match() {
+    let golden: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("crates/estimator/tests/data/robot-runtime.json"),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let rows = 30;
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cfg = d.join("cfg.toml");
+    let config_toml = golden["config_toml"].as_str().unwrap();
+    std::fs::write(&cfg, config_toml).unwrap();
+    let config = dlw::replay::load_robot_config(&cfg).unwrap();
+    let (n, m) = (config.joint_count(), config.sensor_count());
+    let rec = d.join("rec");
+    std::fs::create_dir(&rec).unwrap();
+    let dividers: Vec<String> = config
+        .sensor
+        .iter()
+        .map(|s| format!("{:?}", s.divider_ohm))
+        .collect();
+    std::fs::write(
+        rec.join("rig.toml"),
+        format!(
+            "sample_hz = 500.0\nsupply_v = 5.0\ndivider_ohm = [{}]\n",
+            dividers.join(", ")
+        ),
+    )
+    .unwrap();
+    let mut csv = dlw::recording::robot::robot_header(n, m, false);
+    csv.push('\n');
+    for k in 0..rows {
+        csv.push_str(&format!("{:?}", k as f64 / 500.0));
+        for _ in 0..n {
+            csv.push_str(",0");
+        }
+        for j in 0..n {
+            csv.push_str(&format!(
+                ",{:?}",
+                golden["angles_deg"][k][j].as_f64().unwrap()
+            ));
+        }
+        for i in 0..m {
+            csv.push_str(&format!(",{:?}", golden["volts"][k][i].as_f64().unwrap()));
+        }
+        csv.push('\n');
+    }
+    std::fs::write(rec.join("data.csv"), csv).unwrap();
+    let out = d.join("estimates.csv");
+    dlw_ok(&[
+        "estimate",
+        "--config",
+        &arg(&cfg),
+        &arg(&rec),
+        "--precision",
+        "15",
+        "-o",
+        &arg(&out),
+    ]);
+    let text = std::fs::read_to_string(&out).unwrap();
+    let (mut worst_deg, mut worst_mm) = (0.0f64, 0.0f64);
+    for (k, line) in text.lines().skip(1).enumerate() {
+        let f: Vec<f64> = line
+            .split(',')
+            .skip(1)
+            .take(n + 3)
+            .map(|x| x.parse().unwrap())
+            .collect();
+        for j in 0..n {
+            worst_deg = worst_deg.max((f[j] - golden["angles_deg"][k][j].as_f64().unwrap()).abs());
+        }
+        for c in 0..3 {
+            let want = golden["tip_position_mm"][k][c].as_f64().unwrap();
+            worst_mm = worst_mm.max((f[n + c] - want).abs());
+        }
+    }
+    assert_eq!(text.lines().count(), rows + 1);
+    assert!(
+        worst_deg <= 1e-9,
+        "dlw estimate and the golden differ by {worst_deg:e}°"
+    );
+    assert!(worst_mm <= 1e-9, "tips differ by {worst_mm:e} mm");
 }
