@@ -233,7 +233,7 @@ pub(crate) fn joint_for_estimator(
         .join(", ");
     let Some(n) = joint else {
         bail!(
-            "{} is a robot of {} joints ({list}): a robot's own estimator config (every joint, the crosstalk matrix) is not written by dlw estimator-config yet; give --joint N for the nominal config of joint N's own sensors alone",
+            "{} is a robot of {} joints ({list}): give --joint N for the nominal config of joint N's own sensors alone, or no --joint for the robot's own config",
             path.display(),
             r.joints.len()
         );
