@@ -2,13 +2,14 @@
 //! on robot files, the crosstalk undone and ignored, and a fit on a recording from a generator
 //! written here (other noise, another coupling form), written as files by hand.
 
+// Index loops over joints and sensors read as the matrix formulas they check.
+#![allow(clippy::needless_range_loop)]
+
 mod common;
-#[path = "common/rng.rs"]
-mod rng;
 
 use std::path::{Path, PathBuf};
 
-use common::{arg, dlw, dlw_ok};
+use common::{arg, dlw, dlw_ok, rng};
 use dlw::recording::robot::RobotRecording;
 use dlw::replay::robot::replay_robot;
 use dlw::robot::estimator_config::{estimator_config, SensorSetting};

@@ -100,8 +100,8 @@ pub(crate) fn order(from: &[f64], to: &[f64], c: f64, pitch: f64) -> Result<Jogs
     }
     let mut step: Vec<Option<usize>> = vec![None; n];
     let mut before: Vec<Vec<usize>> = vec![Vec::new(); n];
-    for i in 0..n {
-        for &j in &after[i] {
+    for (i, later) in after.iter().enumerate() {
+        for &j in later {
             before[j].push(i);
         }
     }

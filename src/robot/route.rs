@@ -382,6 +382,8 @@ fn apply(leads: &mut [Lead], active: &[usize], jogs: &Jogs, x0: f64, x1: f64) {
 /// Where each lead goes after the last joint: its own pad's terminal for the last joint's own
 /// leads (listed last in `active`), and for the others a lane in the gap between the own pads
 /// they arrive between, as near where they arrive as the pitch allows.
+// A violation is built once per refused robot; boxing it would touch every constructor.
+#[allow(clippy::result_large_err)]
 fn row_zero_targets(
     active: &[usize],
     own: &[usize],
@@ -477,6 +479,7 @@ fn row_zero_targets(
 /// move round the tube to their terminals after row 0, then run along it to their row. Returns
 /// the proximal edge of the last row, the pads, and the number of rows.
 #[allow(clippy::type_complexity)]
+#[allow(clippy::result_large_err)]
 fn rows(
     passing: &[usize],
     leads: &mut [Lead],
