@@ -252,28 +252,50 @@ pub(crate) fn fit(
         }
     }
     let note = format!(
-        "Fitted by dlw fit from {} for the robot {:?} (robot checksum {}): {} model per sensor,\nthe crosstalk matrix fitted by least squares on the recorded joint angles.",
+        "Fitted by dlw fit from {} for the robot {:?} (robot checksum {}): {} model per sensor,\n{}.",
         recording_path.display(),
         robot.robot.name,
         robot.robot.checksum,
-        fitted.model
+        fitted.model,
+        if fitted.crosstalk_fitted {
+            "the crosstalk matrix fitted by least squares on the recorded joint angles"
+        } else {
+            "the crosstalk matrix the geometry's (the recording cannot tell the joints apart)"
+        }
     );
     let text = robot_config_text(&config, format, &note)?;
+    // Everything printed is computed before the config is written, so a failure leaves none.
+    let report = json
+        .then(|| {
+            dlw::finite::to_json(&FitReport {
+                fit: &fitted,
+                config: output.to_path_buf(),
+            })
+        })
+        .transpose()?;
     write_atomic(output, text.as_bytes())?;
-    if json {
-        let report = FitReport {
-            fit: &fitted,
-            config: output.to_path_buf(),
-        };
-        println!("{}", dlw::finite::to_json(&report)?);
+    if let Some(report) = report {
+        println!("{report}");
         return Ok(());
     }
+    for w in &fitted.warnings {
+        eprintln!("warning: {w}");
+    }
     println!(
-        "{}: {} rows fitted, angle columns' condition number {:.2}, {} model",
+        "{}: {} rows fitted, angle columns' condition number {}, {} model, crosstalk {}",
         recording_path.display(),
         fitted.samples_fitted,
-        fitted.angle_condition,
-        fitted.model
+        fitted
+            .angle_condition
+            .map_or("— (a joint did not move)".to_string(), |c| format!(
+                "{c:.2}"
+            )),
+        fitted.model,
+        if fitted.crosstalk_fitted {
+            "fitted"
+        } else {
+            "kept from the geometry"
+        }
     );
     for (i, s) in fitted.sensors.iter().enumerate() {
         let row = |c: &[f64]| {

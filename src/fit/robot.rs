@@ -13,10 +13,13 @@
 //! the rows the tracker measured gives `R0 = b_0`, `GF = b_J/(R0·σ·k_J)` and
 //! `C[i][j] = b_j/b_J` (so `C[i][J] = 1`), in closed form, with no start point to choose; the
 //! geometry's row is reported beside it. The solve is checked before it is returned: the
-//! recorded angles must move independently enough to tell the joints apart (the condition
-//! number of the standardized angle columns at most [`MAX_ANGLE_CONDITION`]), and the sensor
-//! must read its own joint (`|b_J|` above its standard error by [`MIN_OWN_T`]); otherwise the fit
-//! refuses, naming the sensor and the number. For `--model pi` the crosstalk comes from the
+//! recorded angles must move independently enough to tell the joints apart (every joint moves,
+//! and the condition number of the standardized angle columns is at most
+//! [`MAX_ANGLE_CONDITION`]); otherwise the crosstalk is not fitted, the geometry's rows are
+//! kept, each sensor's line is fitted on its mixed angle through them, and a warning says so
+//! (a characterization protocol drives every joint alike). The sensor must read its own joint
+//! (`|b_J|` above its standard error by [`MIN_OWN_T`]); otherwise the fit refuses, naming the
+//! sensor and the number. For `--model pi` the crosstalk comes from the
 //! line, then each sensor's PI model is fitted by the one-joint fit on its own mixed angle
 //! (a recording of that one sensor, `angle_deg = a_i`), exactly as for a joint alone.
 
@@ -67,22 +70,6 @@ pub enum RobotFitError {
         min: usize,
         /// Unknowns per sensor.
         unknowns: usize,
-    },
-    /// The joints moved too much alike.
-    #[error("cannot tell the joints apart: the recorded angles' standardized columns have condition number {condition:.1}, above {max} (the joints moved together; record them moving independently)")]
-    Collinear {
-        /// The condition number.
-        condition: f64,
-        /// The limit.
-        max: f64,
-    },
-    /// A joint did not move.
-    #[error("joint {joint}'s recorded angle does not move (standard deviation {std_deg:.2e}°): its sensors' crosstalk cannot be fitted")]
-    Still {
-        /// 1-based joint.
-        joint: usize,
-        /// Its standard deviation (°).
-        std_deg: f64,
     },
     /// A sensor does not read its own joint.
     #[error("sensor {sensor} (joint {joint} sensor {within}): its slope on its own joint is {slope:.3e} Ω/rad, only {t:.1} times its standard error (at least {min} needed): the recording does not show it reading its joint")]
@@ -139,8 +126,14 @@ pub struct RobotFit {
     pub sensors: Vec<SensorFitReport>,
     /// Rows fitted (tracker valid).
     pub samples_fitted: usize,
-    /// Condition number of the standardized angle columns.
-    pub angle_condition: f64,
+    /// Condition number of the standardized angle columns; `None` when a joint did not move or
+    /// the columns are exactly collinear.
+    pub angle_condition: Option<f64>,
+    /// Whether the crosstalk was fitted; `false` when the recording cannot tell the joints
+    /// apart, and the geometry's rows are kept.
+    pub crosstalk_fitted: bool,
+    /// What the user should know (the crosstalk kept from the geometry, and why).
+    pub warnings: Vec<String>,
     /// The model kind fitted.
     pub model: String,
 }
@@ -180,44 +173,28 @@ pub fn fit_robot(
             unknowns,
         });
     }
-    // The design matrix [1, θ_1 … θ_N] (rad), and its standardized angle columns' conditioning.
     let theta = |j: usize, i: usize| s.angle_deg[j][i].to_radians();
-    let x = DMatrix::from_fn(rows.len(), unknowns, |r, c| {
-        if c == 0 {
-            1.0
-        } else {
-            theta(c - 1, rows[r])
-        }
-    });
-    let mut z = x.columns(1, n).into_owned();
-    for (j, mut col) in z.column_iter_mut().enumerate() {
-        let mean = col.mean();
-        col.add_scalar_mut(-mean);
-        let std = (col.norm_squared() / rows.len() as f64).sqrt();
-        if !(std > 1e-6) {
-            return Err(RobotFitError::Still {
-                joint: j + 1,
-                std_deg: std.to_degrees(),
-            });
-        }
-        col /= std;
-    }
-    let sv = z.singular_values();
-    let angle_condition = sv.max() / sv.min();
-    if !(angle_condition <= MAX_ANGLE_CONDITION) {
-        return Err(RobotFitError::Collinear {
-            condition: angle_condition,
-            max: MAX_ANGLE_CONDITION,
-        });
-    }
-    let svd = x.clone().svd(true, true);
-    let xtx_inv = (x.transpose() * &x)
-        .try_inverse()
-        .ok_or(RobotFitError::Collinear {
-            condition: f64::INFINITY,
-            max: MAX_ANGLE_CONDITION,
-        })?;
+    let (angle_condition, still) = angle_conditioning(n, &rows, theta);
     let geometry = robot.crosstalk_matrix();
+    let mut warnings = Vec::new();
+    let crosstalk_fitted = still.is_none() && angle_condition <= MAX_ANGLE_CONDITION;
+    // Exactly collinear columns give an infinite condition number, which no report carries.
+    let angle_condition =
+        (still.is_none() && angle_condition.is_finite()).then_some(angle_condition);
+    if !crosstalk_fitted {
+        let why = match still {
+            Some((joint, std_deg)) => format!(
+                "joint {joint}'s recorded angle does not move (standard deviation {std_deg:.2e}°)"
+            ),
+            None => format!(
+                "the recorded angles' standardized columns have condition number {:.1}, above {MAX_ANGLE_CONDITION} (the joints moved together)",
+                angle_condition.unwrap_or(f64::INFINITY)
+            ),
+        };
+        warnings.push(format!(
+            "cannot tell the joints apart: {why}; the crosstalk is not fitted and stays the geometry's (dlw inspect), and each sensor's model is fitted on its mixed angle through it. Record the joints moving independently to fit the crosstalk"
+        ));
+    }
     let mut out = Vec::with_capacity(sensors.len());
     for (i, sensor) in sensors.iter().enumerate() {
         let bad = |message: String| RobotFitError::Model {
@@ -232,30 +209,53 @@ pub fn fit_robot(
             .collect::<Result<_, _>>()
             .map_err(|e| bad(e.to_string()))?;
         let y = DVector::from_vec(ohm);
-        let b = svd
-            .solve(&y, 1e-12)
-            .map_err(|e| bad(format!("least squares: {e}")))?;
-        let residual = &y - &x * &b;
-        let dof = (rows.len() - unknowns) as f64;
-        let sigma2 = residual.norm_squared() / dof;
-        let own = sensor.joint + 1;
-        let se = (sigma2 * xtx_inv[(own, own)]).sqrt();
-        let t = b[own].abs() / se;
+        // The line on every joint's angle, or, when the joints cannot be told apart, on the
+        // sensor's mixed angle through the geometry's row.
+        let x = if crosstalk_fitted {
+            DMatrix::from_fn(rows.len(), n + 1, |r, c| {
+                if c == 0 {
+                    1.0
+                } else {
+                    theta(c - 1, rows[r])
+                }
+            })
+        } else {
+            DMatrix::from_fn(rows.len(), 2, |r, c| {
+                if c == 0 {
+                    1.0
+                } else {
+                    (0..n).map(|j| geometry[i][j] * theta(j, rows[r])).sum()
+                }
+            })
+        };
+        let own = if crosstalk_fitted {
+            sensor.joint + 1
+        } else {
+            1
+        };
+        let line = Line::fit(&x, &y).ok_or_else(|| {
+            bad("the least-squares line has no unique solution (the angles do not vary)".into())
+        })?;
+        let t = line.b[own].abs() / line.standard_error[own];
         if !(t >= MIN_OWN_T) {
             return Err(RobotFitError::OwnJoint {
                 sensor: i + 1,
                 joint: sensor.joint + 1,
                 within: sensor.sensor + 1,
-                slope: b[own],
+                slope: line.b[own],
                 t,
                 min: MIN_OWN_T,
             });
         }
         let sign = if sensor.sensor == 1 { -1.0 } else { 1.0 };
         let k = joints[sensor.joint].design().joint.strain_per_rad();
-        let r0_ohm = b[0];
-        let gauge_factor = b[own] / (r0_ohm * sign * k);
-        let crosstalk: Vec<f64> = (0..n).map(|j| b[j + 1] / b[own]).collect();
+        let r0_ohm = line.b[0];
+        let gauge_factor = line.b[own] / (r0_ohm * sign * k);
+        let crosstalk: Vec<f64> = if crosstalk_fitted {
+            (0..n).map(|j| line.b[j + 1] / line.b[own]).collect()
+        } else {
+            geometry[i].clone()
+        };
         let linear = LinearModel::new(gauge_factor, r0_ohm).map_err(|e| bad(e.to_string()))?;
         let model = match model {
             ModelKind::Linear => ModelConfig::Linear(linear),
@@ -269,7 +269,7 @@ pub fn fit_robot(
             r0_ohm,
             crosstalk,
             crosstalk_geometry: geometry[i].clone(),
-            residual_rms_ohm: sigma2.sqrt(),
+            residual_rms_ohm: line.residual_rms,
             model,
         });
     }
@@ -277,8 +277,57 @@ pub fn fit_robot(
         sensors: out,
         samples_fitted: rows.len(),
         angle_condition,
+        crosstalk_fitted,
         model: super::model_name(model).to_string(),
+        warnings,
     })
+}
+
+/// The condition number of the standardized angle columns over `rows`, and the first joint
+/// (1-based) whose angle does not move, with its standard deviation (°).
+fn angle_conditioning(
+    n: usize,
+    rows: &[usize],
+    theta: impl Fn(usize, usize) -> f64,
+) -> (f64, Option<(usize, f64)>) {
+    let mut z = DMatrix::from_fn(rows.len(), n, |r, j| theta(j, rows[r]));
+    for (j, mut col) in z.column_iter_mut().enumerate() {
+        let mean = col.mean();
+        col.add_scalar_mut(-mean);
+        let std = (col.norm_squared() / rows.len() as f64).sqrt();
+        // Below a microradian a joint has not moved for any tracker.
+        if !(std > 1e-6) {
+            return (f64::INFINITY, Some((j + 1, std.to_degrees())));
+        }
+        col /= std;
+    }
+    let sv = z.singular_values();
+    (sv.max() / sv.min(), None)
+}
+
+/// A least-squares line with its coefficients' standard errors.
+struct Line {
+    b: DVector<f64>,
+    standard_error: Vec<f64>,
+    residual_rms: f64,
+}
+
+impl Line {
+    fn fit(x: &DMatrix<f64>, y: &DVector<f64>) -> Option<Self> {
+        let xtx_inv = (x.transpose() * x).try_inverse()?;
+        let b = x.clone().svd(true, true).solve(y, 1e-12).ok()?;
+        let residual = y - x * &b;
+        let dof = (x.nrows() - x.ncols()) as f64;
+        let sigma2 = residual.norm_squared() / dof;
+        let standard_error = (0..x.ncols())
+            .map(|c| (sigma2 * xtx_inv[(c, c)]).sqrt())
+            .collect();
+        Some(Self {
+            b,
+            standard_error,
+            residual_rms: sigma2.sqrt(),
+        })
+    }
 }
 
 /// Sensor `i`'s model by the one-joint fit, on a recording of that sensor alone whose angle is
