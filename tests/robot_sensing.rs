@@ -233,6 +233,26 @@ fn simulate_estimator_config_and_estimate_run_from_the_command_line() {
     assert!(joints[0]["rmse_deg"].as_f64().unwrap() < 2.0, "{v}");
     assert!(v["tip"]["rmse_mm"].as_f64().unwrap() > 0.0, "{v}");
     assert!(v["warnings"].as_array().unwrap().is_empty(), "{v}");
+    // The report: the shape's small multiples, the joints' errors, the crosstalk undone, its
+    // numbers the run's.
+    let report = d.join("report");
+    dlw_ok(&[
+        "estimate",
+        "--config",
+        &arg(&cfg),
+        &arg(&rec),
+        "--report",
+        &arg(&report),
+        "-o",
+        &arg(&d.join("again.csv")),
+    ]);
+    let html = std::fs::read_to_string(report.join("report.html")).unwrap();
+    let rmse1 = format!("{:.3}", joints[0]["rmse_deg"].as_f64().unwrap());
+    assert!(html.contains(&rmse1), "{rmse1} in the report");
+    for f in 1..=8 {
+        assert!(report.join(format!("shape-{f}.svg")).exists());
+    }
+    assert!(report.join("joint-errors.svg").exists());
     let est = std::fs::read_to_string(rec.join("estimates.csv")).unwrap();
     let mut lines = est.lines();
     assert_eq!(

@@ -157,11 +157,28 @@ pub(crate) fn estimate(
     output: &Path,
     precision: u32,
     json: bool,
+    report: Option<&Path>,
 ) -> anyhow::Result<()> {
     let config = load_robot_config(config_path)?;
     let recording = RobotRecording::read(recording_path)?;
     let result = replay_robot(&config, &recording)
         .with_context(|| format!("estimating over {}", recording_path.display()))?;
+    let page = report
+        .map(|_| {
+            dlw::replay::robot_report::robot_report(
+                &config,
+                &recording,
+                &result,
+                &recording_path.display().to_string(),
+            )
+            .files()
+        })
+        .transpose()
+        .context("drawing the report")?;
+    // The report first, so a failed report leaves no estimates behind.
+    if let (Some(dir), Some(files)) = (report, page) {
+        dlw::output::write_folder_atomic(dir, &files)?;
+    }
     write_atomic(output, &result.csv_bytes(&recording, precision))?;
     if json {
         let report = EstimateReport {

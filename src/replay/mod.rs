@@ -18,6 +18,7 @@
 
 mod config_file;
 pub mod robot;
+pub mod robot_report;
 pub mod truth;
 
 use dlw_estimator::{Estimator, EstimatorConfig, EstimatorError, Flags};
