@@ -23,7 +23,7 @@ use crate::machine::MachineProfile;
 use crate::post::{post_for, write_program, PostError};
 use crate::process::ProcessSets;
 use crate::sheet::{setup_sheet, SheetContext};
-use crate::toolpath::{plan, Plan, PlanOptions, ToolpathError};
+use crate::toolpath::{plan, plan_part, Part, Plan, PlanOptions, ToolpathError};
 
 /// Everything one `dlw program` writes.
 #[derive(Debug, Clone)]
@@ -105,6 +105,40 @@ pub fn make_job_from(
     let program = write_program(&plan, profile, post.as_ref())?;
     let program_file = program_file.to_string();
     let sheet = setup_sheet(
+        &plan,
+        &SheetContext {
+            profile,
+            program_file: &program_file,
+        },
+    );
+    Ok(Job {
+        plan,
+        program,
+        program_file,
+        sheet,
+    })
+}
+
+/// [`make_job_from`] for any [`Part`] (a robot's; `crate::robot::job`), with the sheet written
+/// by `sheet` (the caller has checked the wall against the sets, [`crate::rules::check_wall`]).
+///
+/// # Errors
+/// [`JobError`] from the planner or the post-processor; nothing is written here.
+pub fn make_part_job(
+    part: &Part,
+    layout: &Layout,
+    sets: &ProcessSets,
+    profile: &MachineProfile,
+    program_file: &str,
+    provenance: Option<Provenance>,
+    sheet: &dyn Fn(&Plan, &SheetContext) -> String,
+) -> Result<Job, JobError> {
+    let mut plan = plan_part(part, layout, sets, profile, &PlanOptions::default())?;
+    plan.provenance = provenance;
+    let post = post_for(profile.dialect);
+    let program = write_program(&plan, profile, post.as_ref())?;
+    let program_file = program_file.to_string();
+    let sheet = sheet(
         &plan,
         &SheetContext {
             profile,

@@ -28,7 +28,10 @@
 //! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting);
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
 //! - [`sheet`]: the operator's setup sheet, an emitter like the posts;
-//! - [`job`]: a design made into a program and a setup sheet for one machine.
+//! - [`job`]: a design made into a program and a setup sheet for one machine;
+//! - [`robot`]: several joints on one tube: the robot file, its leads routed past each other's
+//!   notches to one pad section, the crosstalk, one layout and one program for the whole robot
+//!   (`docs/robots.md`). It reuses the joint's layout and planner, and bends neither.
 //!
 //! # Sensing: recording → fit → config → estimator; recording → discover → scenario
 //! - [`recording`]: recording folders (`rig.toml`, `data.csv`), read, checked and written, with
@@ -90,6 +93,7 @@ pub mod recording;
 pub mod replay;
 pub mod report;
 pub mod reproduce;
+pub mod robot;
 pub mod rules;
 pub mod sensor;
 pub mod sheet;

@@ -181,6 +181,15 @@ fn shipped_designs_pass_the_checks() {
     }
 }
 
+/// A robot's one program (docs/robots.md) in AeroBasic: the same checks, notches named by
+/// joint.
+#[test]
+fn shipped_robots_pass_the_checks() {
+    for robot in common_designs::robots() {
+        run(&robot, &robot.file_name().unwrap().to_string_lossy());
+    }
+}
+
 #[test]
 fn designs_outside_the_paper_pass_the_checks() {
     let dir = tempfile::tempdir().unwrap();

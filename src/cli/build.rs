@@ -17,7 +17,7 @@ use super::program::{job, resolve_inputs};
 /// Arguments of `dlw build`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file (TOML).
+    /// Design file (TOML), or a robot file (`docs/robots.md`).
     design: PathBuf,
     /// Folder to write (must not exist or be empty, unless --force).
     #[arg(short, long, value_name = "DIR")]
@@ -32,6 +32,19 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if dlw::robot::is_robot_file(&args.design) {
+        dlw::output::claim_folder(&args.output, [&args.design], args.force)?;
+        let stem = args
+            .design
+            .file_stem()
+            .map_or_else(|| "robot".to_string(), |s| s.to_string_lossy().into_owned());
+        let files = super::robot::build_files(&args.design, &stem, args.machine.as_deref())?;
+        write_folder(&args.output, &files)?;
+        for (name, _) in &files {
+            println!("wrote {}", args.output.join(name).display());
+        }
+        return Ok(());
+    }
     let read = dlw::job::input_files(&args.design, args.machine.as_deref());
     dlw::output::claim_folder(&args.output, &read, args.force)?;
     let inputs = resolve_inputs(&args.design, None, args.machine.as_deref())?;

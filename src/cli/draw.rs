@@ -12,7 +12,7 @@ use dlw::rules;
 /// Arguments of `dlw draw`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file (TOML).
+    /// Design file (TOML), or a robot file (`docs/robots.md`).
     design: PathBuf,
     /// Write the unrolled layout as an AutoCAD DXF (mm) for designers.
     #[arg(long, value_name = "FILE")]
@@ -40,6 +40,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim_all(&outputs, [&args.design], args.force)?;
     if args.dxf.is_none() && args.svg.is_none() && args.section.is_none() {
         anyhow::bail!("nothing to draw: give --dxf, --svg and/or --section FILE");
+    }
+    if dlw::robot::is_robot_file(&args.design) {
+        let outputs = super::robot::draw(&args.design, args.dxf, args.svg, args.section)?;
+        write_all_atomic(&outputs)?;
+        for (path, _) in &outputs {
+            println!("wrote {}", path.display());
+        }
+        return Ok(());
     }
     let checked = rules::check_file(DesignFile::read(&args.design)?)?;
     for w in &checked.warnings {

@@ -3,6 +3,7 @@
 
 use std::path::PathBuf;
 
+use anyhow::bail;
 use dlw::analysis::Analysis;
 use dlw::output::write_atomic;
 use dlw::recording::{read_angles, Recording};
@@ -44,6 +45,10 @@ pub struct Args {
     /// with the C or Python estimator to 1e-9).
     #[arg(long, default_value_t = dlw::replay::ESTIMATE_DECIMALS, value_parser = parse_precision)]
     precision: u32,
+    /// For a robot's config: write an HTML report into this folder (the shape over time as
+    /// small multiples, estimated against tracked; each joint's error; the crosstalk undone).
+    #[arg(long)]
+    report: Option<PathBuf>,
 }
 
 fn parse_precision(s: &str) -> Result<u32, String> {
@@ -74,7 +79,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .output
         .clone()
         .unwrap_or_else(|| args.recording.join(DEFAULT_OUTPUT));
-    dlw::output::claim(&output, inputs, args.force)?;
+    let outputs: Vec<&std::path::Path> = std::iter::once(output.as_path())
+        .chain(args.report.as_deref())
+        .collect();
+    dlw::output::claim_all(&outputs, inputs, args.force)?;
+    if dlw::replay::is_robot_config(&args.config) {
+        if args.truth.is_some() || args.filter.is_some() {
+            bail!("--truth and --filter are for a joint's config; a robot's config sets its filters in the file (docs/robot-runtime.md)");
+        }
+        return super::robot_sensing::estimate(
+            &args.config,
+            &args.recording,
+            &output,
+            args.precision,
+            args.json,
+            args.report.as_deref(),
+        );
+    }
+    if args.report.is_some() {
+        bail!("--report is for a robot's config; a joint's estimates are reported by dlw fit --report and dlw characterize");
+    }
     let mut config = load_config(&args.config)?;
     if let Some(filter) = args.filter {
         config.output_filter = filter.config();

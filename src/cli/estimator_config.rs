@@ -16,17 +16,25 @@ use dlw_geometry::{Divider, NotchStyle};
 /// Arguments of `dlw estimator-config`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file (TOML).
+    /// Design file (TOML), or a robot file with --joint.
     design: PathBuf,
-    /// Gauge factor GF of the linear model (Eq. 5), for every sensor unless --second-* is given.
+    /// For a robot file: the joint (1 = distal) whose own sensors alone the config is for (a
+    /// one-joint config). Without it a robot file gets the robot's own config: every joint, every
+    /// sensor and the crosstalk matrix from the geometry.
+    #[arg(long, value_name = "N")]
+    joint: Option<usize>,
+    /// Gauge factor GF of the linear model (Eq. 5). For a robot: once for every sensor, or once
+    /// per sensor in `dlw inspect`'s order.
+    #[arg(long, required = true)]
+    gauge_factor: Vec<f64>,
+    /// Unstrained resistance R0 (Ω). For a robot: once, or once per sensor.
+    #[arg(long, required = true)]
+    r0_ohm: Vec<f64>,
+    /// Divider's fixed resistor R_k (Ω). Default 99.6 kΩ; for a robot: once, or once per sensor
+    /// (default: 99.6 kΩ for each sensor 1, 102.5 kΩ for a BSN joint's sensor 2, as the
+    /// simulator's bench).
     #[arg(long)]
-    gauge_factor: f64,
-    /// Unstrained resistance R0 (Ω).
-    #[arg(long)]
-    r0_ohm: f64,
-    /// Divider's fixed resistor R_k (Ω).
-    #[arg(long, default_value_t = DEFAULT_DIVIDER_OHM)]
-    divider_ohm: f64,
+    divider_ohm: Vec<f64>,
     /// Divider supply V+ (V).
     #[arg(long, default_value_t = DEFAULT_SUPPLY_V)]
     supply_v: f64,
@@ -52,12 +60,51 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim(&args.output, [&args.design], args.force)?;
     let format = ConfigFormat::of(&args.output)?;
-    let design = Design::load(&args.design)?;
-    let divider = Divider::new(args.divider_ohm, args.supply_v).context("divider")?;
+    if dlw::robot::is_robot_file(&args.design) && args.joint.is_none() {
+        if args.second_gauge_factor.is_some()
+            || args.second_r0_ohm.is_some()
+            || args.second_divider_ohm.is_some()
+        {
+            bail!("--second-* options set a BSN joint's sensor 2 in a joint's config; for a robot give --gauge-factor, --r0-ohm and --divider-ohm once per sensor, in dlw inspect's order");
+        }
+        return super::robot_sensing::estimator_config(
+            &args.design,
+            &args.gauge_factor,
+            &args.r0_ohm,
+            &args.divider_ohm,
+            args.supply_v,
+            &args.output,
+            format,
+        );
+    }
+    let (design, robot_note) = if dlw::robot::is_robot_file(&args.design) {
+        super::robot::joint_for_estimator(&args.design, args.joint)?
+    } else {
+        if args.joint.is_some() {
+            bail!(
+                "--joint picks a joint of a robot file, and {} is a joint design",
+                args.design.display()
+            );
+        }
+        (Design::load(&args.design)?, None)
+    };
+    let one = |name: &str, v: &[f64], default: Option<f64>| {
+        match (v, default) {
+        ([x], _) => Ok(*x),
+        ([], Some(d)) => Ok(d),
+        _ => Err(anyhow::anyhow!(
+            "--{name} is given {} times; a joint's config takes it once (the --second-* options set a BSN joint's sensor 2)",
+            v.len()
+        )),
+    }
+    };
+    let gauge_factor = one("gauge-factor", &args.gauge_factor, None)?;
+    let r0_ohm = one("r0-ohm", &args.r0_ohm, None)?;
+    let divider_ohm = one("divider-ohm", &args.divider_ohm, Some(DEFAULT_DIVIDER_OHM))?;
+    let divider = Divider::new(divider_ohm, args.supply_v).context("divider")?;
     let joint = JointConfig::from_joint(&design.joint);
-    let mut config =
-        EstimatorConfig::nominal_linear(joint, args.gauge_factor, args.r0_ohm, divider)
-            .context("linear model")?;
+    let mut config = EstimatorConfig::nominal_linear(joint, gauge_factor, r0_ohm, divider)
+        .context("linear model")?;
     let second_given = args.second_gauge_factor.is_some()
         || args.second_r0_ohm.is_some()
         || args.second_divider_ohm.is_some();
@@ -68,13 +115,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ),
         (NotchStyle::Bsn, true) => {
             let divider = Divider::new(
-                args.second_divider_ohm.unwrap_or(args.divider_ohm),
+                args.second_divider_ohm.unwrap_or(divider_ohm),
                 args.supply_v,
             )
             .context("sensor 2 divider")?;
             let model = LinearModel::new(
-                args.second_gauge_factor.unwrap_or(args.gauge_factor),
-                args.second_r0_ohm.unwrap_or(args.r0_ohm),
+                args.second_gauge_factor.unwrap_or(gauge_factor),
+                args.second_r0_ohm.unwrap_or(r0_ohm),
             )
             .context("sensor 2 linear model")?;
             config.second_sensor = Some(SensorConfig::new(divider, ModelConfig::Linear(model)));
@@ -82,19 +129,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         _ => {}
     }
-    let note = format!(
+    let mut note = format!(
         "Nominal linear estimator config for {} (design checksum {}),\nwritten by dlw estimator-config before any characterization.",
         design.file.name, design.checksum
     );
+    if let Some(extra) = robot_note {
+        note.push('\n');
+        note.push_str(&extra);
+    }
     let text = config_text(&config, format, &note)?;
     write_atomic(&args.output, text.as_bytes())?;
     println!(
         "wrote {}: linear model, GF {}, R0 {} Ω, {} sensor(s), divider {} Ω at {} V",
         args.output.display(),
-        args.gauge_factor,
-        args.r0_ohm,
+        gauge_factor,
+        r0_ohm,
         config.sensor_count(),
-        args.divider_ohm,
+        divider_ohm,
         args.supply_v
     );
     Ok(())

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::Context;
+use anyhow::{bail, Context};
 use dlw::analysis::Analysis;
 use dlw::design::Design;
 use dlw::fit::{fit, FitRequest, ModelKind, PlayOrder};
@@ -17,7 +17,8 @@ use dlw::signal::Prefilter;
 /// Arguments of `dlw fit`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file of the recorded joint (TOML).
+    /// Design file of the recorded joint (TOML), or a robot file (each sensor's model and the
+    /// crosstalk matrix, from a robot recording).
     #[arg(long)]
     design: PathBuf,
     /// Recording folder (rig.toml + data.csv), e.g. a characterization run.
@@ -78,6 +79,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     )?;
     let start = Instant::now();
     let format = ConfigFormat::of(&args.output)?;
+    if dlw::robot::is_robot_file(&args.design) {
+        if args.compare || args.validate.is_some() || args.sensor.is_some() || args.report.is_some()
+        {
+            bail!("--compare, --validate, --sensor and --report are for a joint's fit; a robot's fit takes --model, --order and --prefilter");
+        }
+        return super::robot_sensing::fit(
+            &args.design,
+            &args.recording,
+            args.model,
+            args.order,
+            args.prefilter,
+            &args.output,
+            format,
+            args.json,
+        );
+    }
     let design = Design::load(&args.design)?;
     let recording = Recording::read(&args.recording)?;
     let validate = args

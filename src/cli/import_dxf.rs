@@ -28,7 +28,7 @@ fn parse_units(s: &str) -> Result<DrawingUnits, String> {
 }
 
 /// A drawing read, checked against its design.
-fn read(
+pub(crate) fn read(
     path: &Path,
     options: &DrawingOptions,
     numbers: Option<LayoutNumbers>,
@@ -82,8 +82,8 @@ pub(crate) fn read_for_design(
 pub struct Args {
     /// DXF drawing in dlw's layer convention, e.g. written by `dlw draw --dxf` and edited.
     dxf: PathBuf,
-    /// Check the drawing against this design (and take the layout's numbers from it when the
-    /// drawing lost dlw's XDATA).
+    /// Check the drawing against this design or robot file (and take the layout's numbers from
+    /// it when the drawing lost dlw's XDATA).
     #[arg(long, value_name = "DESIGN")]
     design: Option<PathBuf>,
     #[command(flatten)]
@@ -91,6 +91,13 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if let Some(robot) = args
+        .design
+        .as_deref()
+        .filter(|p| dlw::robot::is_robot_file(p))
+    {
+        return super::robot::import_dxf(&args.dxf, robot, &args.drawing);
+    }
     let (imported, layout, clearance_mm, drawing) = match &args.design {
         Some(design) => {
             let checked = rules::check_file(DesignFile::read(design)?)?;

@@ -8,7 +8,7 @@ use dlw::rules;
 /// Arguments of `dlw inspect`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file (TOML).
+    /// Design file (TOML), or a robot file (`docs/robots.md`).
     design: PathBuf,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -16,6 +16,9 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if dlw::robot::is_robot_file(&args.design) {
+        return super::robot::inspect(&args.design, args.json);
+    }
     let checked = rules::check_file(DesignFile::read(&args.design)?)?;
     let report = rules::Inspection::of(&checked);
     if args.json {

@@ -21,6 +21,8 @@ mod import_recording;
 mod inspect;
 mod program;
 mod reproduce;
+mod robot;
+mod robot_sensing;
 mod scenario_args;
 mod simulate;
 

@@ -18,7 +18,7 @@ use super::import_dxf::{read_for_design, DrawingOptions};
 /// Arguments of `dlw program`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file (TOML).
+    /// Design file (TOML), or a robot file (`docs/robots.md`).
     #[arg(value_name = "DESIGN")]
     design: Option<PathBuf>,
     /// Design file, when the layout comes from `--from-dxf` (same as the positional DESIGN).
@@ -126,19 +126,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let Some(design_path) = args.design.or(args.design_flag) else {
         bail!("give the design file: dlw program DESIGN -o FILE (or --from-dxf DRAWING.dxf --design DESIGN)");
     };
-    let inputs = resolve_inputs(
-        &design_path,
-        args.from_dxf.as_deref().map(|p| (p, &args.drawing)),
-        args.machine.as_deref(),
-    )?;
-    for w in &inputs.warnings {
-        eprintln!("warning: {w}");
-    }
     let program_file = args.output.file_name().map_or_else(
         || args.output.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let job = job(&inputs, &program_file)?;
+    let from_dxf = args.from_dxf.as_deref().map(|p| (p, &args.drawing));
+    let job = if dlw::robot::is_robot_file(&design_path) {
+        let inputs = super::robot::resolve(&design_path, from_dxf, args.machine.as_deref())?;
+        super::robot::job(&inputs, &program_file)?
+    } else {
+        let inputs = resolve_inputs(&design_path, from_dxf, args.machine.as_deref())?;
+        for w in &inputs.warnings {
+            eprintln!("warning: {w}");
+        }
+        job(&inputs, &program_file)?
+    };
     // Everything is made before anything is written, and the files are staged together, so a
     // failure leaves no file behind.
     let mut files = vec![(args.output.clone(), job.program.into_bytes())];

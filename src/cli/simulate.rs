@@ -3,8 +3,9 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
+use anyhow::{bail, Context};
 use dlw::design::Design;
+use dlw::sim::robot::Coupling;
 use dlw::sim::{self, ProtocolKind, Recording};
 
 use super::scenario_args::ScenarioArgs;
@@ -12,9 +13,13 @@ use super::scenario_args::ScenarioArgs;
 /// Arguments of `dlw simulate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file (TOML).
+    /// Design file (TOML), or a robot file (every joint's tendon and sensors).
     #[arg(long)]
     design: PathBuf,
+    /// For a robot: whether a distal tendon's tension bends the proximal joints it runs
+    /// through (the York/Swaney moment, docs/robots.md). Default: york-swaney.
+    #[arg(long, value_enum)]
+    coupling: Option<CouplingArg>,
     #[command(flatten)]
     scenario: ScenarioArgs,
     /// `realistic` switches the correlated ADC and tracker noise on (`[adc.correlated]`,
@@ -34,6 +39,15 @@ pub struct Args {
     force: bool,
 }
 
+/// The `--coupling` choices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum CouplingArg {
+    /// Each joint's angle is its own plant's.
+    None,
+    /// A distal tendon's tension bends each proximal joint by its moment over its stiffness.
+    YorkSwaney,
+}
+
 /// The `--noise` presets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 enum NoisePreset {
@@ -51,11 +65,33 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .chain(&args.profile),
         args.force,
     )?;
-    let design = Design::load(&args.design)?;
     let mut scenario = args.scenario.load()?;
     if let Some(noise) = args.noise {
         scenario.set_correlated_noise(noise == NoisePreset::Realistic);
     }
+    if dlw::robot::is_robot_file(&args.design) {
+        if args.profile.is_some() {
+            bail!("--profile gives one joint's stroke; a robot's joints each follow the protocol with their own seed (docs/robots.md)");
+        }
+        let coupling = match args.coupling.unwrap_or(CouplingArg::YorkSwaney) {
+            CouplingArg::None => Coupling::None,
+            CouplingArg::YorkSwaney => Coupling::YorkSwaney,
+        };
+        return super::robot_sensing::simulate(
+            &args.design,
+            scenario,
+            coupling,
+            &args.output,
+            args.force,
+        );
+    }
+    if args.coupling.is_some() {
+        bail!(
+            "--coupling is for a robot's tendons, and {} is a joint design",
+            args.design.display()
+        );
+    }
+    let design = Design::load(&args.design)?;
     let plan = sim::plan(&design, scenario, args.profile)?;
     let run = plan
         .run()

@@ -127,7 +127,11 @@ impl DesignFile {
     pub fn from_toml(text: &str) -> Result<Self, DesignError> {
         let file: Self = toml::from_str(text).map_err(|e| DesignError::Parse {
             path: PathBuf::from("<text>"),
-            message: crate::limits::parser_message(&e),
+            message: if lists_joints(text) {
+                "this is a robot file (it lists [[joint]] tables), not a joint design: this command takes one joint's design; inspect, draw, program, build, import-dxf and estimator-config --joint take robot files (docs/robots.md)".into()
+            } else {
+                crate::limits::parser_message(&e)
+            },
         })?;
         file.check_name().map_err(|reason| DesignError::Parse {
             path: PathBuf::from("<text>"),
@@ -286,8 +290,16 @@ impl Design {
     }
 }
 
+/// Whether `text` is TOML with a `joint` array, the mark of a robot file (`crate::robot`), so
+/// that a command that reads one design says so rather than "unknown field `joint`".
+fn lists_joints(text: &str) -> bool {
+    toml::from_str::<toml::Table>(text)
+        .ok()
+        .is_some_and(|t| t.get("joint").is_some_and(toml::Value::is_array))
+}
+
 /// FNV-1a, 64 bit: a stable, dependency-free fingerprint (not a security hash).
-fn fnv1a64(bytes: &[u8]) -> u64 {
+pub(crate) fn fnv1a64(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
     })

@@ -54,12 +54,34 @@ const TEXT_MM: f64 = 0.25;
 /// How far the seam lines run past both ends of the tube's outline (mm).
 const SEAM_OVERRUN_MM: f64 = 4.0 * TEXT_MM;
 
+/// What a drawing adds to its layout's features: the title's wording and labels above the tube
+/// (a robot names its joints; `crate::robot`). The default is a joint's drawing.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct DxfNotes {
+    /// What the title calls the drawing after the name: `unrolled joint` when `None`.
+    pub title: Option<String>,
+    /// Texts on `ANNOTATION` above the tube's top edge, each at its `x` (mm).
+    pub labels: Vec<(f64, String)>,
+}
+
 /// The layout as the bytes of an R2000 DXF, with `clearance_mm` recorded in the metadata so
 /// that `dlw import-dxf` checks the same clearance.
 ///
 /// # Errors
 /// [`DxfExportError`] if the drawing cannot be encoded.
 pub fn layout_to_dxf(layout: &Layout, clearance_mm: f64) -> Result<Vec<u8>, DxfExportError> {
+    layout_to_dxf_with(layout, clearance_mm, &DxfNotes::default())
+}
+
+/// [`layout_to_dxf`] with a title and labels of its own.
+///
+/// # Errors
+/// [`DxfExportError`] if the drawing cannot be encoded.
+pub fn layout_to_dxf_with(
+    layout: &Layout,
+    clearance_mm: f64,
+    notes: &DxfNotes,
+) -> Result<Vec<u8>, DxfExportError> {
     let mut drawing = dxf::Drawing::new();
     drawing.header.version = AcadVersion::R2000;
     drawing.header.default_drawing_units = Units::Millimeters;
@@ -89,7 +111,7 @@ pub fn layout_to_dxf(layout: &Layout, clearance_mm: f64) -> Result<Vec<u8>, DxfE
         color: Color::from_index(TUBE_ACI),
         ..Default::default()
     });
-    for entity in entities(layout, clearance_mm)? {
+    for entity in entities(layout, clearance_mm, notes)? {
         drawing.add_entity(entity);
     }
     if let Some(ext) = layout.extents() {
@@ -104,9 +126,14 @@ pub fn layout_to_dxf(layout: &Layout, clearance_mm: f64) -> Result<Vec<u8>, DxfE
             scale_bar_s_mm(layout) - TEXT_MM,
             0.0,
         );
+        let above = if notes.labels.is_empty() {
+            0.0
+        } else {
+            2.0 * TEXT_MM
+        };
         drawing.header.maximum_drawing_extents = Point::new(
             (ext.max().x.max(layout.length_mm) + overrun + label).max(note),
-            ext.max().y.max(layout.seam_s_mm + layout.circumference_mm),
+            ext.max().y.max(layout.seam_s_mm + layout.circumference_mm) + above,
             0.0,
         );
     }
@@ -229,8 +256,13 @@ pub(crate) fn split_note(layout: &Layout) -> Option<String> {
     let names: Vec<String> = split
         .iter()
         .map(|n| {
+            let joint = n
+                .joint
+                .map_or_else(String::new, |j| format!(" of joint {}", j + 1));
             if two_sides {
-                format!("{} (side {})", n.level + 1, n.side)
+                format!("{} (side {}{joint})", n.level + 1, n.side)
+            } else if n.joint.is_some() {
+                format!("{} ({})", n.level + 1, joint.trim_start())
             } else {
                 (n.level + 1).to_string()
             }
@@ -293,7 +325,11 @@ fn tube(layout: &Layout) -> Vec<Entity> {
 }
 
 /// Every entity of the drawing, features first, then annotation.
-fn entities(layout: &Layout, clearance_mm: f64) -> Result<Vec<Entity>, DxfExportError> {
+fn entities(
+    layout: &Layout,
+    clearance_mm: f64,
+    notes: &DxfNotes,
+) -> Result<Vec<Entity>, DxfExportError> {
     let mut out = Vec::new();
     for (index, notch) in layout.notches.iter().enumerate() {
         for (piece, outline) in notch.outline.iter().enumerate() {
@@ -332,7 +368,7 @@ fn entities(layout: &Layout, clearance_mm: f64) -> Result<Vec<Entity>, DxfExport
         ];
         out.push(polyline(Layer::Parting, &line.0, false, items));
     }
-    out.extend(annotation(layout, clearance_mm));
+    out.extend(annotation(layout, clearance_mm, notes));
     out.extend(tube(layout));
     Ok(out)
 }
@@ -366,7 +402,7 @@ fn polyline(layer: Layer, points: &[Coord], closed: bool, items: Vec<XDataItem>)
 
 /// Title, frame note and scale note below the drawing, a 1 mm scale bar, and the layout's
 /// numbers as XDATA on the title.
-fn annotation(layout: &Layout, clearance_mm: f64) -> Vec<Entity> {
+fn annotation(layout: &Layout, clearance_mm: f64, notes: &DxfNotes) -> Vec<Entity> {
     let base = layout.seam_s_mm - 3.0 * TEXT_MM;
     let text = |line: usize, value: String| {
         let mut t = Text {
@@ -380,7 +416,8 @@ fn annotation(layout: &Layout, clearance_mm: f64) -> Vec<Entity> {
         e.common.layer = Layer::Annotation.name().to_string();
         e
     };
-    let mut title = text(0, format!("{}: unrolled joint (dlw)", layout.name));
+    let what = notes.title.as_deref().unwrap_or("unrolled joint");
+    let mut title = text(0, format!("{}: {what} (dlw)", layout.name));
     title.common.x_data.push(XData {
         application_name: APP_ID.to_string(),
         items: vec![
@@ -434,6 +471,18 @@ fn annotation(layout: &Layout, clearance_mm: f64) -> Vec<Entity> {
     let mut out = vec![title, frame, scale, bar, label];
     if let Some(note) = split_note(layout) {
         out.push(text(3, note));
+    }
+    for (x, value) in &notes.labels {
+        let mut label = text(0, value.clone());
+        if let EntityType::Text(t) = &mut label.specific {
+            t.location = Point::new(
+                *x,
+                layout.seam_s_mm + layout.circumference_mm + TEXT_MM,
+                0.0,
+            );
+            t.second_alignment_point = t.location.clone();
+        }
+        out.push(label);
     }
     out
 }

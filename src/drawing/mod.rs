@@ -14,7 +14,7 @@ pub mod svg;
 /// Layer names, colours and the XDATA that tags each entity (the DXF convention).
 pub use dxf_convention::{Layer, APP_ID};
 /// Writing a layout as an AutoCAD DXF.
-pub use dxf_export::{layout_to_dxf, DxfExportError};
+pub use dxf_export::{layout_to_dxf, layout_to_dxf_with, DxfExportError, DxfNotes};
 /// Reading a DXF in that convention back into a layout.
 pub use dxf_import::{
     layout_from_dxf, read_dxf, DrawingUnits, DxfImportError, ImportOptions, ImportedDxf,

@@ -27,6 +27,7 @@ mod pi;
 mod plays;
 pub(crate) mod report;
 mod request;
+pub mod robot;
 
 use std::time::Instant;
 

@@ -29,6 +29,7 @@ mod pads;
 mod seam;
 mod sensor;
 mod stations;
+mod unrolled;
 
 use geo::{LineString, Polygon};
 
@@ -37,8 +38,12 @@ use geo::{LineString, Polygon};
 pub use crate::design::MAX_NOTCH_COUNT;
 /// Why a design could not be laid out.
 pub use error::LayoutError;
+/// The square-spiral pads, for a robot's pad section.
+pub(crate) use pads::{square_spiral, PadSide};
 /// Where each feature sits along the tube: the layout's plan in `x`.
 pub use stations::Stations;
+/// The layout before its seam is chosen: every feature with `s` unwrapped.
+pub use unrolled::{NotchRect, Polyline, Unrolled};
 
 /// The unrolled layout of one joint.
 #[derive(Debug, Clone, PartialEq)]
@@ -73,7 +78,11 @@ pub struct Layout {
 /// One notch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Notch {
-    /// Position along the tube, 0 at the distal end.
+    /// The joint of a robot it belongs to (0 for the distal joint), `None` in a joint's own
+    /// layout and in a one-joint robot's (`crate::robot`); messages then name it
+    /// `joint 2 notch 3`.
+    pub joint: Option<usize>,
+    /// Position along the tube, 0 at the distal end (within its joint, for a robot).
     pub level: usize,
     /// Side: 0 for the notch centred at `s = π·r_o`, 1 for the BSN notch centred at `s = 0`.
     pub side: usize,
@@ -83,12 +92,16 @@ pub struct Notch {
 }
 
 impl Notch {
-    /// How the notch is named in messages: `notch 4`, or `notch 4 (side 1)` on a BSN joint.
+    /// How the notch is named in messages: `notch 4`, or `notch 4 (side 1)` on a BSN joint; on
+    /// a robot, `joint 2 notch 4`.
     pub fn label(&self, bsn: bool) -> String {
+        let joint = self
+            .joint
+            .map_or_else(String::new, |j| format!("joint {} ", j + 1));
         if bsn {
-            format!("notch {} (side {})", self.level + 1, self.side)
+            format!("{joint}notch {} (side {})", self.level + 1, self.side)
         } else {
-            format!("notch {}", self.level + 1)
+            format!("{joint}notch {}", self.level + 1)
         }
     }
 }

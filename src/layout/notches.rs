@@ -6,12 +6,20 @@ use super::stations::Stations;
 
 /// A notch before wrapping: an axis-aligned rectangle in `(x, s)` with `s` unwrapped.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct NotchRect {
+pub struct NotchRect {
+    /// The robot joint it belongs to ([`super::Notch::joint`]).
+    pub joint: Option<usize>,
+    /// Position along the tube, 0 at the distal end.
     pub level: usize,
+    /// 0 for the notch centred at `s = π·r_o`, 1 for BSN's notch centred at `s = 0`.
     pub side: usize,
+    /// Distal edge (mm).
     pub x0_mm: f64,
+    /// Proximal edge (mm).
     pub x1_mm: f64,
+    /// Lower edge in `s`, unwrapped (mm).
     pub s0_mm: f64,
+    /// Upper edge in `s`, unwrapped (mm).
     pub s1_mm: f64,
 }
 
@@ -36,6 +44,7 @@ pub(crate) fn notch_rects(joint: &Joint, stations: &Stations) -> Vec<NotchRect> 
         for side in 0..sides {
             let centre_mm = notch_centre_s_mm(side, section.outer_radius_mm());
             rects.push(NotchRect {
+                joint: None,
                 level,
                 side,
                 x0_mm,

@@ -81,7 +81,13 @@ pub fn header_lines(plan: &Plan, profile: &MachineProfile, post: &dyn Post) -> V
         ),
     ];
     // Where the layout came from, after the design's name and checksum (`--from-dxf` only).
-    h.splice(2..2, plan.provenance.iter().flat_map(|p| p.lines()));
+    h.splice(
+        2..2,
+        plan.notes
+            .iter()
+            .cloned()
+            .chain(plan.provenance.iter().flat_map(|p| p.lines())),
+    );
     for op in &plan.operations {
         let p = &op.process;
         h.push(format!(

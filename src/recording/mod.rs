@@ -27,6 +27,7 @@
 
 mod protocol;
 pub mod provenance;
+pub mod robot;
 mod truth;
 
 pub use protocol::ProtocolKind;
@@ -402,6 +403,16 @@ impl Rig {
     }
 
     fn check(&self, path: &Path) -> Result<(), RecordingError> {
+        self.check_with(path, 2, "one or two sensors")
+    }
+
+    /// The checks of [`Self::check`] with at most `max_sensors` entries in `divider_ohm`.
+    pub(crate) fn check_with(
+        &self,
+        path: &Path,
+        max_sensors: usize,
+        sensors_limit: &'static str,
+    ) -> Result<(), RecordingError> {
         let bad = |key, value, limit| {
             Err(RecordingError::RigValue {
                 path: path.to_path_buf(),
@@ -426,8 +437,8 @@ impl Rig {
             );
         }
         let n = self.divider_ohm.len();
-        if !(1..=2).contains(&n) {
-            return bad("divider_ohm (entries)", n as f64, "one or two sensors");
+        if !(1..=max_sensors).contains(&n) {
+            return bad("divider_ohm (entries)", n as f64, sensors_limit);
         }
         if let Some(&r) = self.divider_ohm.iter().find(|r| !positive(**r)) {
             return bad("divider_ohm", r, "must be finite and greater than 0");
@@ -647,7 +658,7 @@ pub const SAMPLE_RATE_TOLERANCE: f64 = 0.01;
 /// `Ok` when `rig.sample_hz` is the rate of `time_s` (the reciprocal of its median spacing)
 /// within [`SAMPLE_RATE_TOLERANCE`], or when there are too few rows to tell; else the measured
 /// rate (Hz).
-fn check_sample_rate(rig: &Rig, time_s: &[f64]) -> Result<(), f64> {
+pub(crate) fn check_sample_rate(rig: &Rig, time_s: &[f64]) -> Result<(), f64> {
     if time_s.len() < 3 {
         return Ok(());
     }
@@ -662,7 +673,7 @@ fn check_sample_rate(rig: &Rig, time_s: &[f64]) -> Result<(), f64> {
     }
 }
 
-fn read_text(path: &Path, limit: u64) -> Result<String, RecordingError> {
+pub(crate) fn read_text(path: &Path, limit: u64) -> Result<String, RecordingError> {
     crate::output::read_limited(path, limit).map_err(|source| RecordingError::Read {
         path: path.to_path_buf(),
         source,
@@ -818,10 +829,12 @@ pub const MAX_ABS_VOLTS: f64 = 1e3;
 /// The limit and unit of a column's magnitude: values past it are refused at the edge, since
 /// every analysis of them only produces overflows (an angle of 1e308° made an RMSE of inf°).
 pub fn column_limit(column: &str) -> (f64, &'static str) {
+    // A robot recording numbers its columns (`stroke2_mm`, `angle2_deg`) and may add the
+    // tracker's tip (`tip_x_mm`), which is bounded like a stroke.
     match column {
         "time_s" => (MAX_ABS_TIME_S, "s"),
-        "stroke_mm" => (MAX_ABS_STROKE_MM, "mm"),
-        "angle_deg" => (MAX_ABS_ANGLE_DEG, "°"),
+        c if c.starts_with("stroke") || c.starts_with("tip_") => (MAX_ABS_STROKE_MM, "mm"),
+        c if c.starts_with("angle") => (MAX_ABS_ANGLE_DEG, "°"),
         _ => (MAX_ABS_VOLTS, "V"),
     }
 }
@@ -833,7 +846,12 @@ pub fn within_rails(volts: f64, supply_v: f64) -> bool {
 }
 
 #[inline]
-fn parse_field(field: &str, line: usize, column: &str, path: &Path) -> Result<f64, RecordingError> {
+pub(crate) fn parse_field(
+    field: &str,
+    line: usize,
+    column: &str,
+    path: &Path,
+) -> Result<f64, RecordingError> {
     let v: f64 = field.trim().parse().map_err(|_| RecordingError::Number {
         path: path.to_path_buf(),
         line,

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use dlw_estimator::{EstimatorConfig, EstimatorError};
+use dlw_estimator::{EstimatorConfig, EstimatorError, RobotEstimatorConfig};
 
 /// Why an estimator config file could not be read or written.
 #[derive(Debug, thiserror::Error)]
@@ -37,6 +37,14 @@ pub enum ConfigFileError {
         path: PathBuf,
         /// What the estimator crate refused.
         reason: EstimatorError,
+    },
+    /// A robot config parsed, but a value is out of range.
+    #[error("robot estimator config {path}: {reason}")]
+    RobotInvalid {
+        /// The file.
+        path: PathBuf,
+        /// What the estimator crate refused.
+        reason: dlw_estimator::RobotError,
     },
     /// The config could not be serialized.
     #[error("cannot serialize the estimator config: {message}")]
@@ -110,6 +118,80 @@ pub fn load_config(path: &Path) -> Result<EstimatorConfig, ConfigFileError> {
             reason,
         })?;
     Ok(config)
+}
+
+/// Whether the config file at `path` is a robot's (it lists `[[joint]]` tables), read through
+/// the bounded reader; `false` for anything unreadable, which [`load_config`] then names.
+pub fn is_robot_config(path: &Path) -> bool {
+    let Ok(format) = ConfigFormat::of(path) else {
+        return false;
+    };
+    let Ok(text) = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES) else {
+        return false;
+    };
+    match format {
+        ConfigFormat::Toml => toml::from_str::<toml::Table>(&text)
+            .is_ok_and(|t| t.get("joint").is_some_and(toml::Value::is_array)),
+        ConfigFormat::Json => serde_json::from_str::<serde_json::Value>(&text)
+            .is_ok_and(|v| v.get("joint").is_some_and(serde_json::Value::is_array)),
+    }
+}
+
+/// Reads and validates a robot's estimator config (`docs/robot-runtime.md`).
+///
+/// # Errors
+/// [`ConfigFileError`] naming the file and the key or value.
+pub fn load_robot_config(path: &Path) -> Result<RobotEstimatorConfig, ConfigFileError> {
+    let format = ConfigFormat::of(path)?;
+    let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
+        |source| ConfigFileError::Read {
+            path: path.to_path_buf(),
+            source,
+        },
+    )?;
+    let parse = |message: String| ConfigFileError::Parse {
+        path: path.to_path_buf(),
+        message: message.trim_end().to_string(),
+    };
+    let config: RobotEstimatorConfig = match format {
+        ConfigFormat::Toml => {
+            toml::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))?
+        }
+        ConfigFormat::Json => {
+            serde_json::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))?
+        }
+    };
+    config
+        .validate()
+        .map_err(|reason| ConfigFileError::RobotInvalid {
+            path: path.to_path_buf(),
+            reason,
+        })?;
+    Ok(config)
+}
+
+/// The text of a robot's `config` in `format`, with a leading comment `note` for TOML.
+///
+/// # Errors
+/// [`ConfigFileError::Serialize`] if the serializer refuses (it does not for valid configs).
+pub fn robot_config_text(
+    config: &RobotEstimatorConfig,
+    format: ConfigFormat,
+    note: &str,
+) -> Result<String, ConfigFileError> {
+    let err = |e: String| ConfigFileError::Serialize { message: e };
+    match format {
+        ConfigFormat::Toml => {
+            let body = toml::to_string(config).map_err(|e| err(e.to_string()))?;
+            let comment: String = note.lines().map(|l| format!("# {l}\n")).collect();
+            Ok(format!("{comment}{body}"))
+        }
+        ConfigFormat::Json => {
+            let mut body = serde_json::to_string_pretty(config).map_err(|e| err(e.to_string()))?;
+            body.push('\n');
+            Ok(body)
+        }
+    }
 }
 
 /// The text of `config` in `format`, with a leading comment `note` for TOML (JSON has none).

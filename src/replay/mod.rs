@@ -18,6 +18,8 @@
 
 mod config_file;
 mod estimate;
+pub mod robot;
+pub mod robot_report;
 pub mod truth;
 
 use dlw_estimator::{Estimator, EstimatorConfig, EstimatorError, Flags};
@@ -27,7 +29,10 @@ use crate::fixed::push_fixed;
 use crate::recording::Recording;
 
 /// Estimator config files in TOML or JSON.
-pub use config_file::{config_text, load_config, ConfigFileError, ConfigFormat};
+pub use config_file::{
+    config_text, is_robot_config, load_config, load_robot_config, robot_config_text,
+    ConfigFileError, ConfigFormat,
+};
 /// `dlw estimate` as a library call.
 pub use estimate::{estimate, EstimateRequest, Estimation, TrackerEstimation, TruthEstimation};
 /// Comparing estimates with a ground truth at other times.

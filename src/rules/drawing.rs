@@ -201,7 +201,7 @@ fn mismatches(design: &Design, layout: &Layout) -> Vec<Violation> {
 }
 
 /// `x` range and `s` extent of each notch, by level.
-fn derive(design: &Design, layout: &Layout) -> Result<Derived, Violation> {
+pub(crate) fn derive(design: &Design, layout: &Layout) -> Result<Derived, Violation> {
     let c_mm = layout.circumference_mm;
     let mut levels: Vec<(usize, f64, f64)> = Vec::new();
     let (mut widths, mut arcs) = (Vec::new(), Vec::new());

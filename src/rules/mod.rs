@@ -41,10 +41,12 @@ mod wall;
 use crate::design::{Design, DesignFile};
 use crate::layout::Layout;
 
+pub(crate) use drawing::derive;
 /// A drawing checked against its design, and the joint's numbers as drawn.
 pub use drawing::{check_drawing, check_imported, CheckedDrawing, Derived, DrawingReport};
 /// How far the joint length may differ from the notch pattern (mm).
 pub use length::LENGTH_TOLERANCE_MM;
+pub(crate) use strain::check as strain_warnings;
 /// A broken design rule, and a warning.
 pub use violation::{Violation, Warning};
 /// The tube wall against the cutting sets' `min_wall_mm`.

@@ -159,6 +159,7 @@ mod tests {
     fn a_notch_past_the_parting_line_is_refused() {
         let mut l = joint_a();
         l.notches.push(Notch {
+            joint: None,
             level: 10,
             side: 0,
             outline: vec![Polygon::new(

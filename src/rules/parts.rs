@@ -73,6 +73,17 @@ impl Part {
         part
     }
 
+    /// Range of `x` the part covers (mm).
+    fn x_range(&self) -> Option<(f64, f64)> {
+        self.segments
+            .iter()
+            .flat_map(|seg| [seg.line.start.x, seg.line.end.x])
+            .fold(None, |acc, x| match acc {
+                None => Some((x, x)),
+                Some((lo, hi)) => Some((lo.min(x), hi.max(x))),
+            })
+    }
+
     /// Range of `s` the part covers (mm).
     fn s_range(&self) -> Option<(f64, f64)> {
         self.segments
@@ -113,6 +124,12 @@ impl Part {
 /// The closest approach of `a` to `b` on a cylinder of circumference `c_mm`, looking only at
 /// copies of `b` that could come within `reach_mm` of `a`.
 pub(crate) fn closest_on_cylinder(a: &Part, b: &Part, c_mm: f64, reach_mm: f64) -> Option<Closest> {
+    // Parts further apart along the tube than the reach have no copy within it (the fills lie
+    // inside their outlines, which are segments too).
+    let ((axlo, axhi), (bxlo, bxhi)) = (a.x_range()?, b.x_range()?);
+    if bxlo > axhi + reach_mm || axlo > bxhi + reach_mm {
+        return None;
+    }
     let ((alo, ahi), (blo, bhi)) = (a.s_range()?, b.s_range()?);
     let k_min = ((alo - bhi - reach_mm) / c_mm).floor() as i64;
     let k_max = ((ahi - blo + reach_mm) / c_mm).ceil() as i64;
@@ -123,46 +140,59 @@ pub(crate) fn closest_on_cylinder(a: &Part, b: &Part, c_mm: f64, reach_mm: f64) 
 
 /// The closest approach of two parts in the plane.
 fn closest(a: &Part, b: &Part) -> Option<Closest> {
-    let mut best: Option<Closest> = None;
-    let mut offer = |c: Closest| {
+    fn offer(best: &mut Option<Closest>, c: Closest) {
         if best
             .as_ref()
             .map_or(true, |b| c.distance_mm < b.distance_mm)
         {
-            best = Some(c);
+            *best = Some(c);
         }
-    };
+    }
+    let mut best: Option<Closest> = None;
     for sa in &a.segments {
         for sb in &b.segments {
             let distance_mm = Euclidean::distance(&sa.line, &sb.line);
-            offer(Closest {
-                distance_mm,
-                at: point_nearest(&sa.line, &sb.line),
-                label: sa.label.clone(),
-                other: sb.label.clone(),
-            });
+            // Where, and the labels, only for a pair nearer than the best so far.
+            if best.as_ref().is_some_and(|b| distance_mm >= b.distance_mm) {
+                continue;
+            }
+            offer(
+                &mut best,
+                Closest {
+                    distance_mm,
+                    at: point_nearest(&sa.line, &sb.line),
+                    label: sa.label.clone(),
+                    other: sb.label.clone(),
+                },
+            );
         }
         // A trace inside a filled area touches it everywhere.
         for (poly, label) in &b.fills {
             if poly.contains(&sa.line.start) {
-                offer(Closest {
-                    distance_mm: 0.0,
-                    at: sa.line.start,
-                    label: sa.label.clone(),
-                    other: label.clone(),
-                });
+                offer(
+                    &mut best,
+                    Closest {
+                        distance_mm: 0.0,
+                        at: sa.line.start,
+                        label: sa.label.clone(),
+                        other: label.clone(),
+                    },
+                );
             }
         }
     }
     for sb in &b.segments {
         for (poly, label) in &a.fills {
             if poly.contains(&sb.line.start) {
-                offer(Closest {
-                    distance_mm: 0.0,
-                    at: sb.line.start,
-                    label: label.clone(),
-                    other: sb.label.clone(),
-                });
+                offer(
+                    &mut best,
+                    Closest {
+                        distance_mm: 0.0,
+                        at: sb.line.start,
+                        label: label.clone(),
+                        other: sb.label.clone(),
+                    },
+                );
             }
         }
     }

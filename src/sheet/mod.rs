@@ -3,9 +3,12 @@
 //! operator follows: laser safety, stock and mandrel, fixturing, zeroing against the drawing's frame, the
 //! parameter sets and times, and the steps after the laser.
 
+mod robot;
 mod safety;
 mod setup;
 
+/// The setup sheet of a robot: the joint's sheet with the robot's zeroing and a joint table.
+pub use robot::{robot_sheet, SheetJoint};
 /// The sheet's laser-safety section.
 pub use safety::safety_lines;
 /// The operator's setup sheet and the mandrel it picks.

@@ -105,10 +105,34 @@ impl Bench {
     #[inline]
     pub fn step(&mut self, time_s: f64, stroke_mm: f64) -> Result<Reading, SimError> {
         let angle_rad = self.plant.step(stroke_mm);
-        let strain = self.joint.strain(angle_rad);
+        self.read(time_s, angle_rad, |_| angle_rad)
+    }
+
+    /// Advances the plant alone one sample: the joint's angle (rad) at stroke `stroke_mm`. A
+    /// robot's simulator ([`super::robot`]) adds the other tendons' bending to it, then calls
+    /// [`Self::read`].
+    #[inline]
+    pub fn plant_step(&mut self, stroke_mm: f64) -> f64 {
+        self.plant.step(stroke_mm)
+    }
+
+    /// The sensors, ADC and tracker at `time_s` for a joint at `angle_rad`, sensor `c` (0-based)
+    /// reading the strain of the angle `sensed_rad(c)`: `angle_rad` itself on a joint alone, the
+    /// mixed angle `Σ_j C[i][j]·θ_j` on a robot (`docs/robot-runtime.md`'s sensing model).
+    ///
+    /// # Errors
+    /// As [`Self::step`].
+    #[inline]
+    pub fn read(
+        &mut self,
+        time_s: f64,
+        angle_rad: f64,
+        sensed_rad: impl Fn(usize) -> f64,
+    ) -> Result<Reading, SimError> {
         let mut volts = [0.0; 2];
         let kelvin = self.temperature.as_mut().map_or(0.0, Ar1::next_value);
         for (c, ch) in self.channels.iter_mut().enumerate() {
+            let strain = self.joint.strain(sensed_rad(c));
             let ohm = ch.sensor.step(strain) * (1.0 + ch.tcr_per_k * kelvin);
             if !(ohm.is_finite() && ohm > 0.0) {
                 return Err(SimError::Resistance {

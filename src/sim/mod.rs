@@ -48,6 +48,7 @@ mod pi_default;
 mod plant;
 mod protocol;
 mod rng;
+pub mod robot;
 mod scenario;
 mod sensor;
 

@@ -140,9 +140,10 @@ fn check_clearance(plan: &Plan, layout: &Layout) -> Result<(), ToolpathError> {
                 .filter(|pts| pts.len() >= 2)
             {
                 match path.feature {
-                    Feature::Notch { level, side } => {
+                    Feature::Notch { joint, level, side } => {
                         let skip = usize::from(path.lead_in);
                         notches.push(Notch {
+                            joint,
                             level,
                             side,
                             outline: vec![Polygon::new(

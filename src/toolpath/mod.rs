@@ -51,7 +51,7 @@ pub use plan::{
     Feature, Move, MoveKind, Operation, OperationKind, Path, Plan, Point, TraceKind, Travel,
 };
 /// Building a plan from a layout.
-pub use planner::{plan, PlanOptions};
+pub use planner::{plan, plan_part, Part, PlanOptions};
 /// Joining pieces across the drawing's seam.
 pub use seam::{chain_lines, join_outline, short_way_mm, SeamError};
 

@@ -77,6 +77,8 @@ pub enum Feature {
     },
     /// A notch, cut along its outline offset inward by half the kerf.
     Notch {
+        /// The robot joint it belongs to ([`crate::layout::Notch::joint`]); `None` for a joint.
+        joint: Option<usize>,
         /// Position along the tube, 0 at the distal end.
         level: usize,
         /// 0 for the notch centred at `s = π·r_o`, 1 for BSN's notch centred at `s = 0`.
@@ -100,7 +102,16 @@ impl fmt::Display for Feature {
                     .collect();
                 write!(f, "sensor {} line ({})", sensor + 1, names.join("+"))
             }
-            Self::Notch { level, side } => write!(f, "notch {} (side {side})", level + 1),
+            Self::Notch {
+                joint: None,
+                level,
+                side,
+            } => write!(f, "notch {} (side {side})", level + 1),
+            Self::Notch {
+                joint: Some(j),
+                level,
+                side,
+            } => write!(f, "joint {} notch {} (side {side})", j + 1, level + 1),
             Self::Parting => write!(f, "parting cut"),
         }
     }
@@ -186,6 +197,8 @@ pub struct Plan {
     pub design_name: String,
     /// The design's checksum ([`crate::design::Design::checksum`]).
     pub design_checksum: String,
+    /// Lines the program header prints after the checksum (a robot's joints); none for a joint.
+    pub notes: Vec<String>,
     /// Outer radius `r_o` (mm): `A = s/r_o`.
     pub outer_radius_mm: f64,
     /// Inner radius `r_i` (mm).

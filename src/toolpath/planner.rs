@@ -41,6 +41,37 @@ impl Default for PlanOptions {
     }
 }
 
+/// What a plan is of, besides its layout: the name and checksum its program and sheet carry,
+/// the numbers they print, and any lines the header adds. A joint's design gives them
+/// ([`Part::of`]); a robot gives its own (`crate::robot::job`), so the planner need not know
+/// which it plans.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Part {
+    /// The name ([`Plan::design_name`]).
+    pub name: String,
+    /// The checksum ([`Plan::design_checksum`]).
+    pub checksum: String,
+    /// Inner radius `r_i` (mm).
+    pub inner_radius_mm: f64,
+    /// Bending length (mm) ([`Plan::bending_length_mm`]).
+    pub bending_length_mm: f64,
+    /// Lines the program header prints after the checksum ([`Plan::notes`]).
+    pub notes: Vec<String>,
+}
+
+impl Part {
+    /// A joint design's part.
+    pub fn of(design: &Design) -> Self {
+        Self {
+            name: design.file.name.clone(),
+            checksum: design.checksum.clone(),
+            inner_radius_mm: design.file.inner_radius_mm,
+            bending_length_mm: design.file.joint_length_mm,
+            notes: Vec::new(),
+        }
+    }
+}
+
 /// Plans the whole job: sensor (set a) → notches (set b) → parting, then checks every safety
 /// invariant against the machine profile.
 ///
@@ -64,6 +95,21 @@ pub fn plan(
         }
         .into());
     }
+    plan_part(&Part::of(design), layout, sets, profile, options)
+}
+
+/// [`plan`] for any part (the caller has checked the wall against the sets,
+/// [`crate::rules::check_wall`]).
+///
+/// # Errors
+/// As [`plan`].
+pub fn plan_part(
+    part: &Part,
+    layout: &Layout,
+    sets: &ProcessSets,
+    profile: &MachineProfile,
+    options: &PlanOptions,
+) -> Result<Plan, ToolpathError> {
     let r_o = layout.outer_radius_mm;
     let c = layout.circumference_mm;
     if !(r_o.is_finite() && r_o > 0.0 && (c - TAU * r_o).abs() <= 1e-6 * c.max(1.0)) {
@@ -96,6 +142,7 @@ pub fn plan(
     let mut notch_ways = Vec::with_capacity(layout.notches.len());
     for notch in &layout.notches {
         let feature = Feature::Notch {
+            joint: notch.joint,
             level: notch.level,
             side: notch.side,
         };
@@ -143,14 +190,15 @@ pub fn plan(
     });
 
     let plan = Plan {
-        design_name: design.file.name.clone(),
-        design_checksum: design.checksum.clone(),
+        design_name: part.name.clone(),
+        design_checksum: part.checksum.clone(),
+        notes: part.notes.clone(),
         outer_radius_mm: r_o,
-        inner_radius_mm: design.file.inner_radius_mm,
+        inner_radius_mm: part.inner_radius_mm,
         kerf_mm: layout.kerf_mm,
         trace_width_mm: layout.trace_width_mm,
         joint_length_mm: x_line,
-        bending_length_mm: design.file.joint_length_mm,
+        bending_length_mm: part.bending_length_mm,
         surface_z_mm: profile.surface_z_mm(r_o),
         home,
         operations,
@@ -391,6 +439,7 @@ mod tests {
             length_mm: 6.0,
             notches: vec![
                 Notch {
+                    joint: None,
                     level: 0,
                     side: 1,
                     outline: vec![
@@ -399,6 +448,7 @@ mod tests {
                     ],
                 },
                 Notch {
+                    joint: None,
                     level: 1,
                     side: 0,
                     outline: vec![
@@ -472,7 +522,14 @@ mod tests {
         let split = notches
             .paths
             .iter()
-            .find(|p| p.feature == Feature::Notch { level: 0, side: 1 })
+            .find(|p| {
+                p.feature
+                    == Feature::Notch {
+                        joint: None,
+                        level: 0,
+                        side: 1,
+                    }
+            })
             .unwrap();
         let cut = &split.forward[1..];
         let (mut x0, mut x1, mut s0, mut s1) = (

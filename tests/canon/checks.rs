@@ -35,8 +35,22 @@ pub struct Expected {
     pub inverse_time: bool,
 }
 
-/// What a program for `design` on `machine` must do.
+/// What a program for `design` (a joint design or a robot file) on `machine` must do.
 pub fn expected(design: &Path, machine: Option<&str>) -> Expected {
+    if dlw::robot::is_robot_file(design) {
+        let robot = dlw::robot::CheckedRobot::load(design).unwrap();
+        let sets = ProcessLibrary::beside(design)
+            .resolve(&robot.robot.joints[0].design().file.process)
+            .unwrap();
+        return Expected {
+            r_o: robot.robot.outer_radius_mm(),
+            layout: robot.layout,
+            sets,
+            profile: MachineLibrary::beside(design).find(machine).unwrap(),
+            a_print_deg: 0.5e-4,
+            inverse_time: true,
+        };
+    }
     let checked = rules::check_file(DesignFile::read(design).unwrap()).unwrap();
     let sets = ProcessLibrary::beside(design)
         .resolve(&checked.design.file.process)
@@ -52,13 +66,19 @@ pub fn expected(design: &Path, machine: Option<&str>) -> Expected {
     }
 }
 
-/// `s` interval of the notch's pieces, unwrapped across the seam, and its `x` interval.
-fn notch_box(layout: &Layout, level: usize, side: usize) -> ([f64; 2], [f64; 2]) {
+/// `s` interval of the notch's pieces, unwrapped across the seam, and its `x` interval; a
+/// robot's notches are told apart by their joint.
+fn notch_box(
+    layout: &Layout,
+    joint: Option<usize>,
+    level: usize,
+    side: usize,
+) -> ([f64; 2], [f64; 2]) {
     let notch = layout
         .notches
         .iter()
-        .find(|n| n.level == level && n.side == side)
-        .unwrap_or_else(|| panic!("the layout has no notch {level} side {side}"));
+        .find(|n| n.joint == joint && n.level == level && n.side == side)
+        .unwrap_or_else(|| panic!("the layout has no notch {level} side {side} of {joint:?}"));
     let c = layout.circumference_mm;
     let mut xs = [f64::INFINITY, f64::NEG_INFINITY];
     let mut ss: Option<[f64; 2]> = None;
@@ -313,14 +333,17 @@ pub fn check(canon: &Canon, e: &Expected, what: &str) {
             e.sets.notches.repetitions,
             "{what}: {path} passes"
         );
-        // "notch 3 [side 0]"
+        // "notch 3 [side 0]", or a robot's "joint 2 notch 3 [side 0]"
         let nums: Vec<usize> = path
             .split(|ch: char| !ch.is_ascii_digit())
             .filter(|s| !s.is_empty())
             .map(|s| s.parse().unwrap())
             .collect();
-        let (level, side) = (nums[0] - 1, nums[1]);
-        let (xs, ss) = notch_box(&e.layout, level, side);
+        let (joint, level, side) = match nums.as_slice() {
+            [j, l, s] => (Some(j - 1), l - 1, *s),
+            _ => (None, nums[0] - 1, nums[1]),
+        };
+        let (xs, ss) = notch_box(&e.layout, joint, level, side);
         for seg in segs.values() {
             let lead = seg[0];
             let cut = &seg[1..];

@@ -44,3 +44,11 @@ pub fn shipped() -> Vec<std::path::PathBuf> {
         })
         .collect()
 }
+
+/// The shipped robot files (`designs/robot-*.toml`, docs/robots.md).
+pub fn robots() -> Vec<std::path::PathBuf> {
+    ["robot-bc", "robot-bdb"]
+        .iter()
+        .map(|r| std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("designs/{r}.toml")))
+        .collect()
+}

@@ -12,6 +12,15 @@ Usage:
       (EXPECT_JSON: {"seam": s0, "circumference": c, "length": l, "split": bool}), a LINE along
       each window edge (the seam) reaching past both ends, and a TEXT on ANNOTATION saying that
       notches cross the seam exactly when "split" is true.
+  dxf_check.py crosstalk FILE EXPECT_JSON
+      A robot's crosstalk computed from the drawing alone, independently of dlw's code: the
+      axial segments of each sensor's U-trace (SENSOR) and leads (LEADS_PADS, XDATA kind
+      "lead"), sensors told apart by the XDATA sensor number; for joint j,
+      S(j) = sum of len*(y - ybar_j)/L_j over the segments' parts over [x_start_j, x_end_j],
+      y = r_o*cos(s/r_o - rotation_j); crosstalk[j] = S(j) / (the same sum for the U-trace
+      over its own joint). EXPECT_JSON: {"r_o": r, "joints": [{"x_start", "x_end",
+      "rotation_deg", "y_bar"}], "sensors": [{"joint": j (1-based), "crosstalk": [...]}]};
+      every value must agree to 1e-6.
   dxf_check.py resave FILE OUT [--move-notch DX DY] [--strip-xdata]
       Re-saves FILE with ezdxf as OUT (as a designer's tool would), optionally moving the
       first NOTCHES polyline by (DX, DY) mm and/or removing dlw's XDATA from feature entities.
@@ -122,11 +131,61 @@ def resave(path, out, args):
     print(f"ok resaved {path} as {out} ({doc.dxfversion})")
 
 
+def crosstalk(path, expect):
+    import math
+    doc = ezdxf.readfile(path)
+    r_o = expect["r_o"]
+    joints = expect["joints"]
+    u = {}
+    leads = {}
+    for e in doc.modelspace():
+        if e.dxftype() != "LWPOLYLINE" or e.dxf.layer not in ("SENSOR", "LEADS_PADS"):
+            continue
+        xd = e.get_xdata("DLW") if e.has_xdata("DLW") else None
+        if not xd:
+            fail(f"{path}: a trace without DLW XDATA")
+        kind, sensor = xd[0][1], xd[2][1]
+        pts = [(p[0], p[1]) for p in e.get_points("xy")]
+        if kind == "sensor":
+            u.setdefault(sensor, []).append(pts)
+        elif kind == "lead":
+            leads.setdefault(sensor, []).append(pts)
+
+    def total(lines, j):
+        jt = joints[j]
+        x0, x1 = jt["x_start"], jt["x_end"]
+        rot = math.radians(jt["rotation_deg"])
+        out = 0.0
+        for pts in lines:
+            for (ax, ay), (bx, by) in zip(pts, pts[1:]):
+                if abs(by - ay) > 1e-9:
+                    continue
+                over = max(0.0, min(max(ax, bx), x1) - max(min(ax, bx), x0))
+                if over > 0:
+                    y = r_o * math.cos(ay / r_o - rot)
+                    out += over * (y - jt["y_bar"]) / (x1 - x0)
+        return out
+
+    got = []
+    for i, s in enumerate(expect["sensors"]):
+        own = total(u.get(i, []), s["joint"] - 1)
+        if abs(own) < 1e-12:
+            fail(f"{path}: sensor {i + 1}'s U-trace reads nothing of its own joint")
+        row = [(total(u.get(i, []), j) + total(leads.get(i, []), j)) / own for j in range(len(joints))]
+        got.append(row)
+        for j, (g, w) in enumerate(zip(row, s["crosstalk"])):
+            if abs(g - w) > 1e-6:
+                fail(f"{path}: sensor {i + 1} on joint {j + 1}: crosstalk {g!r} from the drawing, dlw says {w!r}")
+    print(f"ok {path}: crosstalk from the drawing {got}")
+
+
 def main(argv):
     if len(argv) >= 3 and argv[0] == "audit":
         audit(argv[1], json.loads(argv[2]))
     elif len(argv) >= 3 and argv[0] == "tube":
         tube(argv[1], json.loads(argv[2]))
+    elif len(argv) >= 3 and argv[0] == "crosstalk":
+        crosstalk(argv[1], json.loads(argv[2]))
     elif len(argv) >= 3 and argv[0] == "resave":
         resave(argv[1], argv[2], argv[3:])
     else:

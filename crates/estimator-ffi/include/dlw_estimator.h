@@ -33,9 +33,29 @@
 // Flag: the angle is the last good one, held because this sample could not be used.
 #define DLW_FLAG_HELD (1 << 5)
 
+// Flag: the continuous PI inverse's root search stopped at its iteration limit.
+#define DLW_FLAG_NOT_CONVERGED (1 << 6)
+
+// A count argument (`n_volts`, `n_joints`) is not the robot's: nothing was done.
+#define DLW_ERR_LENGTH -3
+
+// An angle passed to `dlw_robot_estimator_tip` or `_backbone` is NaN or infinite: nothing was
+// written.
+#define DLW_ERR_NOT_FINITE -4
+
+// Most joints a robot estimator holds.
+#define DLW_MAX_JOINTS 8
+
+// Most sensors a robot estimator holds.
+#define DLW_MAX_SENSORS 16
+
 // An estimator: opaque to C, created by `dlw_estimator_from_toml`, freed by
 // `dlw_estimator_free`.
 typedef struct DlwEstimator DlwEstimator;
+
+// A robot estimator: opaque to C, created by `dlw_robot_estimator_from_toml`, freed by
+// `dlw_robot_estimator_free`.
+typedef struct DlwRobotEstimator DlwRobotEstimator;
 
 #ifdef __cplusplus
 extern "C" {
@@ -72,6 +92,97 @@ void dlw_estimator_reset(DlwEstimator *e);
 // # Safety
 // `e` is NULL or from `dlw_estimator_from_toml` and not already freed.
 void dlw_estimator_free(DlwEstimator *e);
+
+// A new robot estimator from the text of a robot estimator config (TOML,
+// `docs/robot-runtime.md`), or NULL with the reason in `error` (`error_len` bytes,
+// NUL-terminated; `error` may be NULL). Free it with `dlw_robot_estimator_free`.
+//
+// # Safety
+// `config_toml` is NULL or a NUL-terminated string; `error` is NULL or points to `error_len`
+// writable bytes.
+DlwRobotEstimator *dlw_robot_estimator_from_toml(const char *config_toml,
+                                                 char *error,
+                                                 size_t error_len);
+
+// Joints `N` of the robot (0 for NULL).
+//
+// # Safety
+// `e` is NULL or from `dlw_robot_estimator_from_toml` and not freed.
+size_t dlw_robot_estimator_joints(const DlwRobotEstimator *e);
+
+// Sensors `M` of the robot: the voltages per sample (0 for NULL).
+//
+// # Safety
+// `e` is NULL or from `dlw_robot_estimator_from_toml` and not freed.
+size_t dlw_robot_estimator_sensors(const DlwRobotEstimator *e);
+
+// Condition number of the robot's crosstalk matrix (0 for NULL).
+//
+// # Safety
+// `e` is NULL or from `dlw_robot_estimator_from_toml` and not freed.
+double dlw_robot_estimator_condition_number(const DlwRobotEstimator *e);
+
+// Runs one sample: the sensors' divider voltages `volts[0..n_volts]` (V, in the config's
+// sensor order; `n_volts` must be the robot's sensor count) to every joint's angle (degrees)
+// in `angles_deg[0..n_joints]` and its `DLW_FLAG_*` bits in `flags[0..n_joints]` (`n_joints`
+// must be the robot's joint count). Returns `DLW_OK`, `DLW_ERR_NULL`, `DLW_ERR_LENGTH` or
+// `DLW_ERR_PANIC`. A flagged sample still returns `DLW_OK`. Does not allocate.
+//
+// # Safety
+// `e` is NULL or from `dlw_robot_estimator_from_toml` and not freed; `volts` is NULL or points
+// to `n_volts` doubles; `angles_deg` and `flags` are NULL or point to `n_joints` writable
+// values.
+int dlw_robot_estimator_step(DlwRobotEstimator *e,
+                             const double *volts,
+                             size_t n_volts,
+                             double *angles_deg,
+                             uint32_t *flags,
+                             size_t n_joints);
+
+// The tip's pose at joint angles `angles_deg[0..n_joints]` (degrees, joint 1 first), in the
+// robot's base frame (`docs/robot-runtime.md`): its position (mm) in `position_mm[0..3]`,
+// its rotation matrix in `rotation[0..9]` (row-major: `rotation[3*r + c]`; the columns are
+// the tip frame's axes, the third its tangent) and the same rotation as a unit quaternion
+// `w, x, y, z` (`w >= 0`) in `quaternion[0..4]`. Returns `DLW_OK`, `DLW_ERR_NULL`,
+// `DLW_ERR_LENGTH`, `DLW_ERR_NOT_FINITE` or `DLW_ERR_PANIC`. Does not allocate.
+//
+// # Safety
+// `e` is NULL or from `dlw_robot_estimator_from_toml` and not freed; `angles_deg` is NULL or
+// points to `n_joints` doubles; `position_mm`, `rotation` and `quaternion` are NULL or point
+// to 3, 9 and 4 writable doubles.
+int dlw_robot_estimator_tip(const DlwRobotEstimator *e,
+                            const double *angles_deg,
+                            size_t n_joints,
+                            double *position_mm,
+                            double *rotation,
+                            double *quaternion);
+
+// `n_points` points of the backbone at joint angles `angles_deg[0..n_joints]` (degrees),
+// equally spaced in arc length from the base (first) to the tip (last), in
+// `points_mm[0..3*n_points]` as `x, y, z` triples (mm, base frame). Returns `DLW_OK`,
+// `DLW_ERR_NULL`, `DLW_ERR_LENGTH`, `DLW_ERR_NOT_FINITE` or `DLW_ERR_PANIC`. Does not
+// allocate.
+//
+// # Safety
+// `e` is NULL or from `dlw_robot_estimator_from_toml` and not freed; `angles_deg` is NULL or
+// points to `n_joints` doubles; `points_mm` is NULL or points to `3*n_points` writable doubles.
+int dlw_robot_estimator_backbone(const DlwRobotEstimator *e,
+                                 const double *angles_deg,
+                                 size_t n_joints,
+                                 double *points_mm,
+                                 size_t n_points);
+
+// Resets every sensor's filters and model and forgets past estimates. NULL is ignored.
+//
+// # Safety
+// `e` is NULL or from `dlw_robot_estimator_from_toml` and not freed.
+void dlw_robot_estimator_reset(DlwRobotEstimator *e);
+
+// Frees a robot estimator. NULL is ignored.
+//
+// # Safety
+// `e` is NULL or from `dlw_robot_estimator_from_toml` and not already freed.
+void dlw_robot_estimator_free(DlwRobotEstimator *e);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -10,6 +10,9 @@
 //! dlw_estimator_free(e);
 //! ```
 //!
+//! The robot estimator (several joints, crosstalk undone, the tip's pose) has the same shape
+//! under `dlw_robot_estimator_*`: see [`robot`] and `docs/c-api.md`.
+//!
 //! Every entry point catches panics (`catch_unwind`), so none unwinds into C; the library is
 //! built with the default `panic = "unwind"`, which that needs. [`dlw_estimator_step`] does not
 //! allocate: the estimator's buffers are allocated once, by [`dlw_estimator_from_toml`].
@@ -18,6 +21,9 @@ use std::ffi::{c_char, c_int, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use runtime::{Estimator, EstimatorConfig, Flags};
+
+pub mod robot;
+pub use robot::*;
 
 /// Success.
 pub const DLW_OK: c_int = 0;
@@ -38,6 +44,8 @@ pub const DLW_FLAG_REVERSAL: u32 = 1 << 3;
 pub const DLW_FLAG_NON_FINITE: u32 = 1 << 4;
 /// Flag: the angle is the last good one, held because this sample could not be used.
 pub const DLW_FLAG_HELD: u32 = 1 << 5;
+/// Flag: the continuous PI inverse's root search stopped at its iteration limit.
+pub const DLW_FLAG_NOT_CONVERGED: u32 = 1 << 6;
 
 // The C flag bits are the runtime crate's, checked at compile time.
 const _: () = {
@@ -47,6 +55,7 @@ const _: () = {
     assert!(DLW_FLAG_REVERSAL == Flags::REVERSAL.bits() as u32);
     assert!(DLW_FLAG_NON_FINITE == Flags::NON_FINITE.bits() as u32);
     assert!(DLW_FLAG_HELD == Flags::HELD.bits() as u32);
+    assert!(DLW_FLAG_NOT_CONVERGED == Flags::NOT_CONVERGED.bits() as u32);
 };
 
 /// An estimator: opaque to C, created by `dlw_estimator_from_toml`, freed by
@@ -73,7 +82,7 @@ fn build(config_toml: &str) -> Result<DlwEstimator, String> {
 ///
 /// # Safety
 /// `error` is NULL or points to `error_len` writable bytes.
-unsafe fn write_error(error: *mut c_char, error_len: usize, message: &str) {
+pub(crate) unsafe fn write_error(error: *mut c_char, error_len: usize, message: &str) {
     if error.is_null() || error_len == 0 {
         return;
     }

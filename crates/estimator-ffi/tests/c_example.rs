@@ -1,6 +1,14 @@
 //! examples/c/estimate_recording.c, compiled with the system's `cc` against the static library,
 //! prints the angles `dlw estimate` computes over the same recording (to 1e-9), for a one-sensor
 //! (UAN) and a two-sensor (BSN) joint; and refuses a bad config with the reason.
+//! examples/c/estimate_robot.c prints the joint angles, flags and tip the Rust robot estimator
+//! computes over the same robot recording (to 1e-9), and refuses a bad config likewise.
+
+// The shared robot fixture names the runtime crate by its own name.
+extern crate runtime as dlw_estimator;
+
+#[path = "../../estimator/tests/common/robot.rs"]
+mod robot;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -29,7 +37,12 @@ fn profile_dir() -> PathBuf {
 }
 
 fn compile(dir: &Path) -> PathBuf {
-    let exe = dir.join("estimate_recording");
+    compile_example(dir, "estimate_recording")
+}
+
+/// examples/c/`name`.c compiled against the static library, into `dir`.
+fn compile_example(dir: &Path, name: &str) -> PathBuf {
+    let exe = dir.join(name);
     // `cargo test` builds only the rlib: build the static library (a no-op when current).
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let built = Command::new(cargo)
@@ -43,7 +56,7 @@ fn compile(dir: &Path) -> PathBuf {
     let out = Command::new("cc")
         .arg("-I")
         .arg(workspace().join("crates/estimator-ffi/include"))
-        .arg(workspace().join("examples/c/estimate_recording.c"))
+        .arg(workspace().join(format!("examples/c/{name}.c")))
         .arg(&lib)
         .args(["-lm", "-lpthread", "-ldl", "-o"])
         .arg(&exe)
@@ -168,4 +181,132 @@ fn c_example_reports_a_bad_config() {
     assert!(!out.status.success());
     assert!(out.stdout.is_empty(), "no partial output");
     assert!(String::from_utf8_lossy(&out.stderr).contains("estimator config"));
+}
+
+/// A robot recording of the B-C-B fixture robot (four sensors, crosstalk), written as the
+/// robot recording's columns, with a rail and a NaN sample: the C example's angles, flags and
+/// tip against the Rust runtime's on the voltages as read back from the file.
+#[test]
+fn c_robot_example_matches_the_rust_runtime() {
+    use runtime::{RobotEstimator, RobotEstimatorConfig};
+    let dir = tempfile::tempdir().unwrap();
+    let config = robot::bcb_linear();
+    let mut sensors = robot::Sensors::new(&config);
+    let mut csv = String::from(
+        "time_s,stroke1_mm,stroke2_mm,stroke3_mm,angle1_deg,angle2_deg,angle3_deg,v1_V,v2_V,v3_V,v4_V\n",
+    );
+    for k in 0..400 {
+        let theta = robot::trajectory(k, 3, 0.6);
+        let mut volts = sensors.volts(&theta);
+        if k == 100 {
+            volts[0] = 5.0;
+        }
+        if k == 200 {
+            volts[3] = f64::NAN;
+        }
+        let degrees: Vec<String> = theta.iter().map(|t| t.to_degrees().to_string()).collect();
+        let volts: Vec<String> = volts.iter().map(|v| v.to_string()).collect();
+        csv.push_str(&format!(
+            "{},0,0,0,{},{}\n",
+            k as f64 * 0.002,
+            degrees.join(","),
+            volts.join(",")
+        ));
+    }
+    let data = dir.path().join("data.csv");
+    std::fs::write(&data, &csv).unwrap();
+    let config_path = dir.path().join("robot.toml");
+    std::fs::write(&config_path, toml::to_string(&config).unwrap()).unwrap();
+
+    // The Rust runtime on the voltages as the file holds them.
+    let read: RobotEstimatorConfig =
+        toml::from_str(&std::fs::read_to_string(&config_path).unwrap()).unwrap();
+    let mut estimator = Box::new(RobotEstimator::new(&read).unwrap());
+    let expected: Vec<(Vec<f64>, [f64; 3], Vec<u32>)> = csv
+        .lines()
+        .skip(1)
+        .map(|line| {
+            let volts: Vec<f64> = line
+                .split(',')
+                .skip(7)
+                .map(|v| v.parse().unwrap())
+                .collect();
+            let e = estimator.step(&volts);
+            let tip = estimator.tip(&e).unwrap();
+            (
+                (0..3).map(|j| e.angle_deg(j)).collect(),
+                tip.position_mm,
+                e.flags().iter().map(|f| u32::from(f.bits())).collect(),
+            )
+        })
+        .collect();
+
+    let exe = compile_example(dir.path(), "estimate_robot");
+    let out = Command::new(&exe)
+        .arg(&config_path)
+        .arg(&data)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines: Vec<String> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(str::to_string)
+        .collect();
+    assert_eq!(lines.len(), expected.len(), "one line per sample");
+    let (mut worst_deg, mut worst_mm, mut flagged) = (0.0f64, 0.0f64, 0);
+    for (line, (angles, tip, flags)) in lines.iter().zip(&expected) {
+        let fields: Vec<&str> = line.split(',').collect();
+        assert_eq!(fields.len(), 9, "{line}");
+        for j in 0..3 {
+            let got: f64 = fields[j].parse().unwrap();
+            worst_deg = worst_deg.max((got - angles[j]).abs());
+            let got_flags: u32 = fields[6 + j].parse().unwrap();
+            assert_eq!(got_flags, flags[j], "{line}");
+            flagged += usize::from(got_flags != 0);
+        }
+        for i in 0..3 {
+            let got: f64 = fields[3 + i].parse().unwrap();
+            worst_mm = worst_mm.max((got - tip[i]).abs());
+        }
+    }
+    assert!(
+        worst_deg <= TOLERANCE_DEG,
+        "C and Rust differ by {worst_deg:e}°"
+    );
+    assert!(
+        worst_mm <= 1e-9,
+        "C and Rust tips differ by {worst_mm:e} mm"
+    );
+    // The rail flags joint 1 (one sample), the NaN every joint (one sample).
+    assert_eq!(flagged, 1 + 3, "flags set");
+    let peak = expected
+        .iter()
+        .flat_map(|e| e.0.clone())
+        .fold(0.0f64, |m, a| m.max(a.abs()));
+    assert!(peak > 10.0, "the recording bends the joints (peak {peak}°)");
+}
+
+#[test]
+fn c_robot_example_reports_a_bad_config() {
+    let dir = tempfile::tempdir().unwrap();
+    let exe = compile_example(dir.path(), "estimate_robot");
+    let mut config = robot::bcb_linear();
+    config.sensor.as_mut_slice()[1].crosstalk.as_mut_slice()[0] = f64::NAN;
+    let path = dir.path().join("bad.toml");
+    std::fs::write(&path, toml::to_string(&config).unwrap()).unwrap();
+    let data = dir.path().join("data.csv");
+    std::fs::write(&data, "time_s,v1_V,v2_V,v3_V,v4_V\n0,2.5,2.5,2.5,2.5\n").unwrap();
+    let out = Command::new(&exe).arg(&path).arg(&data).output().unwrap();
+    assert!(!out.status.success());
+    assert!(out.stdout.is_empty(), "no partial output");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("sensor 2: crosstalk[1] = NaN is not a finite number"),
+        "{stderr}"
+    );
 }

@@ -31,6 +31,18 @@ fn checked_in_header_is_current() {
         "int dlw_estimator_step(DlwEstimator *e, double v1, double v2, double *angle_deg, uint32_t *flags)",
         "void dlw_estimator_reset(DlwEstimator *e)",
         "void dlw_estimator_free(DlwEstimator *e)",
+        "typedef struct DlwRobotEstimator DlwRobotEstimator;",
+        "DlwRobotEstimator *dlw_robot_estimator_from_toml(const char *config_toml,",
+        "size_t dlw_robot_estimator_joints(const DlwRobotEstimator *e);",
+        "size_t dlw_robot_estimator_sensors(const DlwRobotEstimator *e);",
+        "double dlw_robot_estimator_condition_number(const DlwRobotEstimator *e);",
+        "int dlw_robot_estimator_step(DlwRobotEstimator *e,",
+        "int dlw_robot_estimator_tip(const DlwRobotEstimator *e,",
+        "int dlw_robot_estimator_backbone(const DlwRobotEstimator *e,",
+        "void dlw_robot_estimator_reset(DlwRobotEstimator *e);",
+        "void dlw_robot_estimator_free(DlwRobotEstimator *e);",
+        "#define DLW_FLAG_NOT_CONVERGED (1 << 6)",
+        "#define DLW_MAX_SENSORS 16",
     ] {
         assert!(generated.contains(name), "the header lacks {name:?}:\n{generated}");
     }

@@ -244,7 +244,8 @@ impl ContinuousPiInverse {
 
     /// Feeds one resistance sample (Ω) and returns the strain and what happened:
     /// [`Flags::RESISTANCE_CLAMPED`] when no strain in `[min_strain, max_strain]` explains `R`
-    /// (the strain is clamped to the nearer end), [`Flags::REVERSAL`] when the resistance turned.
+    /// (the strain is clamped to the nearer end), [`Flags::REVERSAL`] when the resistance turned,
+    /// [`Flags::NOT_CONVERGED`] when the root search stopped at its iteration limit.
     /// A non-finite `R` returns the last strain with [`Flags::NON_FINITE`] and [`Flags::HELD`].
     pub fn step(&mut self, resistance_ohm: f64) -> (f64, Flags) {
         if !resistance_ohm.is_finite() {
@@ -282,7 +283,9 @@ impl ContinuousPiInverse {
                 } else {
                     (end, self.previous_x)
                 };
-                self.solve(target, low, high, guess)
+                let (x, converged) = self.solve(target, low, high, guess);
+                flags |= Flags::when(!converged, Flags::NOT_CONVERGED);
+                x
             }
         };
         self.core.step(x);
@@ -291,12 +294,14 @@ impl ContinuousPiInverse {
     }
 
     /// Root of `trial(x) = target` in `[low, high]`, where `trial(low) < target < trial(high)`,
-    /// starting from `guess` (the midpoint if it lies outside).
+    /// starting from `guess` (the midpoint if it lies outside), and whether it converged:
+    /// `false` when [`MAX_INVERSE_ITERATIONS`] steps did not bring the step below the tolerance
+    /// (the root is then the middle of the last bracket).
     ///
     /// Newton steps kept in the bracket, falling back to bisection whenever a step would leave
     /// it or would not at least halve the step before last (as in Numerical Recipes' `rtsafe`),
     /// so two Newton steps cannot bounce between the bracket's ends.
-    fn solve(&self, target: f64, mut low: f64, mut high: f64, guess: f64) -> f64 {
+    fn solve(&self, target: f64, mut low: f64, mut high: f64, guess: f64) -> (f64, bool) {
         let mut x = if guess > low && guess < high {
             guess
         } else {
@@ -312,7 +317,7 @@ impl ContinuousPiInverse {
             } else if error > 0.0 {
                 high = x;
             } else {
-                return x;
+                return (x, true);
             }
             let newton = x - error / slope;
             // Written so that the NaN of a zero slope in a dead band counts as not fast and
@@ -328,10 +333,10 @@ impl ContinuousPiInverse {
                 x = newton;
             }
             if step <= self.tolerance {
-                return x;
+                return (x, true);
             }
         }
-        0.5 * (low + high)
+        (0.5 * (low + high), false)
     }
 
     /// Returns to the initial state.
@@ -427,6 +432,24 @@ mod tests {
         assert!(flags.contains(Flags::RESISTANCE_CLAMPED | Flags::REVERSAL));
         let (held, flags) = inv.step(f64::NAN);
         assert_eq!((held, flags), (strain, Flags::NON_FINITE | Flags::HELD));
+    }
+
+    /// A tolerance below what f64 can resolve stops the search at its limit, flagged; the
+    /// strain is still inside the bracket, close to the root.
+    #[test]
+    fn an_unreachable_tolerance_is_flagged_not_converged() {
+        let mut c = config(0.3);
+        let mut fwd = ContinuousPi::new(&c).unwrap();
+        let mut inv = ContinuousPiInverse::new(&c).unwrap();
+        let r = fwd.step(0.008);
+        let (strain, flags) = inv.step(r);
+        assert!(!flags.contains(Flags::NOT_CONVERGED), "{flags}");
+        assert_relative_eq!(strain, 0.008, epsilon = 1e-10);
+        c.strain_tolerance = 1e-300;
+        let mut inv = ContinuousPiInverse::new(&c).unwrap();
+        let (strain, flags) = inv.step(r);
+        assert!(flags.contains(Flags::NOT_CONVERGED), "{flags}");
+        assert_relative_eq!(strain, 0.008, epsilon = 1e-10);
     }
 
     #[test]

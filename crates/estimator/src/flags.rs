@@ -27,15 +27,20 @@ impl Flags {
     pub const NON_FINITE: Self = Self(1 << 4);
     /// The estimate is the last good one, held because this sample could not be used.
     pub const HELD: Self = Self(1 << 5);
+    /// The continuous PI inverse's root search stopped after
+    /// [`crate::MAX_INVERSE_ITERATIONS`] steps without reaching its `strain_tolerance`: the
+    /// strain is the middle of the last bracket, which still contains the root.
+    pub const NOT_CONVERGED: Self = Self(1 << 6);
 
     /// Every flag with its name, in bit order.
-    pub const ALL: [(Self, &'static str); 6] = [
+    pub const ALL: [(Self, &'static str); 7] = [
         (Self::RAIL, "rail"),
         (Self::RESISTANCE_CLAMPED, "resistance_clamped"),
         (Self::ATANH_CLAMPED, "atanh_clamped"),
         (Self::REVERSAL, "reversal"),
         (Self::NON_FINITE, "non_finite"),
         (Self::HELD, "held"),
+        (Self::NOT_CONVERGED, "not_converged"),
     ];
 
     /// No flags.
@@ -50,7 +55,7 @@ impl Flags {
 
     /// Flags from raw bits; bits that name no flag are dropped.
     pub const fn from_bits_truncate(bits: u8) -> Self {
-        Self(bits & 0b0011_1111)
+        Self(bits & 0b0111_1111)
     }
 
     /// Whether no flag is set.

@@ -84,12 +84,14 @@ mod estimator;
 mod filter;
 mod flags;
 mod linear;
+mod list;
 mod low_pass;
 mod moving_average;
 mod pi;
 mod pi_model;
 mod pid;
 mod play;
+mod robot;
 #[cfg(test)]
 #[path = "../tests/common/table_one.rs"]
 mod table_one;
@@ -108,6 +110,8 @@ pub use continuous_pi::{
 };
 /// Divider voltage to sensor resistance (Eq. 4), flagging the rails.
 pub use divider::divider_resistance;
+/// The robot's kinematics (from `dlw-geometry`), re-exported for the robot estimator's users.
+pub use dlw_geometry::{BendingSection, Kinematics, KinematicsError, Pose, MAX_JOINTS};
 /// Why a configuration was refused.
 pub use error::EstimatorError;
 /// The runtime estimator and its per-sample output.
@@ -118,6 +122,8 @@ pub use filter::{Filter, FilterConfig};
 pub use flags::Flags;
 /// The linear gauge-factor model (Eqs. 5-6).
 pub use linear::LinearModel;
+/// A fixed-capacity list stored inline (the robot config's joints, sensors, crosstalk rows).
+pub use list::List;
 /// First-order low-pass filter.
 pub use low_pass::LowPass;
 /// O(1) moving average with a fixed maximum window (`MAX_MOVING_AVERAGE` = 4096 samples).
@@ -130,5 +136,10 @@ pub use pi_model::{GeneralizedPi, PiConfig, PiInverse};
 pub use pid::{AntiWindup, Pid, PidConfig};
 /// The play operator (Eqs. 8-9).
 pub use play::PlayOperator;
+/// The robot estimator: every sensor's voltage to every joint's angle, crosstalk undone.
+pub use robot::{
+    RobotError, RobotEstimate, RobotEstimator, RobotEstimatorConfig, RobotJointConfig,
+    RobotSensorConfig, Unmixing, DEFAULT_MAX_CONDITION_NUMBER, MAX_SENSORS,
+};
 /// The direction-switched tanh input and its inverse (Eqs. 10 and 14).
 pub use tanh_input::{TanhBranch, TanhInput, ATANH_BOUND};

@@ -11,13 +11,15 @@
 //!   angle at which the notches close;
 //! - [`Mechanics`]: tendon stroke per degree, the notch-closing limit, the farthest fibre's
 //!   strain, the second moment of area and the tendon force (`docs/mechanics.md`);
-//! - [`Divider`]: the voltage divider that reads the sensor (Eq. 4).
+//! - [`Divider`]: the voltage divider that reads the sensor (Eq. 4);
+//! - [`Kinematics`]: a robot of several joints on one tube, from its joint angles to the tip's
+//!   [`Pose`] and points along the backbone (constant-curvature arcs, `docs/robot-runtime.md`).
 //!
 //! The planner (`dlw`) and the runtime estimator (`dlw-estimator`) both use it, so a joint is
 //! read with exactly the geometry it was cut with.
 //!
-//! The crate is `no_std`, never allocates and depends only on `libm` (and `serde` behind the
-//! `serde` feature). Lengths are in millimetres and angles in radians; degrees only appear in
+//! The crate is `no_std`, never allocates and depends only on `libm` and `nalgebra` (without
+//! its `std`, for rotations; and `serde` behind the `serde` feature). Lengths are in millimetres and angles in radians; degrees only appear in
 //! names that say so (`..._per_deg`).
 //!
 //! # Frames
@@ -52,6 +54,7 @@
 mod divider;
 mod error;
 mod joint;
+mod kinematics;
 mod mechanics;
 mod section;
 
@@ -61,6 +64,8 @@ pub use divider::Divider;
 pub use error::GeometryError;
 /// Strain and angle along a whole joint (Eqs. 3 and 7, notch closing).
 pub use joint::Joint;
+/// A robot's joint angles to its tip's pose and backbone points.
+pub use kinematics::{BendingSection, Kinematics, KinematicsError, Pose, MAX_JOINTS};
 /// Tendon stroke, material strain, bending stiffness and tendon force (York, Swaney et al.).
 pub use mechanics::{FibreSide, Mechanics, RangeLimit, DEFAULT_TENDON_HALF_DIAMETER_MM};
 /// The notched cross-section (Eqs. 1 and 2).

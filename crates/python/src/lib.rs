@@ -3,10 +3,13 @@
 //! Every function is a thin layer over the library the command line uses, so a result here is
 //! the command's result: `fit` is `dlw::fit::fit`, `Estimator.run` steps the runtime crate's
 //! estimator exactly as `dlw estimate` does, `discover` builds `dlw discover --json`'s
-//! summary. Bad input raises `ValueError` with the command's message; long work releases the
-//! GIL. `docs/python.md` is the user's guide.
+//! summary. `RobotEstimator`, `tip` and `backbone` are the robot runtime (`robot.rs`). Bad
+//! input raises `ValueError` with the command's message; long work releases the GIL.
+//! `docs/python.md` is the user's guide.
 
 use std::path::PathBuf;
+
+mod robot;
 
 use dlw_core::analysis::Analysis as _;
 use dlw_core::design::{Design as CoreDesign, DesignFile};
@@ -178,10 +181,16 @@ fn recording_arg(value: &Bound<'_, PyAny>) -> PyResult<Recording> {
     let stroke_mm = need("stroke_mm")?;
     let angle_deg = need("angle_deg")?;
     let rows = time_s.len();
-    let mut columns = vec![("stroke_mm", stroke_mm.len()), ("angle_deg", angle_deg.len())];
-    columns.extend(volts.iter().enumerate().map(|(i, v)| {
-        (if i == 0 { "v1_V" } else { "v2_V" }, v.len())
-    }));
+    let mut columns = vec![
+        ("stroke_mm", stroke_mm.len()),
+        ("angle_deg", angle_deg.len()),
+    ];
+    columns.extend(
+        volts
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (if i == 0 { "v1_V" } else { "v2_V" }, v.len())),
+    );
     if !tracker_valid.is_empty() {
         columns.push(("tracker_valid", tracker_valid.len()));
     }
@@ -423,7 +432,10 @@ fn fit(
     let prefilter: Prefilter = prefilter.parse().map_err(|e: String| message(e))?;
     let order = PlayOrder::new(order).map_err(|e| message(e.to_string()))?;
     let sensors: Option<Sensors> = sensor
-        .map(|s| s.parse().map_err(|e: dlw_core::sensor::UnknownSensor| message(e.to_string())))
+        .map(|s| {
+            s.parse()
+                .map_err(|e: dlw_core::sensor::UnknownSensor| message(e.to_string()))
+        })
         .transpose()?;
     let name = design.file.name.clone();
     let result = py.detach(|| {
@@ -441,7 +453,8 @@ fn fit(
     let config_toml = result
         .config_text(dlw_core::replay::ConfigFormat::Toml)
         .map_err(value_error)?;
-    let config: EstimatorConfig = toml::from_str(&config_toml).map_err(|e| message(e.to_string()))?;
+    let config: EstimatorConfig =
+        toml::from_str(&config_toml).map_err(|e| message(e.to_string()))?;
     let summary = result.to_json().map_err(|e| message(e.to_string()))?;
     Ok(Fit {
         config_toml,
@@ -514,14 +527,9 @@ fn discover<'py>(
                 .resolve(&design)
                 .map_err(|e| format!("resolving the base scenario: {}", error_text(&e)))?;
             let known = discovery::scenario::known(&resolved);
-            let outcome = discovery::discover(
-                &recording,
-                holdout.as_ref(),
-                &design.joint,
-                &known,
-                &|_| {},
-            )
-            .map_err(|e| format!("discovering: {}", error_text(&e)))?;
+            let outcome =
+                discovery::discover(&recording, holdout.as_ref(), &design.joint, &known, &|_| {})
+                    .map_err(|e| format!("discovering: {}", error_text(&e)))?;
             let text = discovery::scenario_text(&base, &recording, &design, &outcome)?;
             Ok((discovery::DiscoverResult::new(outcome), text))
         })
@@ -596,6 +604,9 @@ fn _dlw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Design>()?;
     m.add_class::<Estimator>()?;
     m.add_class::<Fit>()?;
+    m.add_class::<robot::RobotEstimator>()?;
+    m.add_function(wrap_pyfunction!(robot::tip, m)?)?;
+    m.add_function(wrap_pyfunction!(robot::backbone, m)?)?;
     m.add_function(wrap_pyfunction!(read_recording, m)?)?;
     m.add_function(wrap_pyfunction!(characterize, m)?)?;
     m.add_function(wrap_pyfunction!(fit, m)?)?;

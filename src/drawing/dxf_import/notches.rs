@@ -50,6 +50,7 @@ pub(super) fn notches(pieces: Vec<NotchPiece>, numbers: &LayoutNumbers) -> Vec<N
             (
                 x0,
                 Notch {
+                    joint: None,
                     level: 0,
                     side,
                     outline,

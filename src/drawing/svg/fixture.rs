@@ -41,6 +41,7 @@ pub(crate) fn layout_for(design: &Design, seam_s_mm: f64) -> Layout {
                 .map(|(s0, s1)| rect(x0, x0 + h, s0, s1))
                 .collect();
             notches.push(Notch {
+                joint: None,
                 level,
                 side,
                 outline,

@@ -56,6 +56,7 @@ mod fixture;
 mod layout;
 mod options;
 mod palette;
+mod robot;
 mod section;
 mod sheet;
 #[cfg(test)]
@@ -67,5 +68,7 @@ pub use error::SvgError;
 pub use layout::{layout_svg, layout_svg_with};
 /// Options shared by the drawings (print scale).
 pub use options::{SvgOptions, MAX_SCALE, MIN_SCALE};
+/// A robot as an SVG sheet: the unrolled robot, its joints labelled, a side view.
+pub use robot::{robot_svg, robot_svg_with, sensor_colour, SENSOR_COLOURS};
 /// The cross-section through a notch (Fig. 3) as an SVG sheet.
 pub use section::{section_svg, section_svg_with};

@@ -32,6 +32,30 @@ pub(crate) struct Drawn {
 }
 
 impl SvgOptions {
+    /// [`Self::draw`], skipping the standard scales above `largest` (a scale at which the sheet
+    /// cannot fit the page, known beforehand: the result is the same, with fewer drawings).
+    pub(crate) fn draw_at_most(
+        &self,
+        largest: f64,
+        draw: impl Fn(f64) -> Drawn,
+    ) -> Result<String, SvgError> {
+        if self.print_scale.is_some() {
+            return self.draw(draw);
+        }
+        let mut last = None;
+        for scale in STANDARD_SCALES.into_iter().filter(|s| *s <= largest) {
+            let drawn = draw(scale);
+            if drawn.size_mm.0 <= PAGE_MM.0 && drawn.size_mm.1 <= PAGE_MM.1 {
+                return Ok(drawn.svg);
+            }
+            last = Some(drawn.svg);
+        }
+        match last {
+            Some(svg) => Ok(svg),
+            None => self.draw(draw),
+        }
+    }
+
     /// Draws at the scale asked for, or at each standard scale from the largest down until
     /// the sheet fits the page (the smallest standard scale if none does).
     pub(crate) fn draw(&self, draw: impl Fn(f64) -> Drawn) -> Result<String, SvgError> {

@@ -2,7 +2,8 @@
 
 The same library as the ``dlw`` command: design geometry (``Design``), bench recordings
 (``read_recording``, ``simulate``), sensor fits (``fit``), the runtime estimator
-(``Estimator``), characterization (``characterize``) and discovery (``discover``). Bad input raises ``ValueError`` with the command's
+(``Estimator``), characterization (``characterize``), the robot runtime (``RobotEstimator``,
+``tip``, ``backbone``) and discovery (``discover``). Bad input raises ``ValueError`` with the command's
 message. See docs/python.md.
 """
 
@@ -10,22 +11,28 @@ from ._dlw import (
     Design,
     Estimator,
     Fit,
+    RobotEstimator,
     __version__,
+    backbone,
     characterize,
     discover,
     fit,
     read_recording,
     simulate,
+    tip,
 )
 
 __all__ = [
     "Design",
     "Estimator",
     "Fit",
+    "RobotEstimator",
     "__version__",
+    "backbone",
     "characterize",
     "discover",
     "fit",
     "read_recording",
     "simulate",
+    "tip",
 ]

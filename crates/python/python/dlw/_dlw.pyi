@@ -85,3 +85,44 @@ def discover(
     scenario: Optional[_Path] = None,
 ) -> Dict[str, Any]:
     """``dlw discover --json``'s dict (without file paths) and ``scenario_toml``."""
+
+_Rows = Union[npt.NDArray[np.float64], "list[list[float]]", "list[float]"]
+_RobotConfig = Union["RobotEstimator", Dict[str, Any], _Path]
+
+class RobotEstimator:
+    """The robot's runtime estimator: every sensor's divider voltage in, every joint's angle
+    (°) out, the crosstalk undone (docs/robot-runtime.md)."""
+
+    @staticmethod
+    def from_config(path: _Path) -> "RobotEstimator":
+        """From a robot estimator config file (``.toml`` or ``.json``)."""
+    @staticmethod
+    def from_toml(text: str) -> "RobotEstimator": ...
+    @staticmethod
+    def from_dict(config: Dict[str, Any]) -> "RobotEstimator":
+        """From the config's tables as a dict (what ``config()`` returns)."""
+    def config(self) -> Dict[str, Any]: ...
+    def config_toml(self) -> str: ...
+    @property
+    def joints(self) -> int: ...
+    @property
+    def sensors(self) -> int: ...
+    @property
+    def condition_number(self) -> float: ...
+    @property
+    def flags(self) -> "list[int]":
+        """Each joint's flags from the last ``step`` (0: none)."""
+    def run(self, volts: _Rows, flags: bool = False) -> Any:
+        """Angles (°, shape (n, N)) over voltages (shape (n, M)) from a fresh estimator; with
+        ``flags=True`` a tuple ``(angles, flags)``, flags uint32 of shape (n, N)."""
+    def step(self, volts: "list[float]") -> "list[float]":
+        """One sample: M voltages to N angles (°)."""
+    def reset(self) -> None: ...
+
+def tip(angles: _Rows, config: _RobotConfig) -> Dict[str, npt.NDArray[np.float64]]:
+    """The tip's pose at joint angles (°, (n, N) or (N,)): ``position_mm`` (n, 3), ``rotation``
+    (n, 3, 3), ``quaternion`` (n, 4: w, x, y, z), in the robot's base frame."""
+
+def backbone(angles: _Rows, config: _RobotConfig, points: int = 20) -> npt.NDArray[np.float64]:
+    """Backbone points (mm), equally spaced from the base to the tip: (n, points, 3), or
+    (points, 3) for one row of angles."""
