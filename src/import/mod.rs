@@ -202,9 +202,14 @@ pub struct ImportRequest<'a> {
     pub rate_hz: Option<f64>,
 }
 
-/// What an import found, as `dlw import-recording --json` prints it.
+/// What an import found: its JSON ([`ImportSummary::to_json`]) is `dlw import-recording
+/// --json`, its [`ImportSummary::summary`] the command's line.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct ImportSummary {
+    /// Where the recording was written, as the caller names it (set by the caller that writes
+    /// it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub recording: Option<String>,
     /// Rows written.
     pub samples: usize,
     /// Length (s).
@@ -222,6 +227,54 @@ pub struct ImportSummary {
     /// What the report draws (not in the JSON).
     #[serde(skip)]
     pub trace: ImportTrace,
+}
+
+impl ImportSummary {
+    /// The JSON `dlw import-recording --json` prints: the summary, its keys sorted as every
+    /// analysis's (`serde_json`'s map), the report's trace left out.
+    ///
+    /// # Errors
+    /// When the summary does not serialize.
+    pub fn to_json(&self) -> Result<serde_json::Value, serde_json::Error> {
+        serde_json::to_value(self)
+    }
+
+    /// The line `dlw import-recording` prints: where the recording went, its length, the
+    /// clocks, the check and the tracker, every number taken from the summary.
+    pub fn summary(&self) -> String {
+        let a = &self.alignment;
+        format!(
+            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm ({}{}); checked in {} windows (worst {:.2}° RMS, limit {:.2}°); tracker: {} frames, {} missing, {} gaps, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)\n",
+            self.recording.as_deref().unwrap_or("the recording"),
+            self.samples,
+            self.duration_s,
+            a.offset_s,
+            a.offset_uncertainty_s,
+            a.drift_ppm,
+            a.drift_uncertainty_ppm,
+            match (a.correlation, a.sync_edges) {
+                (Some(r), _) => format!("r = {r:.3}"),
+                (None, Some(n)) => format!("{n} sync edges"),
+                (None, None) => String::new(),
+            },
+            if a.stretches.len() > 1 {
+                format!(
+                    "; {} stretches of the DAQ's clock, each aligned on its own",
+                    a.stretches.len()
+                )
+            } else {
+                String::new()
+            },
+            self.check.windows,
+            self.check.worst.rms_deg,
+            self.check.worst.limit_deg,
+            self.tracker.frames,
+            self.tracker.missing_frames,
+            self.tracker.gaps,
+            self.tracker.out_of_plane_rms_deg,
+            self.invalid_rows
+        )
+    }
 }
 
 /// The tracker's side of an import, for the report ([`report`]).
@@ -513,6 +566,7 @@ fn summary(
     let mut warnings = log.warnings.clone();
     warnings.extend(out_of_plane_warning(angles));
     ImportSummary {
+        recording: None,
         samples: n,
         duration_s: time_s[n - 1],
         alignment: alignment.clone(),
