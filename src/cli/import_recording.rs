@@ -8,6 +8,8 @@ use std::path::PathBuf;
 use anyhow::Context;
 use dlw::import::report::report_page;
 use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod, TrackerMap};
+use dlw::limits::{MAX_RECORDING_BYTES, MAX_TEXT_INPUT_BYTES};
+use dlw::recording::Recording;
 
 /// Arguments of `dlw import-recording`.
 #[derive(Debug, clap::Args)]
@@ -93,6 +95,33 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    claim(&args)?;
+    let (daq_format, sync) = (daq_format(&args)?, sync_method(&args)?);
+    let inputs = Inputs::read(&args)?;
+    let request = inputs.request(&args, daq_format, sync);
+    let (recording, mut summary) = import(&request)?;
+    dlw::finite::check(&summary)?;
+    let report = args
+        .report
+        .as_ref()
+        .map(|_| report_page(&recording, &summary).files())
+        .transpose()
+        .context("drawing the report")?;
+    write(&args, &recording, report)?;
+    summary.recording = Some(args.output.display().to_string());
+    for w in &summary.warnings {
+        eprintln!("warning: {w}");
+    }
+    if args.json {
+        println!("{}", dlw::finite::to_json(&summary.to_json()?)?);
+    } else {
+        print!("{}", summary.summary());
+    }
+    Ok(())
+}
+
+/// Claims the recording folder and the report's (docs/outputs.md).
+fn claim(args: &Args) -> anyhow::Result<()> {
     let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
         .chain(&args.report)
         .map(|p| p.as_path())
@@ -105,11 +134,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         dlw::output::claim_folder(folder, &inputs, args.force)?;
     }
     dlw::output::claim_all(&outputs, &inputs, args.force)?;
-    let daq_format = match &args.daq_format {
+    Ok(())
+}
+
+/// `--daq-format`, else the DAQ file's extension.
+fn daq_format(args: &Args) -> anyhow::Result<DaqFormat> {
+    Ok(match &args.daq_format {
         Some(name) => DaqFormat::from_name(name)?,
         None => DaqFormat::from_path(&args.daq),
-    };
-    let sync = match (args.sync.as_str(), &args.tracker_sync_column) {
+    })
+}
+
+/// `--sync` with `--tracker-sync-column`.
+fn sync_method(args: &Args) -> anyhow::Result<SyncMethod> {
+    Ok(match (args.sync.as_str(), &args.tracker_sync_column) {
         ("auto", None) => SyncMethod::Auto,
         ("auto", Some(_)) => {
             anyhow::bail!("--tracker-sync-column is for --sync CH (a sync pulse channel); --sync auto does not use it")
@@ -121,53 +159,85 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (channel, None) => anyhow::bail!(
             "--sync {channel:?} needs --tracker-sync-column NAME: the tracker log's column holding the same TTL pulse (NDI's own logs have none; docs/import.md)"
         ),
-    };
-    let map = args
-        .tracker_map
-        .as_ref()
-        .map(|path| -> anyhow::Result<TrackerMap> {
-            let text = dlw::output::read_limited(path, dlw::limits::MAX_TEXT_INPUT_BYTES)
-                .with_context(|| format!("reading {}", path.display()))?;
-            TrackerMap::from_toml(&text).with_context(|| format!("{}", path.display()))
+    })
+}
+
+/// The input files, read through the bounded reader.
+struct Inputs {
+    /// `--tracker-map`.
+    map: Option<TrackerMap>,
+    /// `--daq`'s bytes.
+    daq_bytes: Vec<u8>,
+    /// `--tracker`'s text.
+    tracker_text: String,
+    /// `--daq` and `--tracker` as messages and the provenance name them.
+    paths: (String, String),
+}
+
+impl Inputs {
+    /// Reads the tracker map, the DAQ file and the tracker log, in that order.
+    fn read(args: &Args) -> anyhow::Result<Self> {
+        let map = args
+            .tracker_map
+            .as_ref()
+            .map(|path| -> anyhow::Result<TrackerMap> {
+                let text = dlw::output::read_limited(path, MAX_TEXT_INPUT_BYTES)
+                    .with_context(|| format!("reading {}", path.display()))?;
+                TrackerMap::from_toml(&text).with_context(|| format!("{}", path.display()))
+            })
+            .transpose()?;
+        let daq_bytes = dlw::output::read_limited_bytes(&args.daq, MAX_RECORDING_BYTES)
+            .with_context(|| format!("reading {}", args.daq.display()))?;
+        let tracker_text = dlw::output::read_limited(&args.tracker, MAX_RECORDING_BYTES)
+            .with_context(|| format!("reading {}", args.tracker.display()))?;
+        Ok(Inputs {
+            map,
+            daq_bytes,
+            tracker_text,
+            paths: (
+                args.daq.display().to_string(),
+                args.tracker.display().to_string(),
+            ),
         })
-        .transpose()?;
-    let daq_bytes = dlw::output::read_limited_bytes(&args.daq, MAX_INPUT_BYTES)
-        .with_context(|| format!("reading {}", args.daq.display()))?;
-    let tracker_text = dlw::output::read_limited(&args.tracker, MAX_INPUT_BYTES)
-        .with_context(|| format!("reading {}", args.tracker.display()))?;
-    let (daq_path, tracker_path) = (
-        args.daq.display().to_string(),
-        args.tracker.display().to_string(),
-    );
-    let request = ImportRequest {
-        daq: (&daq_path, &daq_bytes),
-        daq_format,
-        voltage_channels: args.voltage.clone(),
-        divider_ohm: args.divider_ohm.clone(),
-        supply_v: args.supply_v,
-        stroke: (args.stroke.clone(), args.stroke_mm_per_v),
-        time_column: args.time_column.clone(),
-        daq_rate_hz: args.daq_rate_hz,
-        tracker: (&tracker_path, &tracker_text),
-        tracker_map: map.as_ref(),
-        tool: args.tool,
-        reference_tool: args.reference_tool,
-        tracker_hz: args.tracker_hz,
-        rest_s: args.rest_s,
-        sync,
-        max_offset_s: args.max_offset_s,
-        rate_hz: args.rate_hz,
-    };
-    let (recording, summary) = import(&request)?;
-    dlw::finite::check(&summary)?;
-    let report = args
-        .report
-        .as_ref()
-        .map(|_| report_page(&recording, &summary).files())
-        .transpose()
-        .context("drawing the report")?;
-    // Everything is computed: both folders are staged (the recording read back through the
-    // recording's reader) before either is put in place, so a failure leaves neither.
+    }
+
+    /// The import's request: these inputs and the command line's settings.
+    fn request<'a>(
+        &'a self,
+        args: &Args,
+        daq_format: DaqFormat,
+        sync: SyncMethod,
+    ) -> ImportRequest<'a> {
+        ImportRequest {
+            daq: (&self.paths.0, &self.daq_bytes),
+            daq_format,
+            voltage_channels: args.voltage.clone(),
+            divider_ohm: args.divider_ohm.clone(),
+            supply_v: args.supply_v,
+            stroke: (args.stroke.clone(), args.stroke_mm_per_v),
+            time_column: args.time_column.clone(),
+            daq_rate_hz: args.daq_rate_hz,
+            tracker: (&self.paths.1, &self.tracker_text),
+            tracker_map: self.map.as_ref(),
+            tool: args.tool,
+            reference_tool: args.reference_tool,
+            tracker_hz: args.tracker_hz,
+            rest_s: args.rest_s,
+            sync,
+            max_offset_s: args.max_offset_s,
+            rate_hz: args.rate_hz,
+        }
+    }
+}
+
+/// Writes the recording and the report's files. Everything is computed: both folders are
+/// staged (the recording read back through the recording's reader) before either is put in
+/// place, so a failure leaves neither.
+fn write(
+    args: &Args,
+    recording: &Recording,
+    report: Option<Vec<(String, Vec<u8>)>>,
+) -> anyhow::Result<()> {
     let staged = recording
         .stage_checked(&args.output, args.force)
         .with_context(|| format!("writing recording {}", args.output.display()))?;
@@ -186,49 +256,5 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             )
         })?;
     }
-    for w in &summary.warnings {
-        eprintln!("warning: {w}");
-    }
-    if args.json {
-        let mut json = serde_json::to_value(&summary)?;
-        json["recording"] = serde_json::Value::String(args.output.display().to_string());
-        println!("{}", dlw::finite::to_json(&json)?);
-    } else {
-        let a = &summary.alignment;
-        println!(
-            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm ({}{}); checked in {} windows (worst {:.2}° RMS, limit {:.2}°); tracker: {} frames, {} missing, {} gaps, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)",
-            args.output.display(),
-            summary.samples,
-            summary.duration_s,
-            a.offset_s,
-            a.offset_uncertainty_s,
-            a.drift_ppm,
-            a.drift_uncertainty_ppm,
-            match (a.correlation, a.sync_edges) {
-                (Some(r), _) => format!("r = {r:.3}"),
-                (None, Some(n)) => format!("{n} sync edges"),
-                (None, None) => String::new(),
-            },
-            if a.stretches.len() > 1 {
-                format!(
-                    "; {} stretches of the DAQ's clock, each aligned on its own",
-                    a.stretches.len()
-                )
-            } else {
-                String::new()
-            },
-            summary.check.windows,
-            summary.check.worst.rms_deg,
-            summary.check.worst.limit_deg,
-            summary.tracker.frames,
-            summary.tracker.missing_frames,
-            summary.tracker.gaps,
-            summary.tracker.out_of_plane_rms_deg,
-            summary.invalid_rows
-        );
-    }
     Ok(())
 }
-
-/// The largest DAQ or tracker file read (bytes): hours of a bench's logging stay far below.
-const MAX_INPUT_BYTES: u64 = 4 << 30;

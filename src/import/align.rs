@@ -294,177 +294,277 @@ pub fn auto(
     signal: &Signal<'_>,
     max_offset_s: f64,
 ) -> Result<Alignment, AlignError> {
-    let dt_s = signal.period_s;
-    let coarse: Vec<f64> = {
-        let steps = (max_offset_s / COARSE_STEP_S).round() as i64;
-        (-steps..=steps).map(|k| k as f64 * COARSE_STEP_S).collect()
+    let search = Search {
+        tau_s,
+        angle,
+        signal,
     };
-    let (sparse_tau, sparse_angle) = every_kth(tau_s, angle, COARSE_FRAMES);
-    let coarse_r: Vec<f64> = coarse
-        .iter()
-        .map(|&lag| {
-            let frames = 0..sparse_tau.len();
-            correlation(&sparse_tau, &sparse_angle, frames, signal, &|_| lag)
-        })
-        .collect();
-    // The sign of the sensor's response (a sensor on −y_s reads less when the joint bends).
-    let (up, r_up) = peak(&coarse, &coarse_r, 1.0);
-    let (down, r_down) = peak(&coarse, &coarse_r, -1.0);
-    let (lag0, r0, sign) = if r_up >= r_down {
-        (up, r_up, 1.0)
-    } else {
-        (down, r_down, -1.0)
-    };
-    if r0.is_nan() || r0 < MIN_CORRELATION {
-        return Err(AlignError::Weak {
-            r: r0.max(0.0),
-            max_s: max_offset_s,
-            min: MIN_CORRELATION,
-        });
-    }
-    if lag0.abs() > max_offset_s - 1.5 * COARSE_STEP_S {
-        return Err(AlignError::Edge {
-            lag_s: lag0,
-            max_s: max_offset_s,
-            wider: (2.0 * max_offset_s).max(lag0.abs().ceil() + 10.0),
-        });
-    }
-    // The windows: over the frames that fall on the DAQ's samples at that lag.
-    let (t_first, t_last) = (signal.time_s[0], signal.time_s[signal.time_s.len() - 1]);
-    let inside: Vec<usize> = (0..tau_s.len())
-        .filter(|&k| (t_first..=t_last).contains(&(tau_s[k] + lag0)))
-        .collect();
-    let (lo, hi) = match (inside.first(), inside.last()) {
-        (Some(&lo), Some(&hi)) => (lo, hi + 1),
-        _ => (0, 0),
-    };
-    let span_s = if hi > lo {
-        tau_s[hi - 1] - tau_s[lo]
-    } else {
-        0.0
-    };
-    let half_s = WINDOW_SEARCH_S.max(1.5 * MAX_DRIFT_PPM * 1e-6 * span_s / 2.0);
-    let step = WINDOW_COARSE_STEP_S.max(dt_s);
-    let steps = (half_s / step).ceil() as i64;
-    let first: Vec<f64> = (-steps..=steps).map(|k| lag0 + k as f64 * step).collect();
-    let near = (step / dt_s).ceil() as i64;
-    let per = (hi - lo) / WINDOWS;
-    let mut points = Vec::new();
-    let mut edges = Vec::new();
-    for w in 0..WINDOWS {
-        let frames = lo + w * per..if w + 1 == WINDOWS {
-            hi
-        } else {
-            lo + (w + 1) * per
-        };
-        if frames.is_empty() {
-            continue;
-        }
-        let centre = frames.clone().map(|k| tau_s[k]).sum::<f64>() / frames.len() as f64;
-        let r_w = |lag: f64| correlation(tau_s, angle, frames.clone(), signal, &|_| lag);
-        let rs: Vec<f64> = first.iter().map(|&l| r_w(l)).collect();
-        let (rough, r_rough) = peak(&first, &rs, sign);
-        let (_, r_other) = peak(&first, &rs, -sign);
-        if r_other >= MIN_CORRELATION && r_other > r_rough {
-            return Err(AlignError::Negative {
-                centre_s: centre,
-                r: -r_other,
-                whole_r: r0,
-            });
-        }
-        if r_rough < MIN_CORRELATION {
-            continue;
-        }
-        if (rough - lag0).abs() > half_s - 0.5 * step {
-            // A window whose best lag is at the edge of its search is left out, as one that
-            // does not correlate: a monotonic stretch correlates at any lag. Most windows at
-            // the edge is a refusal (below).
-            edges.push((centre, rough));
-            continue;
-        }
-        let fine: Vec<f64> = (-near..=near).map(|k| rough + k as f64 * dt_s).collect();
-        let rs: Vec<f64> = fine.iter().map(|&l| r_w(l)).collect();
-        let (lag, r) = peak(&fine, &rs, sign);
-        if r >= MIN_CORRELATION {
-            points.push((centre, lag));
-        }
-    }
-    if edges.len() > points.len() {
-        let (centre_s, lag_s) = edges[edges.len() / 2];
-        return Err(AlignError::WindowEdge {
-            centre_s,
-            lag_s,
-            half_s,
-            whole_s: lag0,
-            edges: edges.len(),
-            windows: edges.len() + points.len(),
-        });
-    }
-    if points.len() < MIN_WINDOWS {
-        return Err(AlignError::Windows {
-            windows: points.len(),
-            min: MIN_WINDOWS,
-        });
-    }
-    // lag = offset + drift·τ by least squares, with standard errors.
-    let n = points.len() as f64;
-    let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
-    let my = points.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let slope = sxy / sxx;
-    let offset = my - slope * mx;
-    let ss: f64 = points
-        .iter()
-        .map(|p| (p.1 - offset - slope * p.0).powi(2))
-        .sum();
-    let sigma2 = if n > 2.0 { ss / (n - 2.0) } else { 0.0 };
-    let offset_se = (sigma2 * (1.0 / n + mx * mx / sxx)).sqrt();
-    let drift_se = (sigma2 / sxx).sqrt();
-    // Then both together on every frame at once: the line through the windows is the start,
-    // and a search over a grid of ±REFINE_SPAN standard errors in each, twice, each time
-    // around the best point, tightens it (the windows' lags scatter by milliseconds; the whole
-    // recording pins the line down further).
-    let r_line = |offset: f64, slope: f64| {
-        sign * correlation(tau_s, angle, lo..hi, signal, &|tau| offset + slope * tau)
-    };
-    let (mut best_offset, mut best_slope) = (offset, slope);
-    let (mut half_o, mut half_s) = (
-        REFINE_SPAN * offset_se.max(dt_s / 4.0),
-        REFINE_SPAN * drift_se.max(1e-6),
-    );
-    for _ in 0..REFINE_ROUNDS {
-        let mut best = (r_line(best_offset, best_slope), best_offset, best_slope);
-        for i in -REFINE_STEPS..=REFINE_STEPS {
-            for j in -REFINE_STEPS..=REFINE_STEPS {
-                let o = best_offset + half_o * f64::from(i) / f64::from(REFINE_STEPS);
-                let d = best_slope + half_s * f64::from(j) / f64::from(REFINE_STEPS);
-                let r = r_line(o, d);
-                if r > best.0 {
-                    best = (r, o, d);
-                }
-            }
-        }
-        best_offset = best.1;
-        best_slope = best.2;
-        half_o /= f64::from(REFINE_STEPS);
-        half_s /= f64::from(REFINE_STEPS);
-    }
+    let whole = search.whole(max_offset_s)?;
+    let windows = search.windows(&whole)?;
+    let line = Line::through(&windows.points);
+    let (offset, slope) = search.refine(&whole, &windows, &line);
     // Only the final drift is held to the limit: on a short recording the windows' line is
     // loose (±2300 ppm on 60 s) and the fit on every frame pins it.
-    if (best_slope * 1e6).abs() > MAX_DRIFT_PPM {
+    if (slope * 1e6).abs() > MAX_DRIFT_PPM {
         return Err(AlignError::Drift {
-            ppm: best_slope * 1e6,
-            se_ppm: drift_se * 1e6,
+            ppm: slope * 1e6,
+            se_ppm: line.drift_se * 1e6,
         });
     }
     Ok(Alignment {
-        offset_s: best_offset,
-        drift_ppm: best_slope * 1e6,
-        offset_uncertainty_s: offset_se,
-        drift_uncertainty_ppm: drift_se * 1e6,
-        correlation: sign * r0,
-        windows: points.len(),
-        lags: points,
+        offset_s: offset,
+        drift_ppm: slope * 1e6,
+        offset_uncertainty_s: line.offset_se,
+        drift_uncertainty_ppm: line.drift_se * 1e6,
+        correlation: whole.sign * whole.r,
+        windows: windows.points.len(),
+        lags: windows.points,
     })
+}
+
+/// The search of [`auto`]: the tracker's angle against the DAQ's signal.
+struct Search<'a> {
+    /// Each frame's tracker time (s).
+    tau_s: &'a [f64],
+    /// Each frame's angle.
+    angle: &'a [Option<f64>],
+    /// The DAQ's signal.
+    signal: &'a Signal<'a>,
+}
+
+/// The whole recording's lag, on the coarse grid.
+struct WholeLag {
+    /// The lag (s).
+    lag_s: f64,
+    /// Its correlation, signed as the sensor's response (`sign·r`).
+    r: f64,
+    /// The sign of the sensor's response.
+    sign: f64,
+}
+
+/// The windows' lags.
+struct WindowLags {
+    /// The frames that fall on the DAQ's samples at the whole recording's lag.
+    frames: std::ops::Range<usize>,
+    /// Each window's centre (s of tracker time) and lag (s).
+    points: Vec<(f64, f64)>,
+}
+
+/// `lag = offset + slope·τ` through the windows' lags by least squares, with standard errors.
+struct Line {
+    /// The intercept (s).
+    offset: f64,
+    /// The slope.
+    slope: f64,
+    /// The offset's standard error (s).
+    offset_se: f64,
+    /// The slope's standard error.
+    drift_se: f64,
+}
+
+impl Line {
+    /// The least-squares line through `points` (`τ`, lag).
+    fn through(points: &[(f64, f64)]) -> Line {
+        let n = points.len() as f64;
+        let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
+        let my = points.iter().map(|p| p.1).sum::<f64>() / n;
+        let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+        let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+        let slope = sxy / sxx;
+        let offset = my - slope * mx;
+        let ss: f64 = points
+            .iter()
+            .map(|p| (p.1 - offset - slope * p.0).powi(2))
+            .sum();
+        let sigma2 = if n > 2.0 { ss / (n - 2.0) } else { 0.0 };
+        Line {
+            offset,
+            slope,
+            offset_se: (sigma2 * (1.0 / n + mx * mx / sxx)).sqrt(),
+            drift_se: (sigma2 / sxx).sqrt(),
+        }
+    }
+}
+
+impl Search<'_> {
+    /// The correlation over `frames` with the signal at `τ + lag_s(τ)`.
+    fn r(&self, frames: std::ops::Range<usize>, lag_s: &dyn Fn(f64) -> f64) -> f64 {
+        correlation(self.tau_s, self.angle, frames, self.signal, lag_s)
+    }
+
+    /// The whole recording's lag on a coarse grid over at most [`COARSE_FRAMES`] frames, and
+    /// the sign of the sensor's response.
+    ///
+    /// # Errors
+    /// [`AlignError::Weak`], [`AlignError::Edge`].
+    fn whole(&self, max_offset_s: f64) -> Result<WholeLag, AlignError> {
+        let coarse: Vec<f64> = {
+            let steps = (max_offset_s / COARSE_STEP_S).round() as i64;
+            (-steps..=steps).map(|k| k as f64 * COARSE_STEP_S).collect()
+        };
+        let (sparse_tau, sparse_angle) = every_kth(self.tau_s, self.angle, COARSE_FRAMES);
+        let coarse_r: Vec<f64> = coarse
+            .iter()
+            .map(|&lag| {
+                let frames = 0..sparse_tau.len();
+                correlation(&sparse_tau, &sparse_angle, frames, self.signal, &|_| lag)
+            })
+            .collect();
+        // The sign of the sensor's response (a sensor on −y_s reads less when the joint bends).
+        let (up, r_up) = peak(&coarse, &coarse_r, 1.0);
+        let (down, r_down) = peak(&coarse, &coarse_r, -1.0);
+        let (lag0, r0, sign) = if r_up >= r_down {
+            (up, r_up, 1.0)
+        } else {
+            (down, r_down, -1.0)
+        };
+        if r0.is_nan() || r0 < MIN_CORRELATION {
+            return Err(AlignError::Weak {
+                r: r0.max(0.0),
+                max_s: max_offset_s,
+                min: MIN_CORRELATION,
+            });
+        }
+        if lag0.abs() > max_offset_s - 1.5 * COARSE_STEP_S {
+            return Err(AlignError::Edge {
+                lag_s: lag0,
+                max_s: max_offset_s,
+                wider: (2.0 * max_offset_s).max(lag0.abs().ceil() + 10.0),
+            });
+        }
+        Ok(WholeLag {
+            lag_s: lag0,
+            r: r0,
+            sign,
+        })
+    }
+
+    /// The frames that fall on the DAQ's samples at the whole recording's lag.
+    fn frames_inside(&self, lag0: f64) -> std::ops::Range<usize> {
+        let time_s = self.signal.time_s;
+        let (t_first, t_last) = (time_s[0], time_s[time_s.len() - 1]);
+        let inside: Vec<usize> = (0..self.tau_s.len())
+            .filter(|&k| (t_first..=t_last).contains(&(self.tau_s[k] + lag0)))
+            .collect();
+        match (inside.first(), inside.last()) {
+            (Some(&lo), Some(&hi)) => lo..hi + 1,
+            _ => 0..0,
+        }
+    }
+
+    /// Each of [`WINDOWS`] windows' lag, searched around the whole recording's: first on a
+    /// grid of [`WINDOW_COARSE_STEP_S`], then on the DAQ's sample grid around its best.
+    ///
+    /// # Errors
+    /// [`AlignError::Negative`], [`AlignError::WindowEdge`], [`AlignError::Windows`].
+    fn windows(&self, whole: &WholeLag) -> Result<WindowLags, AlignError> {
+        let (lag0, sign) = (whole.lag_s, whole.sign);
+        let dt_s = self.signal.period_s;
+        let std::ops::Range { start: lo, end: hi } = self.frames_inside(lag0);
+        let span_s = if hi > lo {
+            self.tau_s[hi - 1] - self.tau_s[lo]
+        } else {
+            0.0
+        };
+        let half_s = WINDOW_SEARCH_S.max(1.5 * MAX_DRIFT_PPM * 1e-6 * span_s / 2.0);
+        let step = WINDOW_COARSE_STEP_S.max(dt_s);
+        let steps = (half_s / step).ceil() as i64;
+        let first: Vec<f64> = (-steps..=steps).map(|k| lag0 + k as f64 * step).collect();
+        let near = (step / dt_s).ceil() as i64;
+        let per = (hi - lo) / WINDOWS;
+        let mut points = Vec::new();
+        let mut edges = Vec::new();
+        for w in 0..WINDOWS {
+            let frames = lo + w * per..if w + 1 == WINDOWS {
+                hi
+            } else {
+                lo + (w + 1) * per
+            };
+            if frames.is_empty() {
+                continue;
+            }
+            let centre = frames.clone().map(|k| self.tau_s[k]).sum::<f64>() / frames.len() as f64;
+            let r_w = |lag: f64| self.r(frames.clone(), &|_| lag);
+            let rs: Vec<f64> = first.iter().map(|&l| r_w(l)).collect();
+            let (rough, r_rough) = peak(&first, &rs, sign);
+            let (_, r_other) = peak(&first, &rs, -sign);
+            if r_other >= MIN_CORRELATION && r_other > r_rough {
+                return Err(AlignError::Negative {
+                    centre_s: centre,
+                    r: -r_other,
+                    whole_r: whole.r,
+                });
+            }
+            if r_rough < MIN_CORRELATION {
+                continue;
+            }
+            if (rough - lag0).abs() > half_s - 0.5 * step {
+                // A window whose best lag is at the edge of its search is left out, as one that
+                // does not correlate: a monotonic stretch correlates at any lag. Most windows at
+                // the edge is a refusal (below).
+                edges.push((centre, rough));
+                continue;
+            }
+            let fine: Vec<f64> = (-near..=near).map(|k| rough + k as f64 * dt_s).collect();
+            let rs: Vec<f64> = fine.iter().map(|&l| r_w(l)).collect();
+            let (lag, r) = peak(&fine, &rs, sign);
+            if r >= MIN_CORRELATION {
+                points.push((centre, lag));
+            }
+        }
+        if edges.len() > points.len() {
+            let (centre_s, lag_s) = edges[edges.len() / 2];
+            return Err(AlignError::WindowEdge {
+                centre_s,
+                lag_s,
+                half_s,
+                whole_s: lag0,
+                edges: edges.len(),
+                windows: edges.len() + points.len(),
+            });
+        }
+        if points.len() < MIN_WINDOWS {
+            return Err(AlignError::Windows {
+                windows: points.len(),
+                min: MIN_WINDOWS,
+            });
+        }
+        Ok(WindowLags {
+            frames: lo..hi,
+            points,
+        })
+    }
+
+    /// The offset and slope that correlate best on every frame at once: the line through the
+    /// windows is the start, and a search over a grid of ±[`REFINE_SPAN`] standard errors in
+    /// each, [`REFINE_ROUNDS`] times, each time around the best point, tightens it (the
+    /// windows' lags scatter by milliseconds; the whole recording pins the line down further).
+    fn refine(&self, whole: &WholeLag, windows: &WindowLags, line: &Line) -> (f64, f64) {
+        let r_line = |offset: f64, slope: f64| {
+            whole.sign * self.r(windows.frames.clone(), &|tau| offset + slope * tau)
+        };
+        let (mut best_offset, mut best_slope) = (line.offset, line.slope);
+        let (mut half_o, mut half_s) = (
+            REFINE_SPAN * line.offset_se.max(self.signal.period_s / 4.0),
+            REFINE_SPAN * line.drift_se.max(1e-6),
+        );
+        for _ in 0..REFINE_ROUNDS {
+            let mut best = (r_line(best_offset, best_slope), best_offset, best_slope);
+            for i in -REFINE_STEPS..=REFINE_STEPS {
+                for j in -REFINE_STEPS..=REFINE_STEPS {
+                    let o = best_offset + half_o * f64::from(i) / f64::from(REFINE_STEPS);
+                    let d = best_slope + half_s * f64::from(j) / f64::from(REFINE_STEPS);
+                    let r = r_line(o, d);
+                    if r > best.0 {
+                        best = (r, o, d);
+                    }
+                }
+            }
+            best_offset = best.1;
+            best_slope = best.2;
+            half_o /= f64::from(REFINE_STEPS);
+            half_s /= f64::from(REFINE_STEPS);
+        }
+        (best_offset, best_slope)
+    }
 }

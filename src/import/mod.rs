@@ -202,9 +202,14 @@ pub struct ImportRequest<'a> {
     pub rate_hz: Option<f64>,
 }
 
-/// What an import found, as `dlw import-recording --json` prints it.
+/// What an import found: its JSON ([`ImportSummary::to_json`]) is `dlw import-recording
+/// --json`, its [`ImportSummary::summary`] the command's line.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct ImportSummary {
+    /// Where the recording was written, as the caller names it (set by the caller that writes
+    /// it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub recording: Option<String>,
     /// Rows written.
     pub samples: usize,
     /// Length (s).
@@ -222,6 +227,54 @@ pub struct ImportSummary {
     /// What the report draws (not in the JSON).
     #[serde(skip)]
     pub trace: ImportTrace,
+}
+
+impl ImportSummary {
+    /// The JSON `dlw import-recording --json` prints: the summary, its keys sorted as every
+    /// analysis's (`serde_json`'s map), the report's trace left out.
+    ///
+    /// # Errors
+    /// When the summary does not serialize.
+    pub fn to_json(&self) -> Result<serde_json::Value, serde_json::Error> {
+        serde_json::to_value(self)
+    }
+
+    /// The line `dlw import-recording` prints: where the recording went, its length, the
+    /// clocks, the check and the tracker, every number taken from the summary.
+    pub fn summary(&self) -> String {
+        let a = &self.alignment;
+        format!(
+            "wrote {}: {} samples over {:.1} s; clocks: offset {:.4} ± {:.4} s, drift {:.1} ± {:.1} ppm ({}{}); checked in {} windows (worst {:.2}° RMS, limit {:.2}°); tracker: {} frames, {} missing, {} gaps, out of plane {:.2}° RMS; {} rows without a tracker angle (tracker_valid = 0)\n",
+            self.recording.as_deref().unwrap_or("the recording"),
+            self.samples,
+            self.duration_s,
+            a.offset_s,
+            a.offset_uncertainty_s,
+            a.drift_ppm,
+            a.drift_uncertainty_ppm,
+            match (a.correlation, a.sync_edges) {
+                (Some(r), _) => format!("r = {r:.3}"),
+                (None, Some(n)) => format!("{n} sync edges"),
+                (None, None) => String::new(),
+            },
+            if a.stretches.len() > 1 {
+                format!(
+                    "; {} stretches of the DAQ's clock, each aligned on its own",
+                    a.stretches.len()
+                )
+            } else {
+                String::new()
+            },
+            self.check.windows,
+            self.check.worst.rms_deg,
+            self.check.worst.limit_deg,
+            self.tracker.frames,
+            self.tracker.missing_frames,
+            self.tracker.gaps,
+            self.tracker.out_of_plane_rms_deg,
+            self.invalid_rows
+        )
+    }
 }
 
 /// The tracker's side of an import, for the report ([`report`]).
@@ -342,51 +395,16 @@ fn sha256(bytes: &[u8]) -> String {
 /// [`ImportError`].
 pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), ImportError> {
     values::check_options(req)?;
-    let mut names: Vec<&str> = req.voltage_channels.iter().map(String::as_str).collect();
-    let stroke_at = names.len();
-    names.push(&req.stroke.0);
-    let sync_column = match &req.sync {
-        SyncMethod::Pulse {
-            daq_channel,
-            tracker_column,
-        } => {
-            names.push(daq_channel);
-            Some(tracker_column.as_str())
-        }
-        SyncMethod::Auto => None,
-    };
-    let daq = read_daq(req, &names).map_err(|source| ImportError::Daq {
+    let columns = DaqColumns::of(req);
+    let daq = read_daq(req, &columns.names).map_err(|source| ImportError::Daq {
         path: req.daq.0.to_owned(),
         source,
     })?;
-    values::check_daq(req, &daq, &names)?;
+    values::check_daq(req, &daq, &columns.names)?;
     values::check_rate(req, &daq)?;
     let stretches = stretch::stretches(&daq.time_s)?;
-    let mut tools = vec![req.tool];
-    tools.extend(req.reference_tool);
-    let log = TrackerLog::parse(
-        req.tracker.1,
-        req.tracker_map,
-        &tracker::ReadOptions {
-            tools: &tools,
-            frame_hz: req.tracker_hz,
-            extra_column: sync_column,
-        },
-    )
-    .map_err(|source| ImportError::Tracker {
-        path: req.tracker.0.to_owned(),
-        source,
-    })?;
-    let duration_s = daq.time_s[daq.time_s.len() - 1];
-    if let Some(g) = log.gaps.iter().find(|g| g.seconds > duration_s) {
-        return Err(ImportError::Jump {
-            path: req.tracker.0.to_owned(),
-            line: g.line,
-            seconds: g.seconds,
-            frames: g.frames,
-            duration_s,
-        });
-    }
+    let log = read_tracker(req, columns.sync_column)?;
+    refuse_jumps(req, &log, daq.time_s[daq.time_s.len() - 1])?;
     let angles: BendingAngles = angle::bending_angles(
         &log.tools[0],
         log.tools.get(1).map(Vec::as_slice),
@@ -411,7 +429,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
     };
     let (mut angle_deg, valid) =
         place::angle_on_daq(&daq.time_s, &log, &angles, &alignment.stretches);
-    let stroke_mm: Vec<f64> = daq.channels[stroke_at]
+    let stroke_mm: Vec<f64> = daq.channels[columns.stroke_at]
         .iter()
         .map(|v| v * req.stroke.1)
         .collect();
@@ -421,19 +439,140 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
         -1.0
     };
     angle_deg.iter_mut().for_each(|a| *a *= sign);
-    let frames = log.tau_s.len();
-    let missing = angles.angle_deg.iter().filter(|a| a.is_none()).count();
     let invalid_rows = valid.iter().filter(|v| !**v).count();
-    let n = daq.time_s.len();
+    let summary = summary(
+        &daq.time_s,
+        &log,
+        &angles,
+        sign,
+        &alignment,
+        check,
+        invalid_rows,
+    );
+    let rig = Rig {
+        sample_hz: rate_hz,
+        supply_v: req.supply_v,
+        divider_ohm: req.divider_ohm.clone(),
+        notes: None,
+        protocol: None,
+        simulation: None,
+        design: None,
+        scenario: None,
+        import: Some(provenance(
+            req,
+            &alignment,
+            summary.tracker.frames,
+            summary.tracker.missing_frames,
+        )),
+    };
+    let samples = Samples {
+        volts: daq.channels[..columns.stroke_at].to_vec(),
+        time_s: daq.time_s,
+        stroke_mm,
+        angle_deg,
+        tracker_valid: if invalid_rows > 0 { valid } else { Vec::new() },
+    };
+    let recording = Recording { rig, samples };
+    recording.check()?;
+    Ok((recording, summary))
+}
+
+/// The DAQ channels an import reads, in the DAQ table's order: the voltages, the stroke, then
+/// a sync pulse's channel.
+struct DaqColumns<'a> {
+    /// The channels' names.
+    names: Vec<&'a str>,
+    /// The stroke's index in `names` (the voltages come before it).
+    stroke_at: usize,
+    /// With a sync pulse: the tracker log's column holding it.
+    sync_column: Option<&'a str>,
+}
+
+impl<'a> DaqColumns<'a> {
+    /// The channels the request names.
+    fn of(req: &'a ImportRequest<'_>) -> Self {
+        let mut names: Vec<&str> = req.voltage_channels.iter().map(String::as_str).collect();
+        let stroke_at = names.len();
+        names.push(&req.stroke.0);
+        let sync_column = match &req.sync {
+            SyncMethod::Pulse {
+                daq_channel,
+                tracker_column,
+            } => {
+                names.push(daq_channel);
+                Some(tracker_column.as_str())
+            }
+            SyncMethod::Auto => None,
+        };
+        DaqColumns {
+            names,
+            stroke_at,
+            sync_column,
+        }
+    }
+}
+
+/// The request's tracker log: its tip tool, its reference tool, and the sync pulse's column.
+fn read_tracker(
+    req: &ImportRequest<'_>,
+    sync_column: Option<&str>,
+) -> Result<TrackerLog, ImportError> {
+    let mut tools = vec![req.tool];
+    tools.extend(req.reference_tool);
+    TrackerLog::parse(
+        req.tracker.1,
+        req.tracker_map,
+        &tracker::ReadOptions {
+            tools: &tools,
+            frame_hz: req.tracker_hz,
+            extra_column: sync_column,
+        },
+    )
+    .map_err(|source| ImportError::Tracker {
+        path: req.tracker.0.to_owned(),
+        source,
+    })
+}
+
+/// Refuses a jump of the tracker's clock longer than the DAQ's whole recording (`duration_s`).
+fn refuse_jumps(
+    req: &ImportRequest<'_>,
+    log: &TrackerLog,
+    duration_s: f64,
+) -> Result<(), ImportError> {
+    match log.gaps.iter().find(|g| g.seconds > duration_s) {
+        Some(g) => Err(ImportError::Jump {
+            path: req.tracker.0.to_owned(),
+            line: g.line,
+            seconds: g.seconds,
+            frames: g.frames,
+            duration_s,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The summary of an import whose rows are at `time_s` and whose angle is signed by `sign`.
+fn summary(
+    time_s: &[f64],
+    log: &TrackerLog,
+    angles: &BendingAngles,
+    sign: f64,
+    alignment: &AlignmentJson,
+    check: AlignmentCheck,
+    invalid_rows: usize,
+) -> ImportSummary {
+    let n = time_s.len();
     let mut warnings = log.warnings.clone();
-    warnings.extend(out_of_plane_warning(&angles));
-    let summary = ImportSummary {
+    warnings.extend(out_of_plane_warning(angles));
+    ImportSummary {
+        recording: None,
         samples: n,
-        duration_s: daq.time_s[n - 1],
+        duration_s: time_s[n - 1],
         alignment: alignment.clone(),
         tracker: TrackerJson {
-            frames,
-            missing_frames: missing,
+            frames: log.tau_s.len(),
+            missing_frames: angles.angle_deg.iter().filter(|a| a.is_none()).count(),
             gaps: log.gaps.len(),
             absent_frames: log.gaps.iter().fold(0.0, |n, g| n + g.frames),
             rate_hz: log.rate_hz,
@@ -451,28 +590,7 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
                 .map(|a| a.map(|a| a * sign))
                 .collect(),
         },
-    };
-    let rig = Rig {
-        sample_hz: rate_hz,
-        supply_v: req.supply_v,
-        divider_ohm: req.divider_ohm.clone(),
-        notes: None,
-        protocol: None,
-        simulation: None,
-        design: None,
-        scenario: None,
-        import: Some(provenance(req, &alignment, frames, missing)),
-    };
-    let samples = Samples {
-        volts: daq.channels[..stroke_at].to_vec(),
-        time_s: daq.time_s,
-        stroke_mm,
-        angle_deg,
-        tracker_valid: if invalid_rows > 0 { valid } else { Vec::new() },
-    };
-    let recording = Recording { rig, samples };
-    recording.check()?;
-    Ok((recording, summary))
+    }
 }
 
 /// Whether the angle rises with the stroke over the valid rows (pulling the tendon bends

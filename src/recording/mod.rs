@@ -682,31 +682,10 @@ pub(crate) fn read_text(path: &Path, limit: u64) -> Result<String, RecordingErro
 
 fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingError> {
     let channels = rig.divider_ohm.len();
-    let expected = header(channels);
-    let columns: Vec<String> = expected.split(',').map(str::to_string).collect();
     let mut lines = text.split('\n').enumerate();
     let first = lines.next().map_or("", |(_, l)| l.trim_end_matches('\r'));
-    let marked = first.strip_suffix(VALID_COLUMN_SUFFIX) == Some(expected.as_str());
-    let expected = if marked {
-        format!("{expected}{VALID_COLUMN_SUFFIX}")
-    } else {
-        expected
-    };
-    let mut columns = columns;
-    if marked {
-        columns.push("tracker_valid".to_string());
-    }
-    let valid_at = 3 + channels;
-    if first != expected {
-        return Err(RecordingError::Header {
-            path: path.to_path_buf(),
-            found: crate::limits::quote(first),
-            expected,
-            channels,
-        });
-    }
+    let header = DataHeader::read(first, channels, path)?;
     let mut samples = Samples::with_capacity(channels, text.len() / (30 + 9 * channels));
-    let mut row = [0.0f64; 6];
     let mut blank = None;
     // Whether the first data row's angle_deg is empty, and its line.
     let mut angle_empty: Option<(usize, bool)> = None;
@@ -719,20 +698,102 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
             continue;
         }
         if let Some(line) = blank {
-            return Err(RecordingError::Fields {
+            return Err(header.fields_error(path, line, 0));
+        }
+        let (row, empty) = header.parse_row(text, line, path)?;
+        same_angle_column(&mut angle_empty, line, empty, path)?;
+        header.push_row(&mut samples, &row, empty, line, rig, path)?;
+    }
+    if samples.is_empty() {
+        return Err(RecordingError::NoRows {
+            path: path.to_path_buf(),
+        });
+    }
+    Ok(samples)
+}
+
+/// `data.csv`'s header line, as the rig's channels and the file's first line make it.
+struct DataHeader {
+    /// The columns' names.
+    columns: Vec<String>,
+    /// The header line expected.
+    expected: String,
+    /// Whether the file has a `tracker_valid` column.
+    marked: bool,
+    /// The voltage channels.
+    channels: usize,
+}
+
+impl DataHeader {
+    /// The header for `channels` voltage columns, with a `tracker_valid` column when the
+    /// file's `first` line has one.
+    ///
+    /// # Errors
+    /// [`RecordingError::Header`] when `first` is not the header expected.
+    fn read(first: &str, channels: usize, path: &Path) -> Result<Self, RecordingError> {
+        let expected = header(channels);
+        let mut columns: Vec<String> = expected.split(',').map(str::to_string).collect();
+        let marked = first.strip_suffix(VALID_COLUMN_SUFFIX) == Some(expected.as_str());
+        let expected = if marked {
+            format!("{expected}{VALID_COLUMN_SUFFIX}")
+        } else {
+            expected
+        };
+        if marked {
+            columns.push("tracker_valid".to_string());
+        }
+        if first != expected {
+            return Err(RecordingError::Header {
                 path: path.to_path_buf(),
-                line,
-                found: 0,
-                expected: columns.len(),
-                header: expected,
+                found: crate::limits::quote(first),
+                expected,
+                channels,
             });
         }
+        Ok(DataHeader {
+            columns,
+            expected,
+            marked,
+            channels,
+        })
+    }
+
+    /// The `tracker_valid` column's index.
+    fn valid_at(&self) -> usize {
+        3 + self.channels
+    }
+
+    /// A line with `found` fields where the header has more or fewer.
+    fn fields_error(&self, path: &Path, line: usize, found: usize) -> RecordingError {
+        RecordingError::Fields {
+            path: path.to_path_buf(),
+            line,
+            found,
+            expected: self.columns.len(),
+            header: self.expected.clone(),
+        }
+    }
+
+    /// The numbers of one data line, in the columns' order, and whether its `angle_deg` is
+    /// empty.
+    ///
+    /// # Errors
+    /// [`RecordingError::Number`] for a field that is not a number in range (or a
+    /// `tracker_valid` other than 0 or 1), [`RecordingError::Fields`] for a line with the
+    /// wrong number of fields.
+    fn parse_row(
+        &self,
+        text: &str,
+        line: usize,
+        path: &Path,
+    ) -> Result<([f64; 6], bool), RecordingError> {
+        let mut row = [0.0f64; 6];
         let mut n = 0;
         let mut empty = false;
         for field in text.split(',') {
             if n == 2 && field.is_empty() {
                 empty = true;
-            } else if marked && n == valid_at {
+            } else if self.marked && n == self.valid_at() {
                 row[n] = match field.trim() {
                     "1" => 1.0,
                     "0" => 0.0,
@@ -745,38 +806,30 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
                         })
                     }
                 };
-            } else if n < columns.len() {
-                row[n] = parse_field(field, line, &columns[n], path)?;
+            } else if n < self.columns.len() {
+                row[n] = parse_field(field, line, &self.columns[n], path)?;
             }
             n += 1;
         }
-        if n != columns.len() {
-            return Err(RecordingError::Fields {
-                path: path.to_path_buf(),
-                line,
-                found: n,
-                expected: columns.len(),
-                header: expected,
-            });
+        if n != self.columns.len() {
+            return Err(self.fields_error(path, line, n));
         }
-        let words = |e: bool| if e { "empty" } else { "a number" };
-        match angle_empty {
-            None => angle_empty = Some((line, empty)),
-            Some((first_line, first)) if first != empty => {
-                return Err(RecordingError::MixedAngle {
-                    path: path.to_path_buf(),
-                    line,
-                    found: words(empty),
-                    first_line,
-                    first: if first {
-                        "has it empty"
-                    } else {
-                        "has a number"
-                    },
-                });
-            }
-            Some(_) => {}
-        }
+        Ok((row, empty))
+    }
+
+    /// Appends one parsed line to `samples`.
+    ///
+    /// # Errors
+    /// [`RecordingError::TimeNotIncreasing`], [`RecordingError::Rail`].
+    fn push_row(
+        &self,
+        samples: &mut Samples,
+        row: &[f64; 6],
+        empty: bool,
+        line: usize,
+        rig: &Rig,
+        path: &Path,
+    ) -> Result<(), RecordingError> {
         if let Some(&previous_s) = samples.time_s.last() {
             if row[0] <= previous_s {
                 return Err(RecordingError::TimeNotIncreasing {
@@ -787,13 +840,13 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
                 });
             }
         }
-        for c in 0..channels {
+        for c in 0..self.channels {
             let volts = row[3 + c];
             if !within_rails(volts, rig.supply_v) {
                 return Err(RecordingError::Rail {
                     path: path.to_path_buf(),
                     line,
-                    column: columns[3 + c].clone(),
+                    column: self.columns[3 + c].clone(),
                     volts,
                     supply_v: rig.supply_v,
                 });
@@ -805,16 +858,40 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
         if !empty {
             samples.angle_deg.push(row[2]);
         }
-        if marked {
-            samples.tracker_valid.push(row[valid_at] == 1.0);
+        if self.marked {
+            samples.tracker_valid.push(row[self.valid_at()] == 1.0);
         }
+        Ok(())
     }
-    if samples.is_empty() {
-        return Err(RecordingError::NoRows {
-            path: path.to_path_buf(),
-        });
+}
+
+/// Refuses a data line whose `angle_deg` is empty where the first data line's has a number, or
+/// the other way round; `angle_empty` holds the first data line's and its line number.
+fn same_angle_column(
+    angle_empty: &mut Option<(usize, bool)>,
+    line: usize,
+    empty: bool,
+    path: &Path,
+) -> Result<(), RecordingError> {
+    let words = |e: bool| if e { "empty" } else { "a number" };
+    match *angle_empty {
+        None => *angle_empty = Some((line, empty)),
+        Some((first_line, first)) if first != empty => {
+            return Err(RecordingError::MixedAngle {
+                path: path.to_path_buf(),
+                line,
+                found: words(empty),
+                first_line,
+                first: if first {
+                    "has it empty"
+                } else {
+                    "has a number"
+                },
+            });
+        }
+        Some(_) => {}
     }
-    Ok(samples)
+    Ok(())
 }
 
 /// The largest magnitude of a recording's time (s): 30 years of logging.

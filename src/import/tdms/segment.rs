@@ -282,77 +282,94 @@ impl<'a> TdmsFile<'a> {
         if active.is_empty() || size == 0 {
             return Ok(());
         }
-        let fail = |reason: String| TdmsError::Metadata {
-            segment: lead.segment,
-            offset: lead.raw_start,
-            reason,
-        };
-        let too_big = |i: usize| {
-            fail(format!(
-                "{} says it has more raw data than the segment's {size} bytes",
-                self.objects[i].path.join("/")
-            ))
-        };
-        let mut layout = Vec::with_capacity(active.len());
         if lead.toc & TOC_INTERLEAVED != 0 {
-            let values = active[0].1.values;
-            let mut offset = 0usize;
-            for &(i, raw) in &active {
-                let width = raw.dtype.size().ok_or_else(|| {
-                    fail(format!(
+            self.place_interleaved(lead, &active, size)
+        } else {
+            self.place_contiguous(lead, &active, size)
+        }
+    }
+
+    /// Interleaved raw data: one value of each channel per row, rows in chunks of `values`.
+    fn place_interleaved(
+        &mut self,
+        lead: &LeadIn,
+        active: &[(usize, RawIndex)],
+        size: usize,
+    ) -> Result<(), TdmsError> {
+        let mut layout = Vec::with_capacity(active.len());
+        let values = active[0].1.values;
+        let mut offset = 0usize;
+        for &(i, raw) in active {
+            let width = raw.dtype.size().ok_or_else(|| {
+                raw_data_error(
+                    lead,
+                    format!(
                         "{} is text, which cannot be interleaved",
                         self.objects[i].path.join("/")
-                    ))
-                })?;
-                if raw.values != values {
-                    return Err(fail(format!(
+                    ),
+                )
+            })?;
+            if raw.values != values {
+                return Err(raw_data_error(
+                    lead,
+                    format!(
                         "interleaved channels of unequal length ({} values against {values})",
                         raw.values
-                    )));
-                }
-                layout.push((i, raw, offset, width));
-                offset += width;
+                    ),
+                ));
             }
-            let row = offset;
-            let chunk = usize::try_from(values)
-                .ok()
-                .and_then(|v| v.checked_mul(row))
-                .filter(|&b| b <= size)
-                .ok_or_else(|| too_big(active[0].0))?;
-            let (chunks, rest) = (size / chunk, size % chunk);
-            for &(i, raw, at, _) in &layout {
-                let run = Run {
-                    start: lead.raw_start + at,
-                    chunks,
-                    chunk_bytes: chunk,
-                    count: values as usize,
-                    stride: row,
-                    dtype: raw.dtype,
-                    code: raw.code,
-                    big_endian: lead.big_endian,
-                };
-                self.push_run(i, run);
-                // A last chunk cut short: the rows that are whole.
-                self.push_run(
-                    i,
-                    Run {
-                        start: run.start + chunks * chunk,
-                        chunks: 1,
-                        count: rest / row,
-                        ..run
-                    },
-                );
-            }
-            return Ok(());
+            layout.push((i, raw, offset));
+            offset += width;
         }
+        let row = offset;
+        let chunk = usize::try_from(values)
+            .ok()
+            .and_then(|v| v.checked_mul(row))
+            .filter(|&b| b <= size)
+            .ok_or_else(|| self.too_big(lead, active[0].0, size))?;
+        let (chunks, rest) = (size / chunk, size % chunk);
+        for &(i, raw, at) in &layout {
+            let run = Run {
+                start: lead.raw_start + at,
+                chunks,
+                chunk_bytes: chunk,
+                count: values as usize,
+                stride: row,
+                dtype: raw.dtype,
+                code: raw.code,
+                big_endian: lead.big_endian,
+            };
+            self.push_run(i, run);
+            // A last chunk cut short: the rows that are whole.
+            self.push_run(
+                i,
+                Run {
+                    start: run.start + chunks * chunk,
+                    chunks: 1,
+                    count: rest / row,
+                    ..run
+                },
+            );
+        }
+        Ok(())
+    }
+
+    /// Contiguous raw data: each channel's values in a block, the blocks in chunks.
+    fn place_contiguous(
+        &mut self,
+        lead: &LeadIn,
+        active: &[(usize, RawIndex)],
+        size: usize,
+    ) -> Result<(), TdmsError> {
+        let mut layout = Vec::with_capacity(active.len());
         let mut offset = 0usize;
-        for &(i, raw) in &active {
-            let bytes = raw.bytes(size).ok_or_else(|| too_big(i))?;
+        for &(i, raw) in active {
+            let bytes = raw.bytes(size).ok_or_else(|| self.too_big(lead, i, size))?;
             layout.push((i, raw, offset, bytes));
             offset = offset
                 .checked_add(bytes)
                 .filter(|&b| b <= size)
-                .ok_or_else(|| too_big(i))?;
+                .ok_or_else(|| self.too_big(lead, i, size))?;
         }
         let chunk = offset;
         if chunk == 0 {
@@ -404,10 +421,30 @@ impl<'a> TdmsFile<'a> {
         Ok(())
     }
 
+    /// Object `i` claims more raw data than the segment's `size` bytes.
+    fn too_big(&self, lead: &LeadIn, i: usize, size: usize) -> TdmsError {
+        raw_data_error(
+            lead,
+            format!(
+                "{} says it has more raw data than the segment's {size} bytes",
+                self.objects[i].path.join("/")
+            ),
+        )
+    }
+
     fn push_run(&mut self, object: usize, run: Run) {
         if run.chunks > 0 && run.count > 0 {
             self.objects[object].runs.push(run);
         }
+    }
+}
+
+/// An error in a segment's raw data, at its start.
+fn raw_data_error(lead: &LeadIn, reason: String) -> TdmsError {
+    TdmsError::Metadata {
+        segment: lead.segment,
+        offset: lead.raw_start,
+        reason,
     }
 }
 
