@@ -4,12 +4,13 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
-use dlw::drawing::svg::{robot_svg, section_svg};
+use dlw::drawing::svg::section_svg;
 use dlw::drawing::{LayoutNumbers, Provenance};
 use dlw::job::Job;
 use dlw::layout::Layout;
 use dlw::machine::{MachineLibrary, MachineProfile};
 use dlw::process::{ProcessLibrary, ProcessSets};
+use dlw::robot::robot_svg;
 use dlw::robot::{check_robot_drawing, CheckedRobot, RobotInspection};
 
 use super::import_dxf::{read, DrawingOptions};

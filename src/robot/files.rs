@@ -2,7 +2,8 @@
 //! one-joint robot, else titled as a robot with each joint labelled above the tube), the robot
 //! sheet, one section sheet per joint, the program and the setup sheet.
 
-use crate::drawing::svg::{robot_svg, section_svg, SvgError};
+use super::robot_svg;
+use crate::drawing::svg::{section_svg, SvgError};
 use crate::drawing::{layout_to_dxf, layout_to_dxf_with, DxfExportError, DxfNotes};
 use crate::job::{program_file_name, JobError};
 use crate::layout::Layout;

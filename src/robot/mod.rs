@@ -52,6 +52,7 @@ mod property;
 mod route;
 mod sensors;
 mod suggest;
+mod svg;
 
 /// A validated robot and its joints, placed.
 pub use assemble::{Robot, RobotJoint};
@@ -71,6 +72,8 @@ pub use inspect::{JointInspection, RobotInspection, SensorInspection};
 pub use property::check_property;
 /// Sensor and lead identities.
 pub use sensors::{Arm, LeadName, RobotSensor};
+/// A robot as an SVG sheet: the unrolled robot, its joints labelled, a side view.
+pub use svg::{robot_svg, robot_svg_with, sensor_colour, SENSOR_COLOURS};
 
 #[cfg(test)]
 mod tests;

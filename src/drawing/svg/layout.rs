@@ -110,7 +110,7 @@ pub(crate) fn style_name(style: NotchStyle) -> &'static str {
     }
 }
 
-pub(super) fn check(layout: &Layout) -> Result<(), SvgError> {
+pub(crate) fn check(layout: &Layout) -> Result<(), SvgError> {
     for (what, value) in [
         ("layout length_mm", layout.length_mm),
         ("layout outer_radius_mm", layout.outer_radius_mm),

@@ -47,18 +47,17 @@
 //! # Errors
 //! [`SvgError`] names a non-finite or non-positive layout value, or an unusable print scale.
 
-mod annotate;
+pub(crate) mod annotate;
 #[cfg(test)]
 mod collisions;
 mod error;
 #[cfg(test)]
 mod fixture;
-mod layout;
-mod options;
-mod palette;
-mod robot;
+pub(crate) mod layout;
+pub(crate) mod options;
+pub(crate) mod palette;
 mod section;
-mod sheet;
+pub(crate) mod sheet;
 #[cfg(test)]
 mod tests;
 
@@ -68,7 +67,5 @@ pub use error::SvgError;
 pub use layout::{layout_svg, layout_svg_with};
 /// Options shared by the drawings (print scale).
 pub use options::{SvgOptions, MAX_SCALE, MIN_SCALE};
-/// A robot as an SVG sheet: the unrolled robot, its joints labelled, a side view.
-pub use robot::{robot_svg, robot_svg_with, sensor_colour, SENSOR_COLOURS};
 /// The cross-section through a notch (Fig. 3) as an SVG sheet.
 pub use section::{section_svg, section_svg_with};

@@ -1,7 +1,7 @@
 //! A robot as an SVG sheet (`crate::robot`): the unrolled robot with each joint labelled
 //! (number, design, style, rotation), every sensor's U-trace, leads and pads in a colour of
 //! its own, and below it a side view of the straight robot with each joint's bending plane
-//! marked in an end view. A robot of one joint is drawn as its joint ([`super::layout_svg`]).
+//! marked in an end view. A robot of one joint is drawn as its joint ([`crate::drawing::svg::layout_svg`]).
 //!
 //! Frames: the unrolled view is the layout's (`x` right, `s` up, the window
 //! `[seam, seam + C)`); the side view has the same `x`, and up is the tube's `+y` (the surface
@@ -10,12 +10,12 @@
 
 use std::f64::consts::PI;
 
-use super::annotate::{self, Table, SMALL_MM, TEXT_MM, THIN_MM};
-use super::error::SvgError;
-use super::options::{Drawn, SvgOptions};
-use super::palette;
-use super::sheet::{fixed, Anchor, Sheet, TextStyle};
-use crate::robot::CheckedRobot;
+use super::CheckedRobot;
+use crate::drawing::svg::annotate::{self, Table, SMALL_MM, TEXT_MM, THIN_MM};
+use crate::drawing::svg::options::{Drawn, SvgOptions};
+use crate::drawing::svg::palette;
+use crate::drawing::svg::sheet::{fixed, Anchor, Sheet, TextStyle};
+use crate::drawing::svg::SvgError;
 
 /// The sheet's layers, bottom first.
 const LAYERS: [&str; 9] = [
@@ -56,11 +56,11 @@ pub fn robot_svg(robot: &CheckedRobot) -> Result<String, SvgError> {
 /// [`SvgError`] for a non-finite or non-positive layout value or an unusable print scale.
 pub fn robot_svg_with(robot: &CheckedRobot, options: &SvgOptions) -> Result<String, SvgError> {
     if let [only] = robot.robot.joints.as_slice() {
-        return super::layout_svg_with(&robot.layout, only.design(), options);
+        return crate::drawing::svg::layout_svg_with(&robot.layout, only.design(), options);
     }
-    super::layout::check(&robot.layout)?;
+    crate::drawing::svg::layout::check(&robot.layout)?;
     // The tube alone is `length` wide on the sheet: no scale above page width / length fits.
-    let largest = super::options::PAGE_MM.0 / robot.layout.length_mm;
+    let largest = crate::drawing::svg::options::PAGE_MM.0 / robot.layout.length_mm;
     options.draw_at_most(largest, |scale| draw(robot, scale))
 }
 
@@ -151,7 +151,7 @@ fn draw(robot: &CheckedRobot, scale: f64) -> Drawn {
         ("leads-pads", "pad", &layout.pads),
     ] {
         for t in traces {
-            let pen = super::sheet::Pen {
+            let pen = crate::drawing::svg::sheet::Pen {
                 colour: sensor_colour(t.sensor),
                 width: layout.trace_width_mm,
                 dash: None,
