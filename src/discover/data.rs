@@ -18,6 +18,9 @@ use crate::sensor::Sensor;
 pub const TARGET_HZ: f64 = 25.0;
 /// Shortest rest at the start (s) the noise model is frozen from.
 pub const MIN_REST_S: f64 = 4.0;
+/// The time before the first motion left out of the rest (s): the stroke may start moving
+/// before it leaves its tolerance.
+pub const REST_MARGIN_S: f64 = 1.0;
 /// Interleaved blocks after the rest: odd ones train, even ones are held out.
 pub const BLOCKS: usize = 10;
 /// Shortest block (s): a block must span several noise correlation times.
@@ -101,12 +104,13 @@ impl Data {
             .position(|v| (v - stroke_mm[0]).abs() > 1e-3 * span.max(1e-9))
             .unwrap_or(n);
         let dt_s = step as f64 / rig.sample_hz;
-        // Leave a second before the first motion out of the rest.
-        let rest = moved.saturating_sub((1.0 / dt_s) as usize);
+        let rest = moved.saturating_sub((REST_MARGIN_S / dt_s) as usize);
         if (rest as f64) * dt_s < MIN_REST_S {
             return Err(DiscoverError::NoRest {
                 rest_s: moved as f64 * dt_s,
+                margin_s: REST_MARGIN_S,
                 min_s: MIN_REST_S,
+                needs_s: MIN_REST_S + REST_MARGIN_S,
             });
         }
         Ok(Self {

@@ -26,7 +26,7 @@ pub mod unexplained;
 /// The discovery's result as an [`crate::analysis::Analysis`].
 pub use result::{DiscoverResult, Written};
 /// `dlw discover --json`'s summary and the scenario file's text.
-pub use summary::{scenario_text, Named, Scored, Summary};
+pub use summary::{scenario_text, Named, Scored, DiscoverySummary};
 
 use std::collections::BTreeMap;
 
@@ -123,12 +123,16 @@ pub enum DiscoverError {
         rows: usize,
     },
     /// No rest at the start.
-    #[error("the recording starts with {rest_s:.1} s at rest; discovery freezes its noise model from a rest of at least {min_s} s at the start (the stroke constant)")]
+    #[error("the recording starts with {rest_s:.1} s at rest; discovery freezes its noise model from that rest less the {margin_s} s before the first motion, and needs {min_s} s of it: a rest of at least {needs_s} s at the start (the stroke constant)")]
     NoRest {
         /// Rest found (s).
         rest_s: f64,
-        /// Needed (s).
+        /// Left out before the first motion (s).
+        margin_s: f64,
+        /// Needed after that (s).
         min_s: f64,
+        /// The rest needed in all (s): `min_s + margin_s`.
+        needs_s: f64,
     },
     /// Too short to hold out from.
     #[error("the recording moves for {moving_s:.1} s after its rest; discovery needs at least {min_s} s to hold out half of it in blocks (or give --holdout REC2)")]

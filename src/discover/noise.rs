@@ -12,7 +12,7 @@
 //! effects such as drift as "noise".
 
 /// Largest AR order tried.
-pub const MAX_ORDER: usize = 3;
+pub const MAX_AR_ORDER: usize = 3;
 
 /// An AR(p) noise model.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,7 +32,7 @@ impl ArNoise {
         }
     }
 
-    /// Yule-Walker (Levinson-Durbin) fit of order up to [`MAX_ORDER`] to `e` (its mean
+    /// Yule-Walker (Levinson-Durbin) fit of order up to [`MAX_AR_ORDER`] to `e` (its mean
     /// removed). The order stops growing when a coefficient's partial correlation is under
     /// `2/√n`, the usual significance bound.
     pub fn fit(e: &[f64]) -> Self {
@@ -47,7 +47,7 @@ impl ArNoise {
                 .sum::<f64>()
                 / n as f64
         };
-        let r: Vec<f64> = (0..=MAX_ORDER).map(acov).collect();
+        let r: Vec<f64> = (0..=MAX_AR_ORDER).map(acov).collect();
         let sigma = r[0].max(0.0).sqrt();
         if r[0].is_nan() || r[0] <= 0.0 {
             return Self::white(sigma);
@@ -55,7 +55,7 @@ impl ArNoise {
         let bound = 2.0 / (n as f64).sqrt();
         let mut phi: Vec<f64> = Vec::new();
         let mut err = r[0];
-        for k in 1..=MAX_ORDER {
+        for k in 1..=MAX_AR_ORDER {
             let acc: f64 = (1..k).map(|j| phi[j - 1] * r[k - j]).sum();
             let reflection = (r[k] - acc) / err;
             if !reflection.is_finite() || reflection.abs() < bound || reflection.abs() >= 1.0 {

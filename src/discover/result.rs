@@ -1,5 +1,5 @@
 //! A discovery's result as one [`Analysis`]: the JSON `dlw discover --json` prints (the keys of
-//! [`Summary`], plus the paths of the files written), the terminal summary, and the report's
+//! [`DiscoverySummary`], plus the paths of the files written), the terminal summary, and the report's
 //! sections.
 
 use std::fmt::Write as _;
@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use serde::Serialize;
 
-use super::{report, scenario_text, Outcome, Summary};
+use super::{report, scenario_text, Outcome, DiscoverySummary};
 use crate::analysis::{Analysis, Placement};
 use crate::design::Design;
 use crate::recording::Recording;
@@ -28,7 +28,7 @@ pub struct Written {
 pub struct DiscoverResult {
     /// The named effects, candidates, ambiguities, unexplained structure and gaps.
     #[serde(flatten)]
-    pub summary: Summary,
+    pub summary: DiscoverySummary,
     /// The files written (absent until they are, and in the Python binding).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
     pub written: Option<Written>,
@@ -41,7 +41,7 @@ impl DiscoverResult {
     /// The result of `outcome`, not yet written anywhere.
     pub fn new(outcome: Outcome) -> Self {
         Self {
-            summary: Summary::of(&outcome),
+            summary: DiscoverySummary::of(&outcome),
             written: None,
             outcome,
         }

@@ -52,7 +52,7 @@ pub struct Scored {
 
 /// The discovery's result in `--json`'s form, without the paths of the files written.
 #[derive(Debug, Clone, Serialize)]
-pub struct Summary {
+pub struct DiscoverySummary {
     /// Effects named.
     pub discovered: Vec<Named>,
     /// Every candidate scored.
@@ -67,7 +67,7 @@ pub struct Summary {
     pub gaps: Vec<Gap>,
 }
 
-impl Summary {
+impl DiscoverySummary {
     /// The summary of `outcome`.
     pub fn of(outcome: &Outcome) -> Self {
         Self {

@@ -65,7 +65,7 @@ const FOLDS: usize = 5;
 /// A kind of generic regressor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum Kind {
+pub enum GenericKind {
     /// A memoryless curve of the input of any shape (piecewise linear).
     Curve,
     /// Plays of the input: loops, a difference between loading and unloading.
@@ -77,19 +77,19 @@ pub enum Kind {
     Time,
 }
 
-impl Kind {
+impl GenericKind {
     /// Every kind.
-    pub const ALL: [Kind; 4] = [Kind::Curve, Kind::Memory, Kind::History, Kind::Time];
+    pub const ALL: [GenericKind; 4] = [GenericKind::Curve, GenericKind::Memory, GenericKind::History, GenericKind::Time];
 
     /// Where the structure shows, for people.
     pub fn place(self) -> &'static str {
         match self {
-            Kind::Curve => {
+            GenericKind::Curve => {
                 "along the input's range: a curve no named effect draws (high strain or stroke)"
             }
-            Kind::Memory => "at reversals: loading and unloading differ",
-            Kind::History => "during holds and after changes: the channel lags its input",
-            Kind::Time => "over the run: the baseline or the sensitivity changes with time",
+            GenericKind::Memory => "at reversals: loading and unloading differ",
+            GenericKind::History => "during holds and after changes: the channel lags its input",
+            GenericKind::Time => "over the run: the baseline or the sensitivity changes with time",
         }
     }
 }
@@ -103,12 +103,12 @@ pub struct Unexplained {
     /// Held-out evidence of the generic regressors over the final model (nats).
     pub evidence: f64,
     /// The kind that alone adds the most evidence.
-    pub kind: Kind,
+    pub kind: GenericKind,
     /// Where it is, in words.
     #[serde(rename = "where")]
     pub place: &'static str,
-    /// The evidence each kind alone adds to the final model (nats), in [`Kind::ALL`]'s order.
-    pub by_kind: Vec<(Kind, f64)>,
+    /// The evidence each kind alone adds to the final model (nats), in [`GenericKind::ALL`]'s order.
+    pub by_kind: Vec<(GenericKind, f64)>,
     /// The bootstrap the flag was given by (absent with `--fast`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub calibration: Option<Calibration>,
@@ -205,7 +205,7 @@ type Columns<'a> = (Vec<&'a Vec<f64>>, Vec<(usize, &'a DMatrix<f64>)>);
 
 /// The statistic (the larger of all kinds together and the best kind alone), each kind's
 /// evidence alone, and every set's fit.
-type Statistic = (f64, Vec<(Kind, f64)>, Vec<SetFit>);
+type Statistic = (f64, Vec<(GenericKind, f64)>, Vec<SetFit>);
 
 /// A channel's generic test over any target: the groups' whitened columns, the folds.
 struct Generic<'a> {
@@ -235,32 +235,32 @@ impl Residuals<'_> {
     /// the input without the tracker's noise), and the penalized blocks among them.
     fn columns(
         &self,
-        kind: Kind,
+        kind: GenericKind,
         x: &[f64],
         smooth: &[f64],
         data: &Data,
     ) -> (Vec<Vec<f64>>, Vec<(usize, usize)>) {
         match kind {
-            Kind::Curve => {
+            GenericKind::Curve => {
                 let h = hats(smooth, &Term::static_knots(self.span));
                 let m = h.len();
                 (h, vec![(0, m)])
             }
-            Kind::Memory => (
+            GenericKind::Memory => (
                 MEMORY_RADII
                     .iter()
                     .map(|f| play(x, f * self.span))
                     .collect(),
                 Vec::new(),
             ),
-            Kind::History => (
+            GenericKind::History => (
                 HISTORY_TAUS_S
                     .iter()
                     .map(|&tau_s| low_pass(x, tau_s, data.dt_s))
                     .collect(),
                 Vec::new(),
             ),
-            Kind::Time => {
+            GenericKind::Time => {
                 let moving: Vec<f64> = data.time_s[data.rest.min(data.len())..].to_vec();
                 let lo = moving.first().copied().unwrap_or(0.0);
                 let hi = moving.last().copied().unwrap_or(lo);
@@ -358,7 +358,7 @@ impl Residuals<'_> {
             self.holdout.then(|| self.test_design.columns.clone()),
             Vec::new(),
         ));
-        for kind in Kind::ALL {
+        for kind in GenericKind::ALL {
             let (cols, blocks) = self.columns(kind, &x, &smooth, self.data);
             let test = self
                 .holdout
@@ -391,7 +391,7 @@ impl Residuals<'_> {
             .iter()
             .copied()
             .max_by(|a, b| a.1.total_cmp(&b.1))
-            .unwrap_or((Kind::Curve, f64::NEG_INFINITY));
+            .unwrap_or((GenericKind::Curve, f64::NEG_INFINITY));
         let calibration = if fast {
             None
         } else {
@@ -433,8 +433,8 @@ impl Generic<'_> {
     /// The sets tested: the final model alone, each kind alone with it, and all kinds.
     fn sets() -> Vec<Vec<usize>> {
         let mut sets = vec![vec![0]];
-        sets.extend((1..=Kind::ALL.len()).map(|k| vec![0, k]));
-        sets.push((0..=Kind::ALL.len()).collect());
+        sets.extend((1..=GenericKind::ALL.len()).map(|k| vec![0, k]));
+        sets.push((0..=GenericKind::ALL.len()).collect());
         sets
     }
 
@@ -591,9 +591,9 @@ impl Generic<'_> {
         let n = self.r.test.iter().filter(|t| **t).count();
         let from = fits[0].test_ss;
         let gain = |f: &SetFit| super::evidence(n, from, f.test_ss, f.tau);
-        let by_kind: Vec<(Kind, f64)> = Kind::ALL
+        let by_kind: Vec<(GenericKind, f64)> = GenericKind::ALL
             .iter()
-            .zip(&fits[1..=Kind::ALL.len()])
+            .zip(&fits[1..=GenericKind::ALL.len()])
             .map(|(k, f)| (*k, gain(f)))
             .filter(|(_, e)| e.is_finite())
             .collect();
@@ -783,7 +783,7 @@ mod fit_tests {
             white_test: None,
         };
         // Set 0 (the model alone) and set 3 (with the history), against model::fit.
-        for (set, kinds) in [(0usize, vec![]), (3, vec![Kind::History])] {
+        for (set, kinds) in [(0usize, vec![]), (3, vec![GenericKind::History])] {
             let got = g.fit(&sets[set], &target).test_ss;
             let mut d = design.clone();
             for k in kinds {
