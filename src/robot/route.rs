@@ -247,7 +247,7 @@ fn route_over_joints(
         };
         let from: Vec<f64> = active.iter().map(|&i| leads[i].s()).collect();
         let sensor_of: Vec<usize> = names.iter().map(|n| n.sensor.index).collect();
-        let jogs = match choose_lanes(&plan, joint, &from, &sensor_of, &own_sums, pitch) {
+        let jogs = match choose_lanes(&plan, joint, &from, &sensor_of, own_sums, pitch) {
             Ok(j) => j,
             Err((a, b)) => {
                 violations.push(crossing(
@@ -314,7 +314,7 @@ fn route_to_pads(
     let own = &joint_leads[last_index];
     let from: Vec<f64> = active.iter().map(|&i| leads[i].s()).collect();
     let terminals: Vec<Coord> = own_pads.iter().map(|p| p.points[0]).collect();
-    let to = match row_zero_targets(&active, own, &from, &own_pads, leads, pitch) {
+    let to = match row_zero_targets(&active, own, &from, own_pads, leads, pitch) {
         Ok(to) => to,
         Err(v) => {
             violations.push(v);
