@@ -30,7 +30,7 @@ use serde::Serialize;
 
 use crate::recording::robot::RobotRecording;
 use crate::recording::{Recording, Samples};
-use crate::robot::CheckedRobot;
+use crate::robot::{CheckedRobot, RobotSensor};
 
 use super::{fit, FitRequest, ModelKind, Prefilter};
 
@@ -164,15 +164,7 @@ pub fn fit_robot(
     if !s.has_joint_angles() {
         return Err(RobotFitError::NoJointAngles);
     }
-    let rows: Vec<usize> = (0..s.len()).filter(|&i| s.tracker_valid_at(i)).collect();
-    let unknowns = n + 1;
-    if rows.len() < 10 * unknowns {
-        return Err(RobotFitError::TooFewRows {
-            rows: rows.len(),
-            min: 10 * unknowns,
-            unknowns,
-        });
-    }
+    let rows = fitted_rows(recording, n)?;
     let theta = |j: usize, i: usize| s.angle_deg[j][i].to_radians();
     let (angle_condition, still) = angle_conditioning(n, &rows, theta);
     let geometry = robot.crosstalk_matrix();
@@ -182,53 +174,126 @@ pub fn fit_robot(
     let angle_condition =
         (still.is_none() && angle_condition.is_finite()).then_some(angle_condition);
     if !crosstalk_fitted {
-        let why = match still {
-            Some((joint, std_deg)) => format!(
-                "joint {joint}'s recorded angle does not move (standard deviation {std_deg:.2e}°)"
-            ),
-            None => format!(
-                "the recorded angles' standardized columns have condition number {:.1}, above {MAX_ANGLE_CONDITION} (the joints moved together)",
-                angle_condition.unwrap_or(f64::INFINITY)
-            ),
-        };
-        warnings.push(format!(
-            "cannot tell the joints apart: {why}; the crosstalk is not fitted and stays the geometry's (dlw inspect), and each sensor's model is fitted on its mixed angle through it. Record the joints moving independently to fit the crosstalk"
-        ));
+        warnings.push(cannot_separate(still, angle_condition));
     }
-    let mut out = Vec::with_capacity(sensors.len());
-    for (i, sensor) in sensors.iter().enumerate() {
+    let fitter = SensorFitter {
+        robot,
+        recording,
+        rows: &rows,
+        geometry: &geometry,
+        crosstalk_fitted,
+        kind: model,
+        order,
+        prefilter,
+    };
+    let out = sensors
+        .iter()
+        .enumerate()
+        .map(|(i, sensor)| fitter.fit(i, sensor))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(RobotFit {
+        sensors: out,
+        samples_fitted: rows.len(),
+        angle_condition,
+        crosstalk_fitted,
+        model: super::model_name(model).to_string(),
+        warnings,
+    })
+}
+
+/// The rows the tracker saw, or an error when they are too few for `n` joints' line.
+fn fitted_rows(recording: &RobotRecording, n: usize) -> Result<Vec<usize>, RobotFitError> {
+    let s = &recording.samples;
+    let rows: Vec<usize> = (0..s.len()).filter(|&i| s.tracker_valid_at(i)).collect();
+    let unknowns = n + 1;
+    if rows.len() < 10 * unknowns {
+        return Err(RobotFitError::TooFewRows {
+            rows: rows.len(),
+            min: 10 * unknowns,
+            unknowns,
+        });
+    }
+    Ok(rows)
+}
+
+/// The warning when the recording cannot tell the joints apart: the joint that did not move
+/// (`still`), or else the angles' condition number.
+fn cannot_separate(still: Option<(usize, f64)>, angle_condition: Option<f64>) -> String {
+    let why = match still {
+        Some((joint, std_deg)) => format!(
+            "joint {joint}'s recorded angle does not move (standard deviation {std_deg:.2e}°)"
+        ),
+        None => format!(
+            "the recorded angles' standardized columns have condition number {:.1}, above {MAX_ANGLE_CONDITION} (the joints moved together)",
+            angle_condition.unwrap_or(f64::INFINITY)
+        ),
+    };
+    format!(
+        "cannot tell the joints apart: {why}; the crosstalk is not fitted and stays the geometry's (dlw inspect), and each sensor's model is fitted on its mixed angle through it. Record the joints moving independently to fit the crosstalk"
+    )
+}
+
+/// What every sensor's line is fitted on.
+struct SensorFitter<'a> {
+    robot: &'a CheckedRobot,
+    recording: &'a RobotRecording,
+    /// The rows fitted (tracker valid).
+    rows: &'a [usize],
+    /// The geometry's crosstalk matrix.
+    geometry: &'a [Vec<f64>],
+    crosstalk_fitted: bool,
+    kind: ModelKind,
+    order: crate::fit::PlayOrder,
+    prefilter: Prefilter,
+}
+
+impl SensorFitter<'_> {
+    /// Joint `j`'s tracked angle (rad) at row `i`.
+    fn theta(&self, j: usize, i: usize) -> f64 {
+        self.recording.samples.angle_deg[j][i].to_radians()
+    }
+
+    /// Sensor `i`'s line, crosstalk row and model.
+    fn fit(&self, i: usize, sensor: &RobotSensor) -> Result<SensorFitReport, RobotFitError> {
+        let n = self.robot.robot.joints.len();
         let bad = |message: String| RobotFitError::Model {
             sensor: i + 1,
             message,
         };
-        let divider = Divider::new(recording.rig.divider_ohm[i], recording.rig.supply_v)
-            .map_err(|e| bad(e.to_string()))?;
-        let ohm: Vec<f64> = rows
+        let divider = Divider::new(
+            self.recording.rig.divider_ohm[i],
+            self.recording.rig.supply_v,
+        )
+        .map_err(|e| bad(e.to_string()))?;
+        let ohm: Vec<f64> = self
+            .rows
             .iter()
-            .map(|&r| divider.resistance(s.volts[i][r]))
+            .map(|&r| divider.resistance(self.recording.samples.volts[i][r]))
             .collect::<Result<_, _>>()
             .map_err(|e| bad(e.to_string()))?;
         let y = DVector::from_vec(ohm);
         // The line on every joint's angle, or, when the joints cannot be told apart, on the
         // sensor's mixed angle through the geometry's row.
-        let x = if crosstalk_fitted {
-            DMatrix::from_fn(rows.len(), n + 1, |r, c| {
+        let x = if self.crosstalk_fitted {
+            DMatrix::from_fn(self.rows.len(), n + 1, |r, c| {
                 if c == 0 {
                     1.0
                 } else {
-                    theta(c - 1, rows[r])
+                    self.theta(c - 1, self.rows[r])
                 }
             })
         } else {
-            DMatrix::from_fn(rows.len(), 2, |r, c| {
+            DMatrix::from_fn(self.rows.len(), 2, |r, c| {
                 if c == 0 {
                     1.0
                 } else {
-                    (0..n).map(|j| geometry[i][j] * theta(j, rows[r])).sum()
+                    (0..n)
+                        .map(|j| self.geometry[i][j] * self.theta(j, self.rows[r]))
+                        .sum()
                 }
             })
         };
-        let own = if crosstalk_fitted {
+        let own = if self.crosstalk_fitted {
             sensor.joint + 1
         } else {
             1
@@ -248,39 +313,42 @@ pub fn fit_robot(
             });
         }
         let sign = if sensor.sensor == 1 { -1.0 } else { 1.0 };
-        let k = joints[sensor.joint].design().joint.strain_per_rad();
+        let k = self.robot.robot.joints[sensor.joint]
+            .design()
+            .joint
+            .strain_per_rad();
         let r0_ohm = line.b[0];
         let gauge_factor = line.b[own] / (r0_ohm * sign * k);
-        let crosstalk: Vec<f64> = if crosstalk_fitted {
+        let crosstalk: Vec<f64> = if self.crosstalk_fitted {
             (0..n).map(|j| line.b[j + 1] / line.b[own]).collect()
         } else {
-            geometry[i].clone()
+            self.geometry[i].clone()
         };
         let linear = LinearModel::new(gauge_factor, r0_ohm).map_err(|e| bad(e.to_string()))?;
-        let model = match model {
+        let model = match self.kind {
             ModelKind::Linear => ModelConfig::Linear(linear),
-            kind => fit_on_mixed_angle(robot, recording, i, &crosstalk, kind, order, prefilter)
-                .map_err(bad)?,
+            kind => fit_on_mixed_angle(
+                self.robot,
+                self.recording,
+                i,
+                &crosstalk,
+                kind,
+                self.order,
+                self.prefilter,
+            )
+            .map_err(bad)?,
         };
-        out.push(SensorFitReport {
+        Ok(SensorFitReport {
             joint: sensor.joint + 1,
             sensor: sensor.sensor + 1,
             gauge_factor,
             r0_ohm,
             crosstalk,
-            crosstalk_geometry: geometry[i].clone(),
+            crosstalk_geometry: self.geometry[i].clone(),
             residual_rms_ohm: line.residual_rms,
             model,
-        });
+        })
     }
-    Ok(RobotFit {
-        sensors: out,
-        samples_fitted: rows.len(),
-        angle_condition,
-        crosstalk_fitted,
-        model: super::model_name(model).to_string(),
-        warnings,
-    })
 }
 
 /// The condition number of the standardized angle columns over `rows`, and the first joint

@@ -255,30 +255,11 @@ fn parse_robot_data(text: &str, rig: &Rig, path: &Path) -> Result<RobotSamples, 
     let mut lines = text.split('\n').enumerate();
     let first = lines.next().map_or("", |(_, l)| l.trim_end_matches('\r'));
     let Some((joints, tip, marked)) = header_shape(first, sensors) else {
-        // Name the header a robot of as many joints as the header seems to have would need.
-        let joints = first
-            .split(',')
-            .filter(|c| c.starts_with("stroke"))
-            .count()
-            .max(1);
-        return Err(RecordingError::Header {
-            path: path.to_path_buf(),
-            found: crate::limits::quote(first),
-            expected: format!(
-                "{}[{TIP_COLUMNS_SUFFIX}][{VALID_COLUMN_SUFFIX}]",
-                robot_header(joints, sensors, false)
-            ),
-            channels: sensors,
-        });
+        return Err(header_error(first, sensors, path));
     };
-    let header = first.to_string();
-    let columns: Vec<&str> = header.split(',').collect();
-    let angles_at = 1 + joints;
-    let volts_at = 1 + 2 * joints;
-    let tip_at = volts_at + sensors;
-    let valid_at = tip_at + if tip { 3 } else { 0 };
+    let columns = Columns::new(first, joints, sensors, tip, marked);
     let mut samples = RobotSamples::new(joints, sensors, tip);
-    let mut row = vec![0.0f64; columns.len()];
+    let mut row = vec![0.0f64; columns.names.len()];
     let mut blank = None;
     let mut angles_empty: Option<(usize, bool)> = None;
     for (i, raw) in lines {
@@ -288,32 +269,103 @@ fn parse_robot_data(text: &str, rig: &Rig, path: &Path) -> Result<RobotSamples, 
             blank.get_or_insert(line);
             continue;
         }
-        let fields_error = |found| RecordingError::Fields {
+        if let Some(line) = blank {
+            return Err(columns.fields_error(path, line, 0));
+        }
+        let empty = columns.read_row(text, line, &mut row, path)?;
+        check_angles_alike(&mut angles_empty, line, empty, path)?;
+        columns.push_row(&row, empty, line, rig, path, &mut samples)?;
+    }
+    if samples.is_empty() {
+        return Err(RecordingError::NoRows {
+            path: path.to_path_buf(),
+        });
+    }
+    Ok(samples)
+}
+
+/// The error for a first line that is not a robot header: it names the header a robot of as
+/// many joints as the line seems to have would need.
+fn header_error(first: &str, sensors: usize, path: &Path) -> RecordingError {
+    let joints = first
+        .split(',')
+        .filter(|c| c.starts_with("stroke"))
+        .count()
+        .max(1);
+    RecordingError::Header {
+        path: path.to_path_buf(),
+        found: crate::limits::quote(first),
+        expected: format!(
+            "{}[{TIP_COLUMNS_SUFFIX}][{VALID_COLUMN_SUFFIX}]",
+            robot_header(joints, sensors, false)
+        ),
+        channels: sensors,
+    }
+}
+
+/// Where each quantity sits in a robot data row, from its header.
+struct Columns {
+    /// The header line as read.
+    header: String,
+    /// The column names, in order.
+    names: Vec<String>,
+    joints: usize,
+    sensors: usize,
+    /// Whether the rows carry a `tracker_valid` column.
+    marked: bool,
+    angles_at: usize,
+    volts_at: usize,
+    tip_at: usize,
+    valid_at: usize,
+}
+
+impl Columns {
+    fn new(first: &str, joints: usize, sensors: usize, tip: bool, marked: bool) -> Self {
+        let volts_at = 1 + 2 * joints;
+        let tip_at = volts_at + sensors;
+        Columns {
+            header: first.to_string(),
+            names: first.split(',').map(str::to_string).collect(),
+            joints,
+            sensors,
+            marked,
+            angles_at: 1 + joints,
+            volts_at,
+            tip_at,
+            valid_at: tip_at + if tip { 3 } else { 0 },
+        }
+    }
+
+    /// Line `line` has `found` fields where the header has more or fewer.
+    fn fields_error(&self, path: &Path, line: usize, found: usize) -> RecordingError {
+        RecordingError::Fields {
             path: path.to_path_buf(),
             line,
             found,
-            expected: columns.len(),
-            header: header.clone(),
-        };
-        if let Some(line) = blank {
-            return Err(RecordingError::Fields {
-                path: path.to_path_buf(),
-                line,
-                found: 0,
-                expected: columns.len(),
-                header: header.clone(),
-            });
+            expected: self.names.len(),
+            header: self.header.clone(),
         }
+    }
+
+    /// Parses line `line` (`text`) into `row`; returns whether its angle columns are empty.
+    fn read_row(
+        &self,
+        text: &str,
+        line: usize,
+        row: &mut [f64],
+        path: &Path,
+    ) -> Result<bool, RecordingError> {
+        let (angles_at, volts_at, valid_at) = (self.angles_at, self.volts_at, self.valid_at);
         let mut n = 0;
         let mut empty_angles = 0;
         for field in text.split(',') {
-            if n >= columns.len() {
+            if n >= self.names.len() {
                 n += 1;
                 continue;
             }
             if (angles_at..volts_at).contains(&n) && field.is_empty() {
                 empty_angles += 1;
-            } else if marked && n == valid_at {
+            } else if self.marked && n == valid_at {
                 row[n] = match field.trim() {
                     "1" => 1.0,
                     "0" => 0.0,
@@ -327,13 +379,14 @@ fn parse_robot_data(text: &str, rig: &Rig, path: &Path) -> Result<RobotSamples, 
                     }
                 };
             } else {
-                row[n] = parse_field(field, line, columns[n], path)?;
+                row[n] = parse_field(field, line, &self.names[n], path)?;
             }
             n += 1;
         }
-        if n != columns.len() {
-            return Err(fields_error(n));
+        if n != self.names.len() {
+            return Err(self.fields_error(path, line, n));
         }
+        let joints = self.joints;
         if empty_angles != 0 && empty_angles != joints {
             return Err(RecordingError::Number {
                 path: path.to_path_buf(),
@@ -342,24 +395,19 @@ fn parse_robot_data(text: &str, rig: &Rig, path: &Path) -> Result<RobotSamples, 
                 text: format!("{empty_angles} of {joints} empty"),
             });
         }
-        let empty = empty_angles == joints;
-        match angles_empty {
-            None => angles_empty = Some((line, empty)),
-            Some((first_line, first)) if first != empty => {
-                return Err(RecordingError::MixedAngle {
-                    path: path.to_path_buf(),
-                    line,
-                    found: if empty { "empty" } else { "a number" },
-                    first_line,
-                    first: if first {
-                        "has it empty"
-                    } else {
-                        "has a number"
-                    },
-                });
-            }
-            Some(_) => {}
-        }
+        Ok(empty_angles == joints)
+    }
+
+    /// Checks a parsed row's time and voltages and appends it to `samples`.
+    fn push_row(
+        &self,
+        row: &[f64],
+        empty: bool,
+        line: usize,
+        rig: &Rig,
+        path: &Path,
+        samples: &mut RobotSamples,
+    ) -> Result<(), RecordingError> {
         if let Some(&previous_s) = samples.time_s.last() {
             if row[0] <= previous_s {
                 return Err(RecordingError::TimeNotIncreasing {
@@ -370,13 +418,13 @@ fn parse_robot_data(text: &str, rig: &Rig, path: &Path) -> Result<RobotSamples, 
                 });
             }
         }
-        for c in 0..sensors {
-            let volts = row[volts_at + c];
+        for c in 0..self.sensors {
+            let volts = row[self.volts_at + c];
             if !(volts > 0.0 && volts < rig.supply_v) {
                 return Err(RecordingError::Rail {
                     path: path.to_path_buf(),
                     line,
-                    column: columns[volts_at + c].to_string(),
+                    column: self.names[self.volts_at + c].clone(),
                     volts,
                     supply_v: rig.supply_v,
                 });
@@ -384,27 +432,50 @@ fn parse_robot_data(text: &str, rig: &Rig, path: &Path) -> Result<RobotSamples, 
             samples.volts[c].push(volts);
         }
         samples.time_s.push(row[0]);
-        for j in 0..joints {
+        for j in 0..self.joints {
             samples.stroke_mm[j].push(row[1 + j]);
             if !empty {
-                samples.angle_deg[j].push(row[angles_at + j]);
+                samples.angle_deg[j].push(row[self.angles_at + j]);
             }
         }
         if let Some(t) = &mut samples.tip_mm {
             for (k, c) in t.iter_mut().enumerate() {
-                c.push(row[tip_at + k]);
+                c.push(row[self.tip_at + k]);
             }
         }
-        if marked {
-            samples.tracker_valid.push(row[valid_at] == 1.0);
+        if self.marked {
+            samples.tracker_valid.push(row[self.valid_at] == 1.0);
         }
+        Ok(())
     }
-    if samples.is_empty() {
-        return Err(RecordingError::NoRows {
-            path: path.to_path_buf(),
-        });
+}
+
+/// Every row must have its angles, or every row must have them empty: `angles_empty` holds the
+/// first row's line and whether it had them empty.
+fn check_angles_alike(
+    angles_empty: &mut Option<(usize, bool)>,
+    line: usize,
+    empty: bool,
+    path: &Path,
+) -> Result<(), RecordingError> {
+    match *angles_empty {
+        None => *angles_empty = Some((line, empty)),
+        Some((first_line, first)) if first != empty => {
+            return Err(RecordingError::MixedAngle {
+                path: path.to_path_buf(),
+                line,
+                found: if empty { "empty" } else { "a number" },
+                first_line,
+                first: if first {
+                    "has it empty"
+                } else {
+                    "has a number"
+                },
+            });
+        }
+        Some(_) => {}
     }
-    Ok(samples)
+    Ok(())
 }
 
 #[cfg(test)]

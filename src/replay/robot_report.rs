@@ -45,6 +45,28 @@ pub fn robot_report(
         config.sensor_count(),
         replay.flagged_samples
     ));
+    shape_over_time(&mut page, config, recording, replay);
+    joint_errors(&mut page, config, recording, replay);
+    if let Some(tip) = &replay.tip {
+        page.text(format!(
+            "The tip: RMSE {:.3} mm, max {:.3} mm against the tracked tip.",
+            tip.rmse_mm, tip.max_mm
+        ));
+    }
+    crosstalk(&mut page, config);
+    page
+}
+
+/// The small multiples: the backbone at [`SHAPE_FRAMES`] times, estimated against tracked.
+fn shape_over_time(
+    page: &mut Page,
+    config: &RobotEstimatorConfig,
+    recording: &RobotRecording,
+    replay: &RobotReplay,
+) {
+    let s = &recording.samples;
+    let n = config.joint_count();
+    let rows = s.len();
     page.heading("The shape over time");
     page.text(format!(
         "{SHAPE_FRAMES} frames equally spaced in time; each the backbone's x and y (mm, base frame) against z along the tube, estimated (solid) and, where the recording has every joint's angle, from the tracked angles through the same kinematics (dots)."
@@ -98,6 +120,18 @@ pub fn robot_report(
         );
         page.figure(format!("shape-{}", f + 1), chart, caption);
     }
+}
+
+/// Each joint's error table and chart, where the recording tracks every joint's angle.
+fn joint_errors(
+    page: &mut Page,
+    config: &RobotEstimatorConfig,
+    recording: &RobotRecording,
+    replay: &RobotReplay,
+) {
+    let s = &recording.samples;
+    let n = config.joint_count();
+    let rows = s.len();
     if let (Some(metrics), true) = (&replay.joints, s.has_joint_angles()) {
         page.heading("Each joint's error");
         let mut table = Table::new(["joint", "RMSE (°)", "max |error| (°)"]);
@@ -136,12 +170,11 @@ pub fn robot_report(
             "each joint's estimate minus its tracked angle",
         );
     }
-    if let Some(tip) = &replay.tip {
-        page.text(format!(
-            "The tip: RMSE {:.3} mm, max {:.3} mm against the tracked tip.",
-            tip.rmse_mm, tip.max_mm
-        ));
-    }
+}
+
+/// The crosstalk matrix the config undid, one row per sensor.
+fn crosstalk(page: &mut Page, config: &RobotEstimatorConfig) {
+    let n = config.joint_count();
     page.heading("The crosstalk the config undid");
     let mut header = vec!["sensor".to_string(), "joint, sensor".to_string()];
     header.extend((1..=n).map(|j| format!("joint {j}")));
@@ -152,5 +185,4 @@ pub fn robot_report(
         table.row(row);
     }
     page.table(table);
-    page
 }

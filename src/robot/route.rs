@@ -77,8 +77,75 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
         lead_mm: w + clearance,
         cut_mm: w / 2.0 + clearance.max(fab.kerf_mm / 2.0),
     };
-    let multi = robot.joints.len() > 1;
     let mut violations = Vec::new();
+    let Placed {
+        notches,
+        sensors,
+        mut leads,
+        own_pads,
+        joint_leads,
+    } = place_joints(robot)?;
+    let own_sums = own_sums(robot, &sensors);
+    let passing = route_over_joints(
+        robot,
+        &mut leads,
+        &joint_leads,
+        &own_sums,
+        pitch,
+        &mut violations,
+    )?;
+    let ended = route_to_pads(
+        robot,
+        &mut leads,
+        passing,
+        &joint_leads,
+        &own_pads,
+        pitch,
+        &mut violations,
+    )?;
+    if !violations.is_empty() {
+        return Err(violations);
+    }
+    let last = robot.last();
+    let fab = &last.design().file.fabrication;
+    let length_mm = if ended.pad_rows == 0 && ended.pad_shift == 0.0 {
+        last.x(last.stations.parting_x_mm)
+    } else {
+        ended.end_x + fab.proximal_margin_mm
+    };
+    let (lead_lines, pad_lines, lead_names) = lead_and_pad_lines(leads, ended.pads)?;
+    Ok(Routed {
+        unrolled: Unrolled {
+            name: robot.name.clone(),
+            outer_radius_mm: first.file.outer_radius_mm,
+            circumference_mm: pitch.c,
+            trace_width_mm: w,
+            kerf_mm: fab.kerf_mm,
+            length_mm,
+            notches,
+            sensors,
+            leads: lead_lines,
+            pads: pad_lines,
+        },
+        lead_names,
+        pad_rows: ended.pad_rows,
+    })
+}
+
+/// Every joint's notches and U-traces on the robot, a lead starting at each trace's ends, and
+/// the last joint's own pads.
+struct Placed {
+    notches: Vec<NotchRect>,
+    sensors: Vec<Polyline>,
+    leads: Vec<Lead>,
+    own_pads: Vec<Polyline>,
+    /// Each joint's own leads (indices into `leads`).
+    joint_leads: Vec<Vec<usize>>,
+}
+
+/// Places each joint's own features on the robot.
+fn place_joints(robot: &Robot) -> Result<Placed, Vec<RobotViolation>> {
+    let multi = robot.joints.len() > 1;
     let mut notches: Vec<NotchRect> = Vec::new();
     let mut sensors: Vec<Polyline> = Vec::new();
     let mut leads: Vec<Lead> = Vec::new();
@@ -132,17 +199,40 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
         joint_leads.push(mine);
     }
 
-    // What each sensor's U-trace reads of its own joint: the crosstalk's denominator.
-    let r_o = first.file.outer_radius_mm;
-    let own_sums: Vec<f64> = sensors
+    Ok(Placed {
+        notches,
+        sensors,
+        leads,
+        own_pads,
+        joint_leads,
+    })
+}
+
+/// What each sensor's U-trace reads of its own joint: the crosstalk's denominator.
+fn own_sums(robot: &Robot, sensors: &[Polyline]) -> Vec<f64> {
+    let r_o = robot.joints[0].design().file.outer_radius_mm;
+    let robot_sensors = robot.sensors();
+    sensors
         .iter()
         .map(|u| {
             let j = &robot.joints[robot_sensors[u.sensor].joint];
             let height = |s: f64| r_o * (s / r_o - j.rotation_rad()).cos() - j.neutral_axis_mm();
             height(u.points[0].y) + height(u.points[u.points.len() - 1].y)
         })
-        .collect();
-    // Over each joint after the first: the leads from every joint before it.
+        .collect()
+}
+
+/// Over each joint after the first: the leads from every joint before it. Returns the leads
+/// that pass the last joint; a gap too short is added to `violations`, a backbone too narrow
+/// or leads that would cross end the routing.
+fn route_over_joints(
+    robot: &Robot,
+    leads: &mut [Lead],
+    joint_leads: &[Vec<usize>],
+    own_sums: &[f64],
+    pitch: Pitch,
+    violations: &mut Vec<RobotViolation>,
+) -> Result<Vec<usize>, Vec<RobotViolation>> {
     let mut active: Vec<usize> = Vec::new();
     for ji in 1..robot.joints.len() {
         active.extend(&joint_leads[ji - 1]);
@@ -152,12 +242,12 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
             Ok(plan) => plan,
             Err(no) => {
                 violations.push(backbone(ji, joint, &names, no.room, &no.widths, pitch));
-                return Err(violations);
+                return Err(std::mem::take(violations));
             }
         };
         let from: Vec<f64> = active.iter().map(|&i| leads[i].s()).collect();
         let sensor_of: Vec<usize> = names.iter().map(|n| n.sensor.index).collect();
-        let jogs = match choose_lanes(&plan, joint, &from, &sensor_of, &own_sums, pitch) {
+        let jogs = match choose_lanes(&plan, joint, &from, &sensor_of, own_sums, pitch) {
             Ok(j) => j,
             Err((a, b)) => {
                 violations.push(crossing(
@@ -167,7 +257,7 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
                     a,
                     b,
                 ));
-                return Err(violations);
+                return Err(std::mem::take(violations));
             }
         };
         let x0 = prev.x(prev.stations.arm_end_x_mm);
@@ -191,22 +281,44 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
                 needed_mm: gap_mm + needed - (x1 - x0),
             });
         }
-        apply(&mut leads, &active, &jogs, x0, x1);
+        apply(leads, &active, &jogs, x0, x1);
     }
 
-    // After the last joint: its own leads to its own pads (row 0), the others between them.
+    Ok(active)
+}
+
+/// Where the leads end: each lead's pad, the x past the last pad row, the rows of pads, and
+/// how far the last joint's own pads moved along x.
+struct Ended {
+    pads: Vec<Option<Polyline>>,
+    end_x: f64,
+    pad_rows: usize,
+    pad_shift: f64,
+}
+
+/// After the last joint: its own leads to its own pads (row 0), the others (`passing`) between
+/// them and on to rows of pads of their own.
+fn route_to_pads(
+    robot: &Robot,
+    leads: &mut [Lead],
+    passing: Vec<usize>,
+    joint_leads: &[Vec<usize>],
+    own_pads: &[Polyline],
+    pitch: Pitch,
+    violations: &mut Vec<RobotViolation>,
+) -> Result<Ended, Vec<RobotViolation>> {
     let last_index = robot.joints.len() - 1;
     let last = robot.last();
-    let passing = active.clone();
+    let mut active = passing.clone();
     active.extend(&joint_leads[last_index]);
     let own = &joint_leads[last_index];
     let from: Vec<f64> = active.iter().map(|&i| leads[i].s()).collect();
     let terminals: Vec<Coord> = own_pads.iter().map(|p| p.points[0]).collect();
-    let to = match row_zero_targets(&active, own, &from, &own_pads, &leads, pitch) {
+    let to = match row_zero_targets(&active, own, &from, own_pads, leads, pitch) {
         Ok(to) => to,
         Err(v) => {
             violations.push(v);
-            return Err(violations);
+            return Err(std::mem::take(violations));
         }
     };
     let names: Vec<LeadName> = active.iter().map(|&i| leads[i].name).collect();
@@ -214,7 +326,7 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
         Ok(j) => j,
         Err((a, b)) => {
             violations.push(crossing("before the pads".into(), last_index, &names, a, b));
-            return Err(violations);
+            return Err(std::mem::take(violations));
         }
     };
     let x0 = last.x(last.stations.arm_end_x_mm);
@@ -224,7 +336,7 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
     } else {
         x0 + (jogs.steps + 1) as f64 * pitch.lead_mm
     };
-    apply(&mut leads, &active, &jogs, x0, pad_x);
+    apply(leads, &active, &jogs, x0, pad_x);
     let pad_shift = pad_x - last.x(last.stations.pad_x_mm);
     let mut pads: Vec<Option<Polyline>> = (0..leads.len()).map(|_| None).collect();
     for (k, &i) in own.iter().enumerate() {
@@ -252,7 +364,7 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
     let mut pad_rows = 0;
     if !passing.is_empty() {
         let x0 = pad_x + pad_mm;
-        match rows(&passing, &mut leads, fab, pad_mm, x0, pitch) {
+        match rows(&passing, leads, fab, pad_mm, x0, pitch) {
             Ok((rows_end, list, count)) => {
                 for (i, pad) in list {
                     pads[i] = Some(pad);
@@ -262,18 +374,25 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
             }
             Err(v) => {
                 violations.push(v);
-                return Err(violations);
+                return Err(std::mem::take(violations));
             }
         }
     }
-    if !violations.is_empty() {
-        return Err(violations);
-    }
-    let length_mm = if pad_rows == 0 && pad_shift == 0.0 {
-        last.x(last.stations.parting_x_mm)
-    } else {
-        end_x + fab.proximal_margin_mm
-    };
+    Ok(Ended {
+        pads,
+        end_x,
+        pad_rows,
+        pad_shift,
+    })
+}
+
+/// The leads and their pads as polylines, with the leads' names; an error for a lead that
+/// reached no pad.
+#[allow(clippy::type_complexity)]
+fn lead_and_pad_lines(
+    leads: Vec<Lead>,
+    pads: Vec<Option<Polyline>>,
+) -> Result<(Vec<Polyline>, Vec<Polyline>, Vec<LeadName>), Vec<RobotViolation>> {
     let mut lead_lines = Vec::with_capacity(leads.len());
     let mut pad_lines = Vec::with_capacity(leads.len());
     let mut lead_names = Vec::with_capacity(leads.len());
@@ -291,22 +410,7 @@ pub(crate) fn route(robot: &Robot) -> Result<Routed, Vec<RobotViolation>> {
         pad_lines.push(pad);
         lead_names.push(lead.name);
     }
-    Ok(Routed {
-        unrolled: Unrolled {
-            name: robot.name.clone(),
-            outer_radius_mm: first.file.outer_radius_mm,
-            circumference_mm: pitch.c,
-            trace_width_mm: w,
-            kerf_mm: fab.kerf_mm,
-            length_mm,
-            notches,
-            sensors,
-            leads: lead_lines,
-            pads: pad_lines,
-        },
-        lead_names,
-        pad_rows,
-    })
+    Ok((lead_lines, pad_lines, lead_names))
 }
 
 /// The lanes over `joint` and which lead takes which: each corridor's block of lanes is moved

@@ -16,6 +16,7 @@ use crate::drawing::svg::options::{Drawn, SvgOptions};
 use crate::drawing::svg::palette;
 use crate::drawing::svg::sheet::{fixed, Anchor, Sheet, TextStyle};
 use crate::drawing::svg::SvgError;
+use crate::layout::Layout;
 
 /// The sheet's layers, bottom first.
 const LAYERS: [&str; 9] = [
@@ -65,15 +66,40 @@ pub fn robot_svg_with(robot: &CheckedRobot, options: &SvgOptions) -> Result<Stri
 }
 
 fn draw(robot: &CheckedRobot, scale: f64) -> Drawn {
-    let layout = &robot.layout;
     let mut sheet = Sheet::new(scale, &LAYERS);
-    let c = layout.circumference_mm;
-    let top = layout.seam_s_mm + c;
-    let pt = |x: f64, s: f64| (x, top - s);
-    let wrap = |s: f64| layout.seam_s_mm + (s - layout.seam_s_mm).rem_euclid(c);
-    let length = layout.length_mm;
+    tube(&mut sheet, &robot.layout);
+    joints(&mut sheet, robot);
+    cuts(&mut sheet, &robot.layout);
+    let below = axes(&mut sheet, robot);
+    let side_bottom = side_view(&mut sheet, robot, below);
+    footer(&mut sheet, robot, side_bottom);
+    let title = format!(
+        "{} — unrolled robot, {} joints, scale {}",
+        robot.robot.name,
+        robot.robot.joints.len(),
+        annotate::scale_ratio(scale)
+    );
+    let ((min_x, min_y), _) = sheet.extent();
+    sheet.text_plain(
+        "labels",
+        (min_x, min_y - sheet.paper(4.0)),
+        &title,
+        TextStyle::new(4.0, palette::OUTLINE).bold(),
+    );
+    sheet.finish(&title, 6.0)
+}
 
-    // The tube, unrolled.
+/// The unrolled view's sheet point of layout point `(x, s)`.
+fn unrolled(layout: &Layout) -> impl Fn(f64, f64) -> (f64, f64) {
+    let top = layout.seam_s_mm + layout.circumference_mm;
+    move |x: f64, s: f64| (x, top - s)
+}
+
+/// The tube, unrolled.
+fn tube(sheet: &mut Sheet, layout: &Layout) {
+    let pt = unrolled(layout);
+    let top = layout.seam_s_mm + layout.circumference_mm;
+    let length = layout.length_mm;
     let outline = sheet.pen(palette::OUTLINE, 0.35, None);
     sheet.rect(
         "tube",
@@ -83,7 +109,14 @@ fn draw(robot: &CheckedRobot, scale: f64) -> Drawn {
         Some(&outline),
         "tube",
     );
-    // Each joint's +y line over its own stretch, and its label above the tube.
+}
+
+/// Each joint's +y line over its own stretch, its label, and its bracket below the tube.
+fn joints(sheet: &mut Sheet, robot: &CheckedRobot) {
+    let layout = &robot.layout;
+    let c = layout.circumference_mm;
+    let pt = unrolled(layout);
+    let wrap = |s: f64| layout.seam_s_mm + (s - layout.seam_s_mm).rem_euclid(c);
     let guide = sheet.pen(palette::GUIDE, THIN_MM, Some(&[6.0, 1.5, 1.0, 1.5]));
     let bracket = sheet.pen(palette::OUTLINE, 0.25, None);
     let label = TextStyle::new(SMALL_MM, palette::OUTLINE).anchor(Anchor::Middle);
@@ -127,7 +160,11 @@ fn draw(robot: &CheckedRobot, scale: f64) -> Drawn {
             label,
         );
     }
-    // Notches, then each sensor's traces in its colour, then the parting cut.
+}
+
+/// Notches, then each sensor's traces in its colour, then the parting cut.
+fn cuts(sheet: &mut Sheet, layout: &Layout) {
+    let pt = unrolled(layout);
     let edge = sheet.pen(palette::NOTCH_EDGE, 0.15, None);
     for n in &layout.notches {
         for poly in &n.outline {
@@ -167,23 +204,6 @@ fn draw(robot: &CheckedRobot, scale: f64) -> Drawn {
         let pts: Vec<(f64, f64)> = line.coords().map(|p| pt(p.x, p.y)).collect();
         sheet.path("parting", &pts, false, None, Some(&parting), "parting");
     }
-    let below = axes(&mut sheet, robot);
-    let side_bottom = side_view(&mut sheet, robot, below);
-    footer(&mut sheet, robot, side_bottom);
-    let title = format!(
-        "{} — unrolled robot, {} joints, scale {}",
-        robot.robot.name,
-        robot.robot.joints.len(),
-        annotate::scale_ratio(scale)
-    );
-    let ((min_x, min_y), _) = sheet.extent();
-    sheet.text_plain(
-        "labels",
-        (min_x, min_y - sheet.paper(4.0)),
-        &title,
-        TextStyle::new(4.0, palette::OUTLINE).bold(),
-    );
-    sheet.finish(&title, 6.0)
 }
 
 /// x ticks under the tube, s ticks left of it; returns the sheet y below them.
