@@ -255,7 +255,7 @@ impl ChannelSearch<'_, '_> {
         };
         let mut contenders = vec![(a.effect, a.evidence)];
         contenders.extend(ties.iter().map(|t| (t.rival, t.rival_evidence)));
-        return Some(Pick::Ambiguous(Ambiguity {
+        Some(Pick::Ambiguous(Ambiguity {
             channel: self.channel,
             contenders,
             separate: ties
@@ -263,7 +263,7 @@ impl ChannelSearch<'_, '_> {
                 .map(|t| separating_data(t.effect, t.rival, tau))
                 .collect(),
             rivals: ties.into_iter().cloned().collect(),
-        }));
+        }))
     }
 
     /// The channel's model with each named effect that has a richer form ([`Term::flexible`])

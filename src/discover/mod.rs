@@ -26,7 +26,7 @@ pub mod unexplained;
 /// The discovery's result as an [`crate::analysis::Analysis`].
 pub use result::{DiscoverResult, Written};
 /// `dlw discover --json`'s summary and the scenario file's text.
-pub use summary::{scenario_text, Named, Scored, DiscoverySummary};
+pub use summary::{scenario_text, DiscoverySummary, Named, Scored};
 
 use std::collections::BTreeMap;
 

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use serde::Serialize;
 
-use super::{report, scenario_text, Outcome, DiscoverySummary};
+use super::{report, scenario_text, DiscoverySummary, Outcome};
 use crate::analysis::{Analysis, Placement};
 use crate::design::Design;
 use crate::recording::Recording;

@@ -79,7 +79,12 @@ pub enum GenericKind {
 
 impl GenericKind {
     /// Every kind.
-    pub const ALL: [GenericKind; 4] = [GenericKind::Curve, GenericKind::Memory, GenericKind::History, GenericKind::Time];
+    pub const ALL: [GenericKind; 4] = [
+        GenericKind::Curve,
+        GenericKind::Memory,
+        GenericKind::History,
+        GenericKind::Time,
+    ];
 
     /// Where the structure shows, for people.
     pub fn place(self) -> &'static str {

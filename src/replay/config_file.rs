@@ -121,8 +121,12 @@ pub fn load_config(path: &Path) -> Result<EstimatorConfig, ConfigFileError> {
 }
 
 /// Whether the config file at `path` is a robot's (it lists `[[joint]]` tables), read through
-/// the bounded reader; `false` for anything unreadable, which [`load_config`] then names.
+/// the bounded reader; `false` for anything unreadable, which [`load_config`] then names, and
+/// for anything not a regular file (reading a pipe would consume what [`load_config`] needs).
 pub fn is_robot_config(path: &Path) -> bool {
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return false;
+    }
     let Ok(format) = ConfigFormat::of(path) else {
         return false;
     };

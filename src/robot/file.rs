@@ -110,8 +110,13 @@ pub fn is_robot_toml(text: &str) -> bool {
 }
 
 /// Whether the file at `path` is a robot file ([`is_robot_toml`]); `false` when it cannot be
-/// read, so that the design reader reports why.
+/// read, so that the design reader reports why. Only a regular file is looked into: reading a
+/// pipe would consume what the design reader needs, so a design given through a pipe is read
+/// as a joint's.
 pub fn is_robot_file(path: &Path) -> bool {
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return false;
+    }
     crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES)
         .map(|text| is_robot_toml(&text))
         .unwrap_or(false)
