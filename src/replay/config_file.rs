@@ -87,11 +87,9 @@ impl ConfigFormat {
     }
 }
 
-/// Reads and validates an estimator config.
-///
-/// # Errors
-/// [`ConfigFileError`] naming the file and the key or value.
-pub fn load_config(path: &Path) -> Result<EstimatorConfig, ConfigFileError> {
+/// The config file at `path`, read through the bounded reader and parsed as TOML or JSON by
+/// its extension (not yet validated).
+fn parse_file<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, ConfigFileError> {
     let format = ConfigFormat::of(path)?;
     let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
         |source| ConfigFileError::Read {
@@ -103,14 +101,22 @@ pub fn load_config(path: &Path) -> Result<EstimatorConfig, ConfigFileError> {
         path: path.to_path_buf(),
         message: message.trim_end().to_string(),
     };
-    let config: EstimatorConfig = match format {
+    match format {
         ConfigFormat::Toml => {
-            toml::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))?
+            toml::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))
         }
         ConfigFormat::Json => {
-            serde_json::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))?
+            serde_json::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))
         }
-    };
+    }
+}
+
+/// Reads and validates an estimator config.
+///
+/// # Errors
+/// [`ConfigFileError`] naming the file and the key or value.
+pub fn load_config(path: &Path) -> Result<EstimatorConfig, ConfigFileError> {
+    let config: EstimatorConfig = parse_file(path)?;
     config
         .validate()
         .map_err(|reason| ConfigFileError::Invalid {
@@ -146,25 +152,7 @@ pub fn is_robot_config(path: &Path) -> bool {
 /// # Errors
 /// [`ConfigFileError`] naming the file and the key or value.
 pub fn load_robot_config(path: &Path) -> Result<RobotEstimatorConfig, ConfigFileError> {
-    let format = ConfigFormat::of(path)?;
-    let text = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES).map_err(
-        |source| ConfigFileError::Read {
-            path: path.to_path_buf(),
-            source,
-        },
-    )?;
-    let parse = |message: String| ConfigFileError::Parse {
-        path: path.to_path_buf(),
-        message: message.trim_end().to_string(),
-    };
-    let config: RobotEstimatorConfig = match format {
-        ConfigFormat::Toml => {
-            toml::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))?
-        }
-        ConfigFormat::Json => {
-            serde_json::from_str(&text).map_err(|e| parse(crate::limits::parser_message(&e)))?
-        }
-    };
+    let config: RobotEstimatorConfig = parse_file(path)?;
     config
         .validate()
         .map_err(|reason| ConfigFileError::RobotInvalid {
