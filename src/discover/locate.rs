@@ -18,6 +18,14 @@ pub struct Place {
 
 /// Window around a reversal of the stroke (s).
 const REVERSAL_S: f64 = 1.0;
+/// "Holds": the stroke's rate below this fraction of its peak |rate| (dimensionless).
+const STILL_RATE_FRACTION: f64 = 0.02;
+/// "High strain": |felt strain| above this fraction of its peak (dimensionless).
+const HIGH_STRAIN_FRACTION: f64 = 0.7;
+/// "High rate": the stroke's |rate| above this fraction of its peak (dimensionless).
+const HIGH_RATE_FRACTION: f64 = 0.5;
+/// "Late": after this fraction of the recording's duration (dimensionless).
+const LATE_FRACTION: f64 = 2.0 / 3.0;
 
 /// The residual's RMS in each situation over its RMS on `mask`, sorted by ratio.
 pub fn locate(data: &Data, residual: &[f64], mask: &[bool]) -> Vec<Place> {
@@ -32,7 +40,7 @@ pub fn locate(data: &Data, residual: &[f64], mask: &[bool]) -> Vec<Place> {
         })
         .collect();
     let span_rate = rate.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
-    let still = |i: usize| rate[i].abs() < 0.02 * span_rate;
+    let still = |i: usize| rate[i].abs() < STILL_RATE_FRACTION * span_rate;
     // Reversals: where the sign of the stroke's motion changes (holds skipped over).
     let mut near_reversal = vec![false; n];
     let window = (REVERSAL_S / data.dt_s) as usize;
@@ -58,12 +66,15 @@ pub fn locate(data: &Data, residual: &[f64], mask: &[bool]) -> Vec<Place> {
         ("holds", Box::new(still)),
         (
             "high strain",
-            Box::new(|i| data.strain[i].abs() > 0.7 * peak),
+            Box::new(|i| data.strain[i].abs() > HIGH_STRAIN_FRACTION * peak),
         ),
-        ("high rate", Box::new(|i| rate[i].abs() > 0.5 * span_rate)),
+        (
+            "high rate",
+            Box::new(|i| rate[i].abs() > HIGH_RATE_FRACTION * span_rate),
+        ),
         (
             "late (last third)",
-            Box::new(|i| data.time_s[i] > start + 2.0 * (end - start) / 3.0),
+            Box::new(|i| data.time_s[i] > start + LATE_FRACTION * (end - start)),
         ),
     ];
     let rms = |pick: &dyn Fn(usize) -> bool| {

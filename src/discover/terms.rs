@@ -74,12 +74,38 @@ pub const STATIC_KNOTS_PER_SIDE: usize = 12;
 /// (tests/discover_unseen.rs, `saturation-Power`).
 pub const STATIC_KNOT_GRADING: f64 = 2.0;
 
+/// Half-widths of the tendon's dead band searched for `backlash`, as fractions of the stroke's
+/// span (so in mm once multiplied by it).
+pub const BACKLASH_HALF_FRACTIONS: [f64; 7] = [0.004, 0.008, 0.015, 0.025, 0.04, 0.06, 0.09];
+/// Time constants (s) of the plant's `relaxation`.
+pub const RELAXATION_TAUS_S: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0];
+/// Centres of a hysteresis candidate's input curve, as fractions of the peak |felt strain|.
+pub const HYSTERESIS_CENTER_FRACTIONS: [f64; 3] = [0.25, 0.5, 0.75];
+/// Widths of a hysteresis candidate's input curve, as fractions of the peak |felt strain|.
+pub const HYSTERESIS_WIDTH_FRACTIONS: [f64; 3] = [0.3, 0.6, 1.2];
+/// Play radii of a hysteresis candidate, as fractions of the peak |felt strain|.
+pub const HYSTERESIS_RADII: [f64; 3] = [0.05, 0.15, 0.3];
+/// Saturation strains `ε_s` of `saturation`, as fractions of the peak |felt strain|.
+pub const SATURATION_FRACTIONS: [f64; 6] = [0.6, 0.9, 1.3, 2.0, 3.0, 5.0];
+/// Low-pass time constants (s) of `rate`, for both its signed and its log form.
+pub const RATE_TAUS_S: [f64; 3] = [0.3, 1.0, 3.0];
+/// Time constants (s) of a one-term `creep`.
+pub const CREEP_TAUS_S: [f64; 5] = [5.0, 10.0, 20.0, 40.0, 80.0];
+/// Settling time constants (s) of a settling `drift` (the linear drift has none).
+pub const DRIFT_SETTLE_TAUS_S: [f64; 3] = [60.0, 150.0, 400.0];
+
 /// Slow time constants (s) of a two-term creep: at least six times its fast ones, so that the
 /// two columns are not one lag twice.
 pub const CREEP_SLOW_TAUS_S: [f64; 3] = [20.0, 40.0, 80.0];
-/// Fast time constants (s) of a two-term creep: the slow end of the signed rate's grid, whose
-/// lag it is (`Term::same_family`).
-pub const CREEP_FAST_TAUS_S: [f64; 2] = [1.0, 3.0];
+/// Fast time constants (s) of a two-term creep: the slow end of the signed rate's grid
+/// ([`RATE_TAUS_S`]), whose lag it is (`Term::same_family`). Taken from that grid by index, so
+/// the two cannot drift apart: a change to the rate grid changes these with it.
+pub const CREEP_FAST_TAUS_S: [f64; 2] = [
+    RATE_TAUS_S[RATE_TAUS_S.len() - 2],
+    RATE_TAUS_S[RATE_TAUS_S.len() - 1],
+];
+// The two-term creep's slow constants stay at least six times its fast ones.
+const _: () = assert!(CREEP_SLOW_TAUS_S[0] >= 6.0 * CREEP_FAST_TAUS_S[1] * (1.0 - 1e-12));
 
 /// Play radii of a hysteresis's richer form ([`Term::flexible`]), as fractions of the span:
 /// the candidate's three and four more between and beyond them.
@@ -183,39 +209,41 @@ impl Term {
     /// the plant, peak |felt strain| for a sensor).
     pub fn grid(effect: Effect, span: f64) -> Vec<Term> {
         match effect {
-            Effect::Backlash => [0.004, 0.008, 0.015, 0.025, 0.04, 0.06, 0.09]
+            Effect::Backlash => BACKLASH_HALF_FRACTIONS
                 .iter()
                 .map(|f| Term::Backlash { half_mm: f * span })
                 .collect(),
-            Effect::Relaxation => [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0]
+            Effect::Relaxation => RELAXATION_TAUS_S
                 .iter()
                 .map(|&tau_s| Term::Relaxation { tau_s })
                 .collect(),
-            Effect::Hysteresis => [0.25, 0.5, 0.75]
+            Effect::Hysteresis => HYSTERESIS_CENTER_FRACTIONS
                 .iter()
                 .flat_map(|&c| {
-                    [0.3, 0.6, 1.2].iter().map(move |&w| Term::Hysteresis {
-                        radii: [0.05, 0.15, 0.3].iter().map(|f| f * span).collect(),
-                        center: c * span,
-                        width: w * span,
-                        memory: true,
-                        knots: Vec::new(),
-                    })
+                    HYSTERESIS_WIDTH_FRACTIONS
+                        .iter()
+                        .map(move |&w| Term::Hysteresis {
+                            radii: HYSTERESIS_RADII.iter().map(|f| f * span).collect(),
+                            center: c * span,
+                            width: w * span,
+                            memory: true,
+                            knots: Vec::new(),
+                        })
                 })
                 .collect(),
-            Effect::Saturation => [0.6, 0.9, 1.3, 2.0, 3.0, 5.0]
+            Effect::Saturation => SATURATION_FRACTIONS
                 .iter()
                 .map(|f| Term::Saturation { strain: f * span })
                 .collect(),
             Effect::Rate => [true, false]
                 .iter()
                 .flat_map(|&signed| {
-                    [0.3, 1.0, 3.0]
+                    RATE_TAUS_S
                         .iter()
                         .map(move |&tau_s| Term::Rate { signed, tau_s })
                 })
                 .collect(),
-            Effect::Creep => [5.0, 10.0, 20.0, 40.0, 80.0]
+            Effect::Creep => CREEP_TAUS_S
                 .iter()
                 .map(|&tau_s| Term::Creep {
                     tau_s,
@@ -223,8 +251,8 @@ impl Term {
                 })
                 .collect(),
             Effect::GainDrift => vec![Term::GainDrift],
-            Effect::Drift => [None, Some(60.0), Some(150.0), Some(400.0)]
-                .into_iter()
+            Effect::Drift => std::iter::once(None)
+                .chain(DRIFT_SETTLE_TAUS_S.iter().copied().map(Some))
                 .map(|settle_tau_s| Term::Drift { settle_tau_s })
                 .collect(),
         }
