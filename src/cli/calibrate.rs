@@ -1,7 +1,7 @@
 //! `dlw calibrate -o DIR (paper-bench.toml, calibration.json, evaluations.json) [--design-points N] [--rounds R] [--local-points K] [--full-checks C]
 //! [--seed S] [--json]`: the paper's bench as a calibrated twin.
 
-use std::path::PathBuf;
+use super::written::Written;
 use std::time::Instant;
 
 use anyhow::Context;
@@ -10,12 +10,8 @@ use dlw::calibrate::{Calibration, CalibrationResult, Options, Space};
 /// Arguments of `dlw calibrate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Output folder: paper-bench.toml (the twin, one scenario per joint) and calibration.json.
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output.
-    #[arg(long)]
-    force: bool,
+    #[command(flatten)]
+    out: Written,
     /// Points of the Latin hypercube (short-sized evaluations).
     #[arg(long, default_value_t = Options::default().design_points)]
     design_points: usize,
@@ -31,9 +27,6 @@ pub struct Args {
     /// Seed of the design (the simulations use the reproduction's seeds).
     #[arg(long, default_value_t = Options::default().seed)]
     seed: u64,
-    /// Print calibration.json to stdout.
-    #[arg(long)]
-    json: bool,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -54,7 +47,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("{:7.1} s  {n} evaluations", start.elapsed().as_secs_f64());
         }
     }));
-    dlw::output::claim(&args.output, [&args.output; 0], args.force)?;
+    args.out.claim_folder([&args.out.output; 0])?;
     let progress = |msg: &str| eprintln!("{:7.1} s  {msg}", start.elapsed().as_secs_f64());
     let full = calibration.run_all(&progress)?;
     let result = CalibrationResult::new(&calibration, &full, start.elapsed().as_secs_f64());
@@ -67,7 +60,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let toml = result.bench.to_toml(&header)?;
     let json = dlw::finite::to_json(&result)?;
     dlw::output::write_folder_atomic(
-        &args.output,
+        &args.out.output,
         &[
             ("paper-bench.toml".to_owned(), toml.into_bytes()),
             ("calibration.json".to_owned(), json.clone().into_bytes()),
@@ -77,8 +70,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             ),
         ],
     )
-    .with_context(|| format!("writing {}", args.output.display()))?;
-    if args.json {
+    .with_context(|| format!("writing {}", args.out.output.display()))?;
+    if args.out.json {
         println!("{json}");
     } else {
         print!("{}", result.summary());

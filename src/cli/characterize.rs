@@ -1,6 +1,7 @@
 //! `dlw characterize --design D REC [--kind loops|rate|relaxation|estimation] [--config C]...
 //! [--prefilter none|ma:N] [--paper-processing] [--min-hold-s T] -o DIR [--json]`.
 
+use super::written::Written;
 use std::path::PathBuf;
 
 use dlw::analysis::Analysis;
@@ -40,25 +41,15 @@ pub struct Args {
     /// configs clamp to the characterized resistance range themselves).
     #[arg(long)]
     paper_processing: bool,
-    /// Output folder: report.html and its SVG figures (replaced if it exists).
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
-    /// Print every number as JSON.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    out: Written,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim_folder(
-        &args.output,
+    args.out.claim_folder(
         [&args.design, &args.recording]
             .into_iter()
             .chain(&args.config),
-        args.force,
     )?;
     let design = Design::load(&args.design)?;
     let recording = Recording::read(&args.recording)?;
@@ -80,9 +71,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         },
     };
     let mut result = characterize(&request)?;
-    result.report_page().write(&args.output)?;
-    result.report = Some(args.output.join("report.html"));
-    if args.json {
+    result.report_page().write(&args.out.output)?;
+    result.report = Some(args.out.output.join("report.html"));
+    if args.out.json {
         println!("{}", dlw::finite::to_json(&result)?);
     } else {
         print!("{}", result.summary());

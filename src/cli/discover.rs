@@ -1,5 +1,6 @@
 //! `dlw discover --design D REC [--scenario S] [--holdout REC2] -o DIR [--json] [--fast]`.
 
+use super::written::Written;
 use std::path::PathBuf;
 
 use anyhow::Context;
@@ -26,16 +27,8 @@ pub struct Args {
     /// held-out blocks of REC).
     #[arg(long)]
     holdout: Option<PathBuf>,
-    /// Output folder: report.html, its SVGs and scenario.toml (replaced if it exists).
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
-    /// Print the result as JSON.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    out: Written,
     /// A quick look: no bootstrap; names by the fixed rule (a threshold in nats, a lead over
     /// the runner-up, nested evidence) instead of calibrating each on the recording.
     #[arg(long)]
@@ -44,13 +37,11 @@ pub struct Args {
 
 /// Runs `dlw discover`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim_folder(
-        &args.output,
+    args.out.claim_folder(
         [&args.design, &args.recording]
             .into_iter()
             .chain(&args.scenario)
             .chain(&args.holdout),
-        args.force,
     )?;
     let design = Design::load(&args.design)?;
     let recording = Recording::read(&args.recording)?;
@@ -89,12 +80,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     let mut files = result.report_page(&name).files()?;
     files.push(("scenario.toml".to_owned(), text.into_bytes()));
-    write_folder_atomic(&args.output, &files)?;
+    write_folder_atomic(&args.out.output, &files)?;
     result.written = Some(discover::Written {
-        scenario: args.output.join("scenario.toml"),
-        report: args.output.join("report.html"),
+        scenario: args.out.output.join("scenario.toml"),
+        report: args.out.output.join("report.html"),
     });
-    if args.json {
+    if args.out.json {
         // Printed from the result itself (its keys in order), checked for non-finite numbers.
         println!("{}", dlw::finite::to_json(&result)?);
     } else {

@@ -1,6 +1,7 @@
 //! `dlw explore SPEC -o DIR [--json] [--top K] [--force]`: search a grid of joint designs for
 //! the Pareto front of the spec's objectives (`docs/explore.md`).
 
+use super::written::Written;
 use std::path::PathBuf;
 
 use anyhow::Context;
@@ -11,26 +12,19 @@ use dlw::explore::{files, Exploration};
 pub struct Args {
     /// Exploration spec (TOML).
     spec: PathBuf,
-    /// Folder to write: designs.csv, front.csv, best-K.toml, report.html.
-    #[arg(short, long, value_name = "DIR")]
-    output: PathBuf,
-    /// Print the Pareto front as JSON.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    out: Written,
     /// How many of the best designs to write as design files.
     #[arg(long, value_name = "K", default_value_t = 3)]
     top: usize,
-    /// Replace an existing output folder and everything in it.
-    #[arg(long)]
-    force: bool,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     // Claimed twice: against the spec before reading anything, then against every file the
     // spec names (its base design, tube catalogue, process sets) once they are known.
-    dlw::output::claim_folder(&args.output, [&args.spec], args.force)?;
-    let mut x = Exploration::load(&args.spec, &args.output.join("best-1.toml"))?;
-    dlw::output::claim_folder(&args.output, &x.inputs, args.force)?;
+    args.out.claim_folder([&args.spec])?;
+    let mut x = Exploration::load(&args.spec, &args.out.output.join("best-1.toml"))?;
+    args.out.claim_folder(&x.inputs)?;
     let bar = progress(x.candidate_count(), "scoring");
     let screen = x.screen(&|n| bar.inc(n));
     bar.finish_and_clear();
@@ -46,8 +40,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let (out, summary) =
         files(&x, &screen, &feasible, &front, args.top).context("drawing the report")?;
-    dlw::output::write_folder_atomic(&args.output, &out)?;
-    if args.json {
+    dlw::output::write_folder_atomic(&args.out.output, &out)?;
+    if args.out.json {
         println!("{}", dlw::finite::to_json(&summary)?);
     } else {
         println!(
@@ -58,7 +52,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
         for (name, _) in &out {
             if name.ends_with(".toml") || name.ends_with(".csv") || name.ends_with(".html") {
-                println!("wrote {}", args.output.join(name).display());
+                println!("wrote {}", args.out.output.join(name).display());
             }
         }
     }

@@ -1,6 +1,7 @@
 //! `dlw fluoro FRAMES_DIR [--fps 2] [--crop x,y,w,h] [--threshold otsu|VALUE] [--invert]
 //! [--smooth 8] [--baseline-s T] -o angles.csv [--json] [--overlay DIR]`.
 
+use super::written::Written;
 use std::path::PathBuf;
 
 use dlw::fluoro::{fluoro, BaselineRule, Crop, FluoroRequest, SeriesSettings, Settings, Threshold};
@@ -44,19 +45,11 @@ pub struct Args {
     /// Smallest plausible major/minor axis ratio; a rounder component is skipped.
     #[arg(long, allow_hyphen_values = true, default_value_t = 1.5)]
     min_axis_ratio: f64,
-    /// Output CSV: time_s,angle_deg,raw_deg,area_px,axis_ratio,flags.
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
+    #[command(flatten)]
+    out: Written,
     /// Write each frame with the fitted ellipse and axis drawn on it into this folder.
     #[arg(long)]
     overlay: Option<PathBuf>,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
-    /// Print the summary as JSON.
-    #[arg(long)]
-    json: bool,
 }
 
 fn parse_crop(s: &str) -> Result<Crop, String> {
@@ -65,11 +58,8 @@ fn parse_crop(s: &str) -> Result<Crop, String> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
-        .chain(&args.overlay)
-        .map(|p| p.as_path())
-        .collect();
-    dlw::output::claim_all(&outputs, [&args.frames], args.force)?;
+    let overlay: Vec<&std::path::Path> = args.overlay.iter().map(|p| p.as_path()).collect();
+    args.out.claim_with(&overlay, [&args.frames])?;
     let request = FluoroRequest {
         frames: &args.frames,
         settings: Settings {
@@ -85,12 +75,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             smooth: args.smooth,
             baseline: BaselineRule::from_options(args.baseline_s, args.motion_deg)?,
         },
-        output: &args.output,
+        output: &args.out.output,
         overlay: args.overlay.as_deref(),
-        force: args.force,
+        force: args.out.force,
     };
     let result = fluoro(&request)?;
-    if args.json {
+    if args.out.json {
         println!("{}", dlw::finite::to_json(&result)?);
         return Ok(());
     }

@@ -25,6 +25,7 @@ mod robot;
 mod robot_sensing;
 mod scenario_args;
 mod simulate;
+mod written;
 
 /// From a sensing continuum-robot joint's design parameters to drawings, laser programs and a
 /// working sensor.
@@ -48,6 +49,8 @@ enum Command {
     /// Write everything for one joint into a folder: DXF, SVGs, laser program, setup sheet.
     Build(build::Args),
     /// Search a grid of designs for the Pareto front of a spec's objectives; write the best.
+    ///
+    /// Writes into the folder -o: designs.csv, front.csv, best-K.toml, report.html.
     Explore(explore::Args),
     /// Simulate the paper's bench and write a recording folder.
     Simulate(simulate::Args),
@@ -58,8 +61,12 @@ enum Command {
     /// Fit linear and PI sensor models to a recording and write an estimator config.
     Fit(fit::Args),
     /// Find where the simulator and a recording disagree, name the missing effect, add it.
+    ///
+    /// Writes into the folder -o: report.html, its SVGs and scenario.toml.
     Discover(discover::Args),
     /// Measure the joint angle in fluoroscopy frames (the phantom's ground truth).
+    ///
+    /// Writes the CSV -o: time_s,angle_deg,raw_deg,area_px,axis_ratio,flags.
     Fluoro(fluoro::Args),
     /// Render synthetic fluoroscopy frames of a recording's angle, to try `dlw fluoro`.
     FluoroRender(fluoro_render::Args),
@@ -70,10 +77,17 @@ enum Command {
     /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI).
     Control(control::Args),
     /// Run one of the paper's characterization analyses on a recording (Section IV-A, IV-B).
+    ///
+    /// Writes into the folder -o: report.html and its SVG figures.
     Characterize(characterize::Args),
     /// Run the paper's Section IV on the simulator: Tables III-VI beside the paper's.
+    ///
+    /// Writes into the folder -o: report.html and its SVG figures.
     Reproduce(reproduce::Args),
     /// Calibrate the simulated bench to the paper's Tables IV-VI: the twin `reproduce` runs.
+    ///
+    /// Writes into the folder -o: paper-bench.toml (the twin, one scenario per joint),
+    /// calibration.json and evaluations.json; --json prints calibration.json.
     Calibrate(calibrate::Args),
 }
 

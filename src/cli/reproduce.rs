@@ -1,5 +1,6 @@
 //! `dlw reproduce -o DIR [--duration-scale F | --short] [--ideal | --twin | --bench FILE] [--json]`.
 
+use super::written::Written;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -11,13 +12,8 @@ use dlw::reproduce::{page, reproduce, Bench, BenchFile, Settings, SHORT_SCALE, S
 /// Arguments of `dlw reproduce`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Output folder: report.html and its SVG figures (replaced if it exists).
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
+    #[command(flatten)]
+    out: Written,
     /// Every protocol timing times F, in (0, 1]; 1 (the default) is the paper's 1000 s
     /// characterization and 3000 s of each other protocol.
     #[arg(long, conflicts_with = "short")]
@@ -25,9 +21,6 @@ pub struct Args {
     /// A short run for CI: every timing a tenth of the paper's.
     #[arg(long)]
     short: bool,
-    /// Print the tables' numbers as JSON.
-    #[arg(long)]
-    json: bool,
     /// Run the clean simulated joints (the default; docs/experiments.md says why the twin is
     /// not the default yet).
     #[arg(long, conflicts_with_all = ["bench", "twin"])]
@@ -57,7 +50,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         bench,
     );
     let inputs: Vec<&PathBuf> = args.bench.iter().collect();
-    dlw::output::claim_folder(&args.output, inputs, args.force)?;
+    args.out.claim_folder(inputs)?;
     let bar = if std::io::stderr().is_terminal() {
         let bar = indicatif::ProgressBar::new(STEPS);
         bar.set_style(
@@ -76,12 +69,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let mut r = reproduce(settings, &progress)?;
     bar.set_message("drawing the report");
     page(&r)
-        .write(&args.output)
-        .with_context(|| format!("writing {}", args.output.display()))?;
+        .write(&args.out.output)
+        .with_context(|| format!("writing {}", args.out.output.display()))?;
     bar.finish_and_clear();
-    r.written_to(&args.output);
+    r.written_to(&args.out.output);
     r.seconds = start.elapsed().as_secs_f64();
-    if args.json {
+    if args.out.json {
         println!("{}", dlw::finite::to_json(&r)?);
     } else {
         print!("{}", r.summary());
