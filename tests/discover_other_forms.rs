@@ -124,12 +124,14 @@ impl Seen {
 /// every effect case and more clean controls. Asserted: the right effect first on the right
 /// channel in ≥ 95 % of the effect cases, no wrong name, a name or an `unexplained` flag on
 /// ≤ 1 % of the clean recordings, and a median held-out gap shrink ≥ 50 % above the twin's
-/// floor. CI runs one seed per case and 3 more controls per joint; `DLW_DISCOVER_FULL=1` runs
-/// 5 seeds and 20 more controls per joint.
+/// floor. CI runs one seed per case, Joint C's sensor 2 only with hysteresis and drift, and 2
+/// more controls on Joint A and 1 on Joint C (Joint C's 3000 s runs cost about six of Joint
+/// A's); `DLW_DISCOVER_FULL=1` runs 5 seeds, every sensor effect on Joint C, and 20 more
+/// controls per joint.
 #[test]
 fn discover_meets_the_acceptance_figures_on_other_functional_forms() {
     let full = std::env::var("DLW_DISCOVER_FULL").is_ok();
-    let (seeds, controls) = if full { (5u64, 20u64) } else { (1, 3) };
+    let (seeds, controls) = if full { (5u64, 20u64) } else { (1, 2) };
     let mut cases: Vec<Case> = Vec::new();
     for s in 0..seeds {
         for (i, effect) in Effect::ALL.into_iter().enumerate() {
@@ -139,7 +141,10 @@ fn discover_meets_the_acceptance_figures_on_other_functional_forms() {
                 effect: Some((effect, 1)),
                 seed,
             });
-            if !effect.is_plant() {
+            // Joint C's 3000 s runs cost about six of Joint A's: CI runs two of its sensor
+            // effects (hysteresis and drift), the full size all five.
+            let on_c = full || matches!(effect, Effect::Hysteresis | Effect::Drift);
+            if !effect.is_plant() && on_c {
                 cases.push(Case {
                     design: "joint-c.toml",
                     effect: Some((effect, 2)),
@@ -152,6 +157,9 @@ fn discover_meets_the_acceptance_figures_on_other_functional_forms() {
     cases.extend(twins);
     for s in 0..controls {
         for design in ["joint-a.toml", "joint-c.toml"] {
+            if !full && design == "joint-c.toml" && s > 0 {
+                continue;
+            }
             cases.push(Case {
                 design,
                 effect: None,

@@ -311,7 +311,8 @@ const LIBRARY: [&str; 7] = [
 /// quadratic term or an offset above a strain) on Joint A's sensor and on each of Joint C's
 /// two sensors. Never one of the seven library names, never a name or a flag on another
 /// channel; the right channel flagged `unexplained`, or a change of sensitivity named
-/// `gain_drift`, in at least 80 % of the cases. One seed per case; three with
+/// `gain_drift`, in at least 80 % of the cases. One seed per case, Joint C on every other case
+/// (its sensors taking turns); three seeds on every case and both of Joint C's sensors with
 /// `DLW_DISCOVER_FULL=1`.
 #[test]
 fn effects_outside_the_library_are_flagged_not_named() {
@@ -325,9 +326,10 @@ fn effects_outside_the_library_are_flagged_not_named() {
     for seed in 0..seeds {
         for (i, outside) in Outside::ALL.into_iter().enumerate() {
             cases.push(("joint-a.toml", 1, outside, 800 + 10 * seed + i as u64));
-            // Joint C's two sensors take turns (both in the full run).
+            // Joint C's two sensors take turns on every other case (on every case, both
+            // sensors, in the full run): its 3000 s runs cost about six of Joint A's.
             for sensor in [1, 2] {
-                if seeds > 1 || (i + sensor) % 2 == 0 {
+                if seeds > 1 || (i % 2 == 0 && (i / 2 + sensor) % 2 == 0) {
                     cases.push(("joint-c.toml", sensor, outside, 900 + 10 * seed + i as u64));
                 }
             }

@@ -48,8 +48,17 @@ fn rms(a: &[f64], b: &[f64]) -> f64 {
 
 const SIGMA: f64 = 20.0;
 
+/// `PROPTEST_CASES` if set, else 12.
+fn cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(12)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    // 12 random sensors in CI (each a full PI fit of 4000 samples); `PROPTEST_CASES=N` for more.
+    #![proptest_config(ProptestConfig { cases: cases(), ..ProptestConfig::default() })]
 
     /// A random generalized-PI sensor: tanh constants, ten evenly spaced radii up to a random
     /// ρ_max and random weights whose partial sums stay positive. The fitted response is within
