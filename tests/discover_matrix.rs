@@ -354,7 +354,9 @@ fn discovery_matrix() {
         "clean controls named something or flagged unexplained"
     );
     // The issue's acceptance figures: ≥ 95 % right, a median gap shrink ≥ 50 %. Measured at
-    // CI size with the calibrated names (issue 31): 42/42 and 98 % above the floor (42 % in
+    // CI size (10 single effects since Joint C's were cut to three, 2026-11-26): 10/10, 100 %
+    // above the floor, 0/8 controls flagged. With `DLW_DISCOVER_SEEDS=3` and the calibrated
+    // names (issue 31): 42/42 and 98 % above the floor (42 % in
     // RMSE, which keeps the floor); before, 41/42 (Joint C's hysteresis seed 1002 was left
     // ambiguous against rate) and 93 %.
     assert!(

@@ -227,7 +227,8 @@ fn discover_meets_the_acceptance_figures_on_other_functional_forms() {
         alarms.len() * 100 <= clean,
         "clean recordings named or flagged: {alarms:?} of {clean}"
     );
-    // Measured: CI 12/12; full size 57/60 (95 %, 2026-11-26), with no margin: Joint A's
+    // Measured: CI 9/9 (12/12 before Joint C's sensor effects were cut to two, 2026-11-26),
+    // median gap shrink 79 %; full size 57/60 (95 %, 2026-11-26), with no margin: Joint A's
     // two-term creep is missed on seeds 305 and 405 and Joint C's drift on 556, never named
     // wrong (docs/discovery.md, "Other functional forms").
     assert!(
