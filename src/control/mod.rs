@@ -43,6 +43,8 @@ mod desired;
 mod metrics;
 pub mod report;
 mod result;
+pub mod robot;
+mod robot_result;
 mod scheme;
 
 use std::path::PathBuf;
@@ -59,6 +61,8 @@ pub use desired::{Desired, DesiredSource};
 pub use metrics::{rmse, SchemeMetrics, PAPER_TABLE_VI};
 /// A control simulation's result: JSON, summary and report section.
 pub use result::{ControlResult, PaperRow, PaperTableVi};
+/// A robot's control simulation's result: JSON, summary, CSV and report.
+pub use robot_result::{JointControl, RobotControlResult};
 /// The two schemes and what each did per sample.
 pub use scheme::{Loop, Scheme, Trace};
 
