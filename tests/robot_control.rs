@@ -114,8 +114,16 @@ fn each_joint_tracks_its_estimate_within_the_noise_with_the_coupling_on() {
         let [n_open, n_closed] = [&n.traces[0].joints[j], &n.traces[1].joints[j]];
         // Open loop: the same joint motion with and without noise.
         assert_eq!(q_open.true_deg, n_open.true_deg);
-        let sigma_n = rms(n_open.sensed_deg.iter().zip(&q_open.sensed_deg).map(|(a, b)| a - b));
-        assert!(sigma_n > 0.05, "joint {}: the noise reaches the estimate: {sigma_n}°", j + 1);
+        let sigma_n = rms(n_open
+            .sensed_deg
+            .iter()
+            .zip(&q_open.sensed_deg)
+            .map(|(a, b)| a - b));
+        assert!(
+            sigma_n > 0.05,
+            "joint {}: the noise reaches the estimate: {sigma_n}°",
+            j + 1
+        );
         let err = |t: &dlw::control::Trace| rms(t.true_deg.iter().zip(desired).map(|(a, b)| a - b));
         let (quiet_err, noisy_err) = (err(q_closed), err(n_closed));
         let bound = quiet_err + 1.5 * sigma_n;
@@ -124,11 +132,20 @@ fn each_joint_tracks_its_estimate_within_the_noise_with_the_coupling_on() {
             j + 1,
             err(n_open)
         );
-        assert!(noisy_err <= bound, "joint {}: {noisy_err}° > {bound}°", j + 1);
+        assert!(
+            noisy_err <= bound,
+            "joint {}: {noisy_err}° > {bound}°",
+            j + 1
+        );
         assert_eq!(n.metrics[j][1].true_vs_desired_rmse_deg, noisy_err);
         if j > 0 {
             // Joints 2 and 3 carry the distal tendons: the open loop misses by their bending.
-            assert!(err(n_open) > 10.0 * noisy_err, "joint {}: open {}°", j + 1, err(n_open));
+            assert!(
+                err(n_open) > 10.0 * noisy_err,
+                "joint {}: open {}°",
+                j + 1,
+                err(n_open)
+            );
         }
     }
 }
@@ -162,9 +179,9 @@ fn not_undoing_the_crosstalk_tracks_worse_by_what_the_matrix_predicts() {
             })
             .collect();
         let predicted_rms = rms(predicted.iter().copied());
-        let miss = rms((0..rows).map(|k| {
-            (u.joints[j].true_deg[k] - i.joints[j].true_deg[k]) - predicted[k]
-        }));
+        let miss =
+            rms((0..rows)
+                .map(|k| (u.joints[j].true_deg[k] - i.joints[j].true_deg[k]) - predicted[k]));
         eprintln!(
             "joint {}: undone {:.3}°, ignored {:.3}°, predicted shift {predicted_rms:.3}°, shift − prediction {miss:.3}°",
             j + 1,
@@ -173,7 +190,11 @@ fn not_undoing_the_crosstalk_tracks_worse_by_what_the_matrix_predicts() {
         );
         if j < 2 {
             assert!(predicted_rms > 0.3, "joint {}: {predicted_rms}°", j + 1);
-            assert!(miss < 0.25 * predicted_rms, "joint {}: {miss}° of {predicted_rms}°", j + 1);
+            assert!(
+                miss < 0.25 * predicted_rms,
+                "joint {}: {miss}° of {predicted_rms}°",
+                j + 1
+            );
             assert!(
                 err(&i.joints[j]) > 1.5 * err(&u.joints[j]),
                 "joint {}: ignored {}°, undone {}°",
@@ -269,12 +290,18 @@ fn the_command_writes_every_joints_columns_and_metrics() {
         let desired = col(&format!("desired{k}_deg"));
         let actual = col(&format!("closed_angle{k}_deg"));
         let from_csv = rms(actual.iter().zip(desired).map(|(a, d)| a - d));
-        assert!((from_csv - rmse).abs() < 1e-3, "joint {k}: {from_csv} vs {rmse}");
+        assert!(
+            (from_csv - rmse).abs() < 1e-3,
+            "joint {k}: {from_csv} vs {rmse}"
+        );
         let max_csv = actual
             .iter()
             .zip(desired)
             .fold(0.0f64, |m, (a, d)| m.max((a - d).abs()));
-        assert!((max_csv - max).abs() < 1e-3, "joint {k}: {max_csv} vs {max}");
+        assert!(
+            (max_csv - max).abs() < 1e-3,
+            "joint {k}: {max_csv} vs {max}"
+        );
         for name in ["sensed", "angle"] {
             for scheme in ["open", "closed"] {
                 col(&format!("{scheme}_{name}{k}_deg"));
@@ -322,14 +349,22 @@ fn profiles_and_refusals() {
         dlw(&args)
     };
     let one = run(&[&ramp], "one");
-    assert!(one.status.success(), "{}", String::from_utf8_lossy(&one.stderr));
+    assert!(
+        one.status.success(),
+        "{}",
+        String::from_utf8_lossy(&one.stderr)
+    );
     let json: serde_json::Value = serde_json::from_slice(&one.stdout).unwrap();
     assert_eq!(json["samples"], 2000);
     for j in json["joints"].as_array().unwrap() {
         assert!(j["desired"].as_str().unwrap().contains("ramp.csv"));
     }
     let each = run(&[&ramp, &hold, &ramp], "each");
-    assert!(each.status.success(), "{}", String::from_utf8_lossy(&each.stderr));
+    assert!(
+        each.status.success(),
+        "{}",
+        String::from_utf8_lossy(&each.stderr)
+    );
     let json: serde_json::Value = serde_json::from_slice(&each.stdout).unwrap();
     assert!(json["joints"][1]["desired"]
         .as_str()
@@ -338,7 +373,10 @@ fn profiles_and_refusals() {
     let two = run(&[&ramp, &hold], "two");
     let err = String::from_utf8_lossy(&two.stderr);
     assert!(!two.status.success());
-    assert!(err.contains("--profile is given 2 times; the robot has 3 joints"), "{err}");
+    assert!(
+        err.contains("--profile is given 2 times; the robot has 3 joints"),
+        "{err}"
+    );
     assert!(!dir.path().join("two").exists());
     // A joint's config on the robot, the robot's config on a joint.
     let joint_cfg = dir.path().join("b.toml");
@@ -370,7 +408,10 @@ fn profiles_and_refusals() {
         ]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success());
-        assert!(err.contains("a robot takes the config dlw estimator-config ROBOT writes"), "{err}");
+        assert!(
+            err.contains("a robot takes the config dlw estimator-config ROBOT writes"),
+            "{err}"
+        );
         assert!(!out.exists());
     }
     let o = dlw(&[
@@ -454,8 +495,11 @@ fn the_estimate_report_draws_the_crosstalk_against_the_geometry() {
     let o = report(&cfg, "same", &robot);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let html = std::fs::read_to_string(dir.path().join("same/report.html")).unwrap();
-    assert!(html.contains("The config holds the geometry&#39;s crosstalk matrix")
-        || html.contains("The config holds the geometry's crosstalk matrix"), "{html}");
+    assert!(
+        html.contains("The config holds the geometry&#39;s crosstalk matrix")
+            || html.contains("The config holds the geometry's crosstalk matrix"),
+        "{html}"
+    );
     assert!(dir.path().join("same/crosstalk.svg").is_file());
     // A config whose matrix differs from the geometry's: the largest difference, named.
     let text = std::fs::read_to_string(&cfg).unwrap();
@@ -467,7 +511,10 @@ fn the_estimate_report_draws_the_crosstalk_against_the_geometry() {
     let o = report(&fitted, "fitted", &robot);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let html = std::fs::read_to_string(dir.path().join("fitted/report.html")).unwrap();
-    assert!(html.contains("Largest difference 0.0312 (sensor 1, joint 2)"), "{html}");
+    assert!(
+        html.contains("Largest difference 0.0312 (sensor 1, joint 2)"),
+        "{html}"
+    );
     let svg = std::fs::read_to_string(dir.path().join("fitted/crosstalk.svg")).unwrap();
     assert!(svg.contains("config = geometric"));
     // Another robot's file.

@@ -38,6 +38,9 @@
 //! Table VI ([`SchemeMetrics`]); [`ControlResult`] gathers both into the analysis `dlw control`
 //! prints ([`crate::analysis::Analysis`]: its `--json`, its summary, its report section);
 //! [`report`] draws `report.html`, its figures and `control.csv`.
+//!
+//! A robot's joints run the same scheme, each on its own tendon and its estimated angle from
+//! the robot estimator, on the robot simulator's bench ([`robot`], [`RobotControlResult`]).
 
 mod desired;
 mod metrics;

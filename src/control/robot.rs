@@ -201,8 +201,12 @@ impl RobotControl {
             if let Some(first) = desired.first() {
                 sc.duration_s = first.scenario.duration_s;
             }
-            let d = Desired::resolve(design, sc, source)
-                .map_err(|source| RobotControlError::Joint { joint: j + 1, source })?;
+            let d = Desired::resolve(design, sc, source).map_err(|source| {
+                RobotControlError::Joint {
+                    joint: j + 1,
+                    source,
+                }
+            })?;
             desired.push(d);
         }
         RobotEstimator::new(&config).map_err(RobotControlError::Estimator)?;
@@ -351,7 +355,8 @@ impl RobotControl {
             for (j, trace) in traces.iter_mut().enumerate() {
                 let flags = estimate.flags()[j];
                 sensed[j] = estimate.angle_deg(j);
-                out_of_range[j] = flags.intersects(Flags::RESISTANCE_CLAMPED | Flags::ATANH_CLAMPED);
+                out_of_range[j] =
+                    flags.intersects(Flags::RESISTANCE_CLAMPED | Flags::ATANH_CLAMPED);
                 trace.held_samples += usize::from(flags.contains(Flags::HELD));
                 trace.actual_deg.push(bench.tracked_deg[j]);
                 trace.true_deg.push(bench.angle_rad[j].to_degrees());

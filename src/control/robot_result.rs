@@ -196,7 +196,7 @@ impl RobotControlResult {
     /// The report: each joint's metrics, then per joint its closed and open loop over the
     /// first [`WINDOW_S`] seconds.
     pub fn page(&self) -> Page {
-        let mut page = Page::new(format!("Closed-loop control of the robot {}", self.robot));
+        let mut page = Page::new(format!("Closed-loop control of {}", self.robot));
         page.text(format!(
             "{} joints, each on its estimated angle (the robot estimator undoes the config's crosstalk); tendon coupling {}; PID K_p {} mm/°, K_i {} mm/(°·s), K_d {} mm·s/° on every joint; {} samples ({:.1} s at {} Hz).",
             self.joints.len(),

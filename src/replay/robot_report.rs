@@ -49,8 +49,7 @@ pub fn geometric_crosstalk(
         robot: robot.robot.name.clone(),
         what,
     };
-    if config.joint_count() != robot.robot.joints.len() || config.sensor_count() != sensors.len()
-    {
+    if config.joint_count() != robot.robot.joints.len() || config.sensor_count() != sensors.len() {
         return Err(mismatch(format!(
             "has {} joints and {} sensors, the config {} and {}",
             robot.robot.joints.len(),
@@ -217,6 +216,15 @@ fn joint_errors(
     }
 }
 
+/// A crosstalk entry to 4 places, without the sign of a rounding residue (`-0.0000`).
+fn entry(v: f64) -> String {
+    let s = format!("{v:.4}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
+        _ => s,
+    }
+}
+
 /// The crosstalk matrix the config undid, one row per sensor, against the geometry's.
 fn crosstalk(page: &mut Page, config: &RobotEstimatorConfig, geometry: Option<&[Vec<f64>]>) {
     let n = config.joint_count();
@@ -231,7 +239,7 @@ fn crosstalk(page: &mut Page, config: &RobotEstimatorConfig, geometry: Option<&[
         let mut table = Table::new(header);
         for (i, c) in config.sensor.iter().enumerate() {
             let mut row = vec![format!("{}", i + 1), format!("{}, {}", c.joint, c.sensor)];
-            row.extend(c.crosstalk.iter().map(|v| format!("{v:.4}")));
+            row.extend(c.crosstalk.iter().map(|&v| entry(v)));
             table.row(row);
         }
         page.table(table);
@@ -260,9 +268,9 @@ fn crosstalk(page: &mut Page, config: &RobotEstimatorConfig, geometry: Option<&[
         let mut row = vec![format!("{}", i + 1), format!("{}, {}", c.joint, c.sensor)];
         row.extend(c.crosstalk.iter().zip(g).map(|(a, b)| {
             if same {
-                format!("{a:.4}")
+                entry(*a)
             } else {
-                format!("{a:.4} ({b:.4})")
+                format!("{} ({})", entry(*a), entry(*b))
             }
         }));
         table.row(row);
@@ -310,8 +318,7 @@ fn crosstalk(page: &mut Page, config: &RobotEstimatorConfig, geometry: Option<&[
     chart.y_range = Some((lo, hi + 0.6 * (hi - lo)));
     let caption = if same {
         format!(
-            "The config holds the geometry's crosstalk matrix (every entry within {SAME_CROSSTALK:e} of dlw inspect's; largest difference {:.1e}): nothing fitted to compare, so every point lies on the line by construction.",
-            worst.0
+            "The config holds the geometry's crosstalk matrix (every entry within {SAME_CROSSTALK:e} of dlw inspect's): nothing fitted to compare, so every point lies on the line by construction."
         )
     } else {
         format!(

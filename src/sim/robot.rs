@@ -196,7 +196,8 @@ impl RobotBench {
         for (j, bench) in self.benches.iter_mut().enumerate() {
             self.plant_rad[j] = bench.plant_step(stroke_mm[j]);
         }
-        self.coefficients.apply(&self.plant_rad, &mut self.angle_rad);
+        self.coefficients
+            .apply(&self.plant_rad, &mut self.angle_rad);
         let theta = &self.angle_rad;
         for (j, bench) in self.benches.iter_mut().enumerate() {
             let rows = &self.rows_of[j];
@@ -206,12 +207,13 @@ impl RobotBench {
                     crosstalk[i].iter().zip(theta).map(|(c, t)| c * t).sum()
                 })
             };
-            let reading = bench
-                .read(time_s, theta[j], mixed)
-                .map_err(|source| RobotSimError::Joint {
-                    joint: j + 1,
-                    source,
-                })?;
+            let reading =
+                bench
+                    .read(time_s, theta[j], mixed)
+                    .map_err(|source| RobotSimError::Joint {
+                        joint: j + 1,
+                        source,
+                    })?;
             for (c, &i) in rows.iter().enumerate() {
                 self.volts[i] = reading.volts[c];
             }
