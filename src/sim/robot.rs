@@ -334,9 +334,9 @@ impl RobotPlan {
             for (i, &v) in bench.volts.iter().enumerate() {
                 samples.volts[i].push(v);
             }
-            for j in 0..n_joints {
+            for (j, truth) in true_angle_deg.iter_mut().enumerate() {
                 samples.angle_deg[j].push(bench.tracked_deg[j]);
-                true_angle_deg[j].push(bench.angle_rad[j].to_degrees());
+                truth.push(bench.angle_rad[j].to_degrees());
             }
             let tracked_rad: Vec<f64> = bench.tracked_deg.iter().map(|a| a.to_radians()).collect();
             let pose = kinematics
