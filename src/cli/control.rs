@@ -1,32 +1,41 @@
 //! `dlw control --design D --config C [--scenario S] [--profile desired.csv | --protocol P]
-//! [--gains kp,ki,kd] [--duration-s T] [--seed N] -o DIR [--json]`.
+//! [--gains kp,ki,kd] [--duration-s T] [--seed N] -o DIR [--json]`; with a robot file and a
+//! robot config, every joint's loop on its estimated angle (`--profile` once or once per joint,
+//! `--coupling`).
 
 use std::path::PathBuf;
 
-use anyhow::Context;
+use anyhow::{bail, Context};
 use dlw::analysis::Analysis;
-use dlw::control::{Control, ControlResult, DesiredSource, Gains, PAPER_GAINS};
+use dlw::control::robot::RobotControl;
+use dlw::control::{Control, ControlResult, DesiredSource, Gains, RobotControlResult, PAPER_GAINS};
 use dlw::design::Design;
 use dlw::output::write_folder_atomic;
-use dlw::replay::load_config;
+use dlw::replay::{load_config, load_robot_config};
 use dlw::signal::FilterSpec;
 
 use super::scenario_args::ScenarioArgs;
+use super::simulate::CouplingArg;
 
 /// Arguments of `dlw control`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Design file (TOML).
+    /// Design file (TOML), or a robot file (every joint's loop; then --config is the robot's).
     #[arg(long)]
     design: PathBuf,
     /// Estimator config (.toml or .json) the closed loop senses the angle with.
     #[arg(long)]
     config: PathBuf,
+    /// For a robot: whether a distal tendon's tension bends the proximal joints it runs
+    /// through (the York/Swaney moment, docs/robots.md). Default: york-swaney.
+    #[arg(long, value_enum)]
+    coupling: Option<CouplingArg>,
     #[command(flatten)]
     scenario: ScenarioArgs,
-    /// Desired angle CSV with the header `time_s,angle_deg`, interpolated linearly.
+    /// Desired angle CSV with the header `time_s,angle_deg`, interpolated linearly. For a
+    /// robot: once for every joint, or once per joint (joint 1, the distal one, first).
     #[arg(long, conflicts_with = "protocol")]
-    profile: Option<PathBuf>,
+    profile: Vec<PathBuf>,
     /// PID gains `kp,ki,kd` on the angle error: kp in mm/°, ki in mm/(°·s), kd in mm·s/°
     /// (default: the paper's 0.1,0.1,0).
     #[arg(long, value_parser = parse_gains)]
@@ -76,13 +85,38 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .chain(&args.profile),
         args.force,
     )?;
+    let robot = dlw::robot::is_robot_file(&args.design);
+    if robot != dlw::replay::is_robot_config(&args.config) {
+        bail!(
+            "{} is {} but {} is {}: a robot takes the config dlw estimator-config ROBOT writes, a joint a joint's",
+            args.design.display(),
+            if robot { "a robot file" } else { "a joint design" },
+            args.config.display(),
+            if robot { "not a robot's config" } else { "a robot's config" }
+        );
+    }
+    if robot {
+        return run_robot(args);
+    }
+    if args.coupling.is_some() {
+        bail!(
+            "--coupling is for a robot's tendons, and {} is a joint design",
+            args.design.display()
+        );
+    }
+    if args.profile.len() > 1 {
+        bail!(
+            "--profile is given {} times; a joint takes one desired-angle profile",
+            args.profile.len()
+        );
+    }
     let design = Design::load(&args.design)?;
     let mut config = load_config(&args.config)?;
     if let Some(filter) = args.filter {
         config.output_filter = filter.config();
     }
     let scenario = args.scenario.load()?;
-    let source = match args.profile {
+    let source = match args.profile.into_iter().next() {
         Some(path) => DesiredSource::Csv(path),
         None => DesiredSource::Protocol,
     };
@@ -98,6 +132,42 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .run()
         .with_context(|| format!("simulating control of {}", design.file.name))?;
     let mut result = ControlResult::new(control, run);
+    let files = result.files().context("drawing the report")?;
+    write_folder_atomic(&args.output, &files)
+        .with_context(|| format!("writing {}", args.output.display()))?;
+    result.written_to(&args.output);
+    if args.json {
+        println!("{}", dlw::finite::to_json(&result)?);
+    } else {
+        for w in &result.warnings {
+            eprintln!("warning: {w}");
+        }
+        print!("{}", result.summary());
+    }
+    Ok(())
+}
+
+/// `dlw control --design ROBOT --config ROBOT_CFG`: the output folder already claimed.
+fn run_robot(args: Args) -> anyhow::Result<()> {
+    let robot = super::robot::load(&args.design)?;
+    let mut config = load_robot_config(&args.config)?;
+    if let Some(filter) = args.filter {
+        config.output_filter = filter.config();
+    }
+    let control = RobotControl::new(
+        &robot,
+        args.scenario.load()?,
+        &args.profile,
+        config,
+        args.gains.unwrap_or(PAPER_GAINS),
+        args.mt_deg_per_mm,
+        CouplingArg::resolve(args.coupling),
+    )
+    .with_context(|| format!("controlling the robot {:?}", robot.robot.name))?;
+    let run = control
+        .run()
+        .with_context(|| format!("simulating control of the robot {:?}", robot.robot.name))?;
+    let mut result = RobotControlResult::new(control, run);
     let files = result.files().context("drawing the report")?;
     write_folder_atomic(&args.output, &files)
         .with_context(|| format!("writing {}", args.output.display()))?;

@@ -49,6 +49,10 @@ pub struct Args {
     /// small multiples, estimated against tracked; each joint's error; the crosstalk undone).
     #[arg(long)]
     report: Option<PathBuf>,
+    /// With --report: the robot file, whose geometric crosstalk matrix the report draws against
+    /// the config's.
+    #[arg(long, requires = "report")]
+    design: Option<PathBuf>,
 }
 
 fn parse_precision(s: &str) -> Result<u32, String> {
@@ -74,7 +78,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     let inputs = std::iter::once(&args.config)
         .chain(&recording_files)
-        .chain(&args.truth);
+        .chain(&args.truth)
+        .chain(&args.design);
     let output = args
         .output
         .clone()
@@ -94,6 +99,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             args.precision,
             args.json,
             args.report.as_deref(),
+            args.design.as_deref(),
         );
     }
     if args.report.is_some() {

@@ -158,9 +158,17 @@ pub(crate) fn estimate(
     precision: u32,
     json: bool,
     report: Option<&Path>,
+    design: Option<&Path>,
 ) -> anyhow::Result<()> {
     let config = load_robot_config(config_path)?;
     let recording = RobotRecording::read(recording_path)?;
+    let geometry = design
+        .map(|path| {
+            let robot = super::robot::load(path)?;
+            dlw::replay::robot_report::geometric_crosstalk(&config, &robot)
+                .with_context(|| format!("the robot file {}", path.display()))
+        })
+        .transpose()?;
     let result = replay_robot(&config, &recording)
         .with_context(|| format!("estimating over {}", recording_path.display()))?;
     let page = report
@@ -170,6 +178,7 @@ pub(crate) fn estimate(
                 &recording,
                 &result,
                 &recording_path.display().to_string(),
+                geometry.as_deref(),
             )
             .files()
         })

@@ -41,11 +41,21 @@ pub struct Args {
 
 /// The `--coupling` choices.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum CouplingArg {
+pub(crate) enum CouplingArg {
     /// Each joint's angle is its own plant's.
     None,
     /// A distal tendon's tension bends each proximal joint by its moment over its stiffness.
     YorkSwaney,
+}
+
+impl CouplingArg {
+    /// The coupling of `--coupling`, York/Swaney without it.
+    pub(crate) fn resolve(arg: Option<Self>) -> Coupling {
+        match arg.unwrap_or(Self::YorkSwaney) {
+            Self::None => Coupling::None,
+            Self::YorkSwaney => Coupling::YorkSwaney,
+        }
+    }
 }
 
 /// The `--noise` presets.
@@ -73,10 +83,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         if args.profile.is_some() {
             bail!("--profile gives one joint's stroke; a robot's joints each follow the protocol with their own seed (docs/robots.md)");
         }
-        let coupling = match args.coupling.unwrap_or(CouplingArg::YorkSwaney) {
-            CouplingArg::None => Coupling::None,
-            CouplingArg::YorkSwaney => Coupling::YorkSwaney,
-        };
+        let coupling = CouplingArg::resolve(args.coupling);
         return super::robot_sensing::simulate(
             &args.design,
             scenario,

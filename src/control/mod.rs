@@ -38,11 +38,16 @@
 //! Table VI ([`SchemeMetrics`]); [`ControlResult`] gathers both into the analysis `dlw control`
 //! prints ([`crate::analysis::Analysis`]: its `--json`, its summary, its report section);
 //! [`report`] draws `report.html`, its figures and `control.csv`.
+//!
+//! A robot's joints run the same scheme, each on its own tendon and its estimated angle from
+//! the robot estimator, on the robot simulator's bench ([`robot`], [`RobotControlResult`]).
 
 mod desired;
 mod metrics;
 pub mod report;
 mod result;
+pub mod robot;
+mod robot_result;
 mod scheme;
 
 use std::path::PathBuf;
@@ -59,6 +64,8 @@ pub use desired::{Desired, DesiredSource};
 pub use metrics::{rmse, SchemeMetrics, PAPER_TABLE_VI};
 /// A control simulation's result: JSON, summary and report section.
 pub use result::{ControlResult, PaperRow, PaperTableVi};
+/// A robot's control simulation's result: JSON, summary, CSV and report.
+pub use robot_result::{JointControl, RobotControlResult};
 /// The two schemes and what each did per sample.
 pub use scheme::{Loop, Scheme, Trace};
 

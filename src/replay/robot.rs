@@ -24,6 +24,14 @@ pub enum RobotReplayError {
         /// Sensors in the recording.
         sensors: usize,
     },
+    /// The robot file given for the report is not the config's robot.
+    #[error("robot {robot:?} is not the config's robot: it {what}")]
+    Robot {
+        /// The robot's name.
+        robot: String,
+        /// The first difference.
+        what: String,
+    },
     /// The runtime refused the config.
     #[error("the robot estimator: {0}")]
     Estimator(#[from] dlw_estimator::RobotError),

@@ -119,6 +119,110 @@ impl CouplingMatrix {
     }
 }
 
+/// The robot's bench, one sample at a time: every joint's stroke in, every joint's true and
+/// tracked angle and every sensor's voltage out. [`RobotPlan::run`] drives it with the
+/// protocol's strokes; a controller (`dlw::control::robot`) with the strokes it computes, so a
+/// closed loop sees exactly the plant, coupling, crosstalk and noise a recording would.
+#[derive(Debug, Clone)]
+pub struct RobotBench {
+    benches: Vec<Bench>,
+    crosstalk: Vec<Vec<f64>>,
+    /// Each joint's sensors' rows of `C`, in the order of its bench's channels.
+    rows_of: Vec<Vec<usize>>,
+    coefficients: CouplingMatrix,
+    plant_rad: Vec<f64>,
+    /// Each joint's true angle at the last step (rad): its plant's plus the coupling.
+    pub angle_rad: Vec<f64>,
+    /// Each joint's tracked angle at the last step (°).
+    pub tracked_deg: Vec<f64>,
+    /// Each sensor's recorded voltage at the last step (V), in the robot's sensor order.
+    pub volts: Vec<f64>,
+}
+
+impl RobotBench {
+    /// The bench of each joint's resolved scenario and joint, sensors `sensors` (joint, sensor
+    /// within it, 0-based, robot order) reading through `crosstalk` (one row per sensor), the
+    /// tendons coupled by `coefficients`.
+    ///
+    /// # Errors
+    /// [`RobotSimError::Joint`] naming the joint whose bench was refused.
+    pub fn new(
+        joints: &[(&Scenario, &dlw_geometry::Joint)],
+        crosstalk: &[Vec<f64>],
+        sensors: &[(usize, usize)],
+        coefficients: &CouplingMatrix,
+    ) -> Result<Self, RobotSimError> {
+        let n = joints.len();
+        let benches = joints
+            .iter()
+            .enumerate()
+            .map(|(j, (sc, joint))| {
+                Bench::new(sc, joint).map_err(|source| RobotSimError::Joint {
+                    joint: j + 1,
+                    source,
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let rows_of = (0..n)
+            .map(|j| {
+                let mut r: Vec<(usize, usize)> = sensors
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, s)| s.0 == j)
+                    .map(|(i, s)| (s.1, i))
+                    .collect();
+                r.sort_unstable();
+                r.into_iter().map(|(_, i)| i).collect()
+            })
+            .collect();
+        Ok(Self {
+            benches,
+            crosstalk: crosstalk.to_vec(),
+            rows_of,
+            coefficients: coefficients.clone(),
+            plant_rad: vec![0.0; n],
+            angle_rad: vec![0.0; n],
+            tracked_deg: vec![0.0; n],
+            volts: vec![0.0; sensors.len()],
+        })
+    }
+
+    /// Advances every joint one sample at `time_s` with tendon strokes `stroke_mm` (one per
+    /// joint); the results are in [`Self::angle_rad`], [`Self::tracked_deg`], [`Self::volts`].
+    ///
+    /// # Errors
+    /// [`RobotSimError::Joint`] when a joint's sensors leave the physical range.
+    pub fn step(&mut self, time_s: f64, stroke_mm: &[f64]) -> Result<(), RobotSimError> {
+        for (j, bench) in self.benches.iter_mut().enumerate() {
+            self.plant_rad[j] = bench.plant_step(stroke_mm[j]);
+        }
+        self.coefficients
+            .apply(&self.plant_rad, &mut self.angle_rad);
+        let theta = &self.angle_rad;
+        for (j, bench) in self.benches.iter_mut().enumerate() {
+            let rows = &self.rows_of[j];
+            let crosstalk = &self.crosstalk;
+            let mixed = |c: usize| {
+                rows.get(c).map_or(theta[j], |&i| {
+                    crosstalk[i].iter().zip(theta).map(|(c, t)| c * t).sum()
+                })
+            };
+            let reading =
+                bench
+                    .read(time_s, theta[j], mixed)
+                    .map_err(|source| RobotSimError::Joint {
+                        joint: j + 1,
+                        source,
+                    })?;
+            for (c, &i) in rows.iter().enumerate() {
+                self.volts[i] = reading.volts[c];
+            }
+            self.tracked_deg[j] = reading.tracked_deg;
+        }
+        Ok(())
+    }
+}
+
 /// A resolved robot simulation.
 #[derive(Debug, Clone)]
 pub struct RobotPlan {
@@ -215,62 +319,26 @@ impl RobotPlan {
         let rows = self.samples();
         let kinematics = Kinematics::new(&self.sections)
             .map_err(|e| RobotSimError::Kinematics(e.to_string()))?;
-        let joint_error = |joint: usize| move |source| RobotSimError::Joint { joint, source };
-        let mut benches = self
-            .joints
-            .iter()
-            .enumerate()
-            .map(|(j, p)| Bench::new(&p.scenario, &p.design.joint).map_err(joint_error(j + 1)))
-            .collect::<Result<Vec<_>, _>>()?;
+        let mut bench = self.bench()?;
         let mut strokes: Vec<_> = self.joints.iter().map(|p| p.profile.sampler()).collect();
-        // Each joint's sensors' rows of C, in the order of its bench's channels.
-        let rows_of: Vec<Vec<usize>> = (0..n_joints)
-            .map(|j| {
-                let mut r: Vec<(usize, usize)> = self
-                    .sensors
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, s)| s.0 == j)
-                    .map(|(i, s)| (s.1, i))
-                    .collect();
-                r.sort_unstable();
-                r.into_iter().map(|(_, i)| i).collect()
-            })
-            .collect();
         let mut samples = RobotSamples::new(n_joints, self.sensors.len(), true);
         let mut true_angle_deg = vec![Vec::with_capacity(rows); n_joints];
-        let mut plant = vec![0.0; n_joints];
-        let mut theta = vec![0.0; n_joints];
-        let mut tracked = vec![0.0; n_joints];
+        let mut stroke_mm = vec![0.0; n_joints];
         for k in 0..rows {
             let time_s = k as f64 / hz;
-            for j in 0..n_joints {
-                let stroke_mm = strokes[j].at(time_s);
-                samples.stroke_mm[j].push(stroke_mm);
-                plant[j] = benches[j].plant_step(stroke_mm);
+            for (j, s) in stroke_mm.iter_mut().enumerate() {
+                *s = strokes[j].at(time_s);
+                samples.stroke_mm[j].push(*s);
             }
-            self.coefficients.apply(&plant, &mut theta);
-            for j in 0..n_joints {
-                let mixed = |c: usize| {
-                    rows_of[j].get(c).map_or(theta[j], |&i| {
-                        self.crosstalk[i]
-                            .iter()
-                            .zip(&theta)
-                            .map(|(c, t)| c * t)
-                            .sum()
-                    })
-                };
-                let reading = benches[j]
-                    .read(time_s, theta[j], mixed)
-                    .map_err(joint_error(j + 1))?;
-                for (c, &i) in rows_of[j].iter().enumerate() {
-                    samples.volts[i].push(reading.volts[c]);
-                }
-                tracked[j] = reading.tracked_deg;
-                samples.angle_deg[j].push(reading.tracked_deg);
-                true_angle_deg[j].push(theta[j].to_degrees());
+            bench.step(time_s, &stroke_mm)?;
+            for (i, &v) in bench.volts.iter().enumerate() {
+                samples.volts[i].push(v);
             }
-            let tracked_rad: Vec<f64> = tracked.iter().map(|a| a.to_radians()).collect();
+            for (j, truth) in true_angle_deg.iter_mut().enumerate() {
+                samples.angle_deg[j].push(bench.tracked_deg[j]);
+                truth.push(bench.angle_rad[j].to_degrees());
+            }
+            let tracked_rad: Vec<f64> = bench.tracked_deg.iter().map(|a| a.to_radians()).collect();
             let pose = kinematics
                 .tip(&tracked_rad)
                 .map_err(|e| RobotSimError::Kinematics(e.to_string()))?;
@@ -285,6 +353,19 @@ impl RobotPlan {
             samples,
             true_angle_deg,
         })
+    }
+
+    /// The robot's bench for this plan's scenarios, crosstalk and coupling.
+    ///
+    /// # Errors
+    /// [`RobotSimError::Joint`] naming the joint whose bench was refused.
+    pub fn bench(&self) -> Result<RobotBench, RobotSimError> {
+        let joints: Vec<(&Scenario, &dlw_geometry::Joint)> = self
+            .joints
+            .iter()
+            .map(|p| (&p.scenario, &p.design.joint))
+            .collect();
+        RobotBench::new(&joints, &self.crosstalk, &self.sensors, &self.coefficients)
     }
 
     /// The recording's `rig.toml`: joint 1's bench settings, every sensor's divider, and the
