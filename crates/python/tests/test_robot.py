@@ -34,11 +34,11 @@ def cli_error(*args):
     return out.stderr
 
 
-def columns(path):
-    """A CSV file's columns by name, as float arrays."""
+def columns(path, names):
+    """Columns `names` of a CSV file, as float arrays."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    return {k: np.array([float(r[k]) for r in rows]) for k in names}
 
 
 @pytest.fixture(scope="module")
@@ -149,11 +149,13 @@ def bdb_run(tmp_path_factory):
 
 def test_robot_estimator_and_tip_equal_dlw_estimate(bdb_run):
     robot = dlw.Robot.from_file(DESIGNS / "robot-bdb.toml")
-    rec = columns(bdb_run / "rec" / "data.csv")
-    est = columns(bdb_run / "est.csv")
-    volts = np.column_stack([rec[f"v{i}_V"] for i in range(1, robot.sensors + 1)])
+    v = [f"v{i}_V" for i in range(1, robot.sensors + 1)]
+    a = [f"angle{k}_est_deg" for k in range(1, robot.joints + 1)]
+    rec = columns(bdb_run / "rec" / "data.csv", v)
+    est = columns(bdb_run / "est.csv", a + ["tip_x_mm", "tip_y_mm", "tip_z_mm"])
+    volts = np.column_stack([rec[k] for k in v])
     angles = robot.estimator(bdb_run / "cfg.toml").run(volts)
-    expected_angles = np.column_stack([est[f"angle{k}_est_deg"] for k in range(1, robot.joints + 1)])
+    expected_angles = np.column_stack([est[k] for k in a])
     assert np.max(np.abs(angles - expected_angles)) <= TOLERANCE
     assert np.abs(angles).max() > 5.0, "the robot bends"
     expected_tip = np.column_stack([est["tip_x_mm"], est["tip_y_mm"], est["tip_z_mm"]])
@@ -183,7 +185,7 @@ def test_robot_estimator_config_is_the_cli_config(bdb_run):
     assert robot.estimator(text).config() == robot.estimator(config).config() == config
     with pytest.raises(ValueError, match="--gauge-factor is given 2 times; the robot has 3 sensors"):
         robot.estimator_config(gauge_factor=[15.3, 15.0], r0_ohm=215e3)
-    message = cli_error("estimator-config", DESIGNS / "robot-bdb.toml", "--gauge-factor", "15.3", "--r0-ohm", "-1", "-o", bdb_run / "bad.toml")
+    message = cli_error("estimator-config", DESIGNS / "robot-bdb.toml", "--gauge-factor", "15.3", "--r0-ohm=-1", "-o", bdb_run / "bad.toml")
     with pytest.raises(ValueError) as e:
         robot.estimator_config(gauge_factor=15.3, r0_ohm=-1.0)
     assert str(e.value) in message
@@ -198,14 +200,14 @@ def test_robot_refuses_another_robots_config(bdb_run):
         bdb.estimator(bc_config)
     with pytest.raises(ValueError, match=r'the config has 3 joints and 3 sensors, the robot "Robot BC" has 2 joints and 3 sensors'):
         bc.estimator(bdb_run / "cfg.toml")
-    # Same counts, another robot: joint 2 turned elsewhere, or another design.
+    # Same counts, another robot: joint 2 turned elsewhere, or with 9 notches.
     config = bdb.estimator_config(gauge_factor=15.3, r0_ohm=215e3)
     turned = json.loads(json.dumps(config))
     turned["joint"][1]["rotation_deg"] = 90.0
     with pytest.raises(ValueError, match=r'joint 2: the config\'s rotation_deg = 90 and the robot "Robot BDB"\'s 120'):
         bdb.estimator(turned)
     other = json.loads(json.dumps(config))
-    other["joint"][1]["geometry"] = config["joint"][0]["geometry"]
+    other["joint"][1]["geometry"]["notch_count"] = 9
     with pytest.raises(ValueError, match=r"joint 2: the config's geometry is not the robot \"Robot BDB\"'s design"):
         bdb.estimator(other)
 
@@ -216,7 +218,8 @@ def test_robot_bad_input_raises_the_commands_message(tmp_path):
     message = cli_error("inspect", missing, "--json")
     with pytest.raises(ValueError) as e:
         dlw.Robot.from_file(missing)
-    assert "no-such-joint.toml" in str(e.value) and str(e.value) in message
+    assert "no-such-joint.toml" in str(e.value)
+    assert message.strip() == "dlw: error: " + str(e.value)
     robot = dlw.Robot.from_file(DESIGNS / "robot-bdb.toml")
     with pytest.raises(ValueError, match="angles has 2 columns, must have 3"):
         robot.tip(np.zeros((4, 2)))
