@@ -3,36 +3,16 @@
 
 use std::path::Path;
 
-use anyhow::{bail, Context};
+use anyhow::Context;
 use dlw::output::write_atomic;
 use dlw::recording::robot::RobotRecording;
 use dlw::replay::robot::{replay_robot, JointMetrics, TipMetrics};
 use dlw::replay::{load_robot_config, robot_config_text, ConfigFormat};
-use dlw::robot::estimator_config::{
-    default_dividers_ohm, estimator_config as config_of, SensorSetting,
-};
+use dlw::robot::estimator_config::{estimator_config as config_of, nominal_linear, SensorSetting};
 use dlw::sim::robot::{plan_robot, Coupling};
 use dlw::sim::Scenario;
-use dlw_estimator::{LinearModel, ModelConfig};
 use dlw_geometry::Divider;
 use serde::Serialize;
-
-/// One value for every sensor, or one per sensor.
-pub(crate) fn per_sensor(
-    name: &str,
-    values: &[f64],
-    default: Option<&[f64]>,
-    sensors: usize,
-) -> anyhow::Result<Vec<f64>> {
-    match (values.len(), default) {
-        (0, Some(d)) => Ok(d.to_vec()),
-        (1, _) => Ok(vec![values[0]; sensors]),
-        (n, _) if n == sensors => Ok(values.to_vec()),
-        (n, _) => bail!(
-            "--{name} is given {n} times; the robot has {sensors} sensors: give it once for every sensor, or once per sensor in dlw inspect's order"
-        ),
-    }
-}
 
 /// `dlw estimator-config ROBOT --gauge-factor G… --r0-ohm R… [--divider-ohm D…] -o cfg`.
 pub(crate) fn estimator_config(
@@ -46,24 +26,7 @@ pub(crate) fn estimator_config(
 ) -> anyhow::Result<()> {
     let robot = super::robot::load(path)?;
     let m = robot.sensors.len();
-    let gf = per_sensor("gauge-factor", gauge_factor, None, m)?;
-    let r0 = per_sensor("r0-ohm", r0_ohm, None, m)?;
-    let dividers = default_dividers_ohm(&robot);
-    let rk = per_sensor("divider-ohm", divider_ohm, Some(&dividers), m)?;
-    let settings = (0..m)
-        .map(|i| {
-            let model = LinearModel::new(gf[i], r0[i])
-                .with_context(|| format!("sensor {}'s linear model", i + 1))?;
-            let divider = Divider::new(rk[i], supply_v)
-                .with_context(|| format!("sensor {}'s divider", i + 1))?;
-            Ok(SensorSetting {
-                model: ModelConfig::Linear(model),
-                divider,
-            })
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    let config = config_of(&robot, &settings, &robot.crosstalk_matrix())
-        .with_context(|| format!("the estimator config of {:?}", robot.robot.name))?;
+    let config = nominal_linear(&robot, gauge_factor, r0_ohm, divider_ohm, supply_v)?;
     let note = format!(
         "Nominal linear estimator config for the robot {:?} (robot checksum {}), written by dlw estimator-config\nbefore any characterization: {} joints, {} sensors, the crosstalk matrix from the geometry (dlw inspect).",
         robot.robot.name,

@@ -26,8 +26,9 @@ pub enum RobotError {
         /// The parser's message, naming the key.
         message: String,
     },
-    /// A joint's design file could not be read.
-    #[error("robot {robot:?}, joint {joint} ({path}): {source}")]
+    /// A joint's design file could not be read. (The cause is the error's source, so that a
+    /// chain printed with its causes, `{:#}`, does not repeat it.)
+    #[error("robot {robot:?}, joint {joint} ({path})")]
     Design {
         /// The robot's name.
         robot: String,
@@ -38,8 +39,8 @@ pub enum RobotError {
         /// Why.
         source: DesignError,
     },
-    /// A joint's design breaks its own design rules.
-    #[error("robot {robot:?}, joint {joint} ({path}): {source}")]
+    /// A joint's design breaks its own design rules (the rules are the source, as above).
+    #[error("robot {robot:?}, joint {joint} ({path})")]
     JointRules {
         /// The robot's name.
         robot: String,

@@ -4,10 +4,10 @@
 //! `docs/robots.md`), in the order of the inspection's `"sensors"`.
 
 use dlw_estimator::{
-    JointConfig, ModelConfig, RobotError as RuntimeError, RobotEstimatorConfig, RobotJointConfig,
-    RobotSensorConfig,
+    EstimatorError, JointConfig, LinearModel, ModelConfig, RobotError as RuntimeError,
+    RobotEstimatorConfig, RobotJointConfig, RobotSensorConfig,
 };
-use dlw_geometry::Divider;
+use dlw_geometry::{Divider, GeometryError};
 
 use super::checked::CheckedRobot;
 
@@ -94,4 +94,112 @@ pub fn default_dividers_ohm(robot: &CheckedRobot) -> Vec<f64> {
             }
         })
         .collect()
+}
+
+/// Why [`nominal_linear`] refused its numbers. The messages name the command's options, as
+/// `dlw estimator-config ROBOT` prints them.
+#[derive(Debug, thiserror::Error)]
+pub enum NominalConfigError {
+    /// A per-sensor value given neither once nor once per sensor.
+    #[error("--{option} is given {given} times; the robot has {sensors} sensors: give it once for every sensor, or once per sensor in dlw inspect's order")]
+    Count {
+        /// The option (`gauge-factor`, `r0-ohm`, `divider-ohm`).
+        option: &'static str,
+        /// Values given.
+        given: usize,
+        /// The robot's sensors.
+        sensors: usize,
+    },
+    /// A sensor's gauge factor or R0.
+    #[error("sensor {sensor}'s linear model")]
+    Model {
+        /// 1-based, in `dlw inspect`'s order.
+        sensor: usize,
+        /// What the model refused.
+        #[source]
+        source: EstimatorError,
+    },
+    /// A sensor's divider resistor or the supply.
+    #[error("sensor {sensor}'s divider")]
+    Divider {
+        /// 1-based, in `dlw inspect`'s order.
+        sensor: usize,
+        /// What the divider refused.
+        #[source]
+        source: GeometryError,
+    },
+    /// The config as a whole (the crosstalk matrix's conditioning).
+    #[error("the estimator config of {robot:?}")]
+    Config {
+        /// The robot's name.
+        robot: String,
+        /// What the runtime refused.
+        #[source]
+        source: RuntimeError,
+    },
+}
+
+/// One value for every sensor (`values` of length 1), one per sensor, or `default` when none
+/// is given.
+fn per_sensor(
+    option: &'static str,
+    values: &[f64],
+    default: Option<&[f64]>,
+    sensors: usize,
+) -> Result<Vec<f64>, NominalConfigError> {
+    match (values.len(), default) {
+        (0, Some(d)) => Ok(d.to_vec()),
+        (1, _) => Ok(vec![values[0]; sensors]),
+        (n, _) if n == sensors => Ok(values.to_vec()),
+        (given, _) => Err(NominalConfigError::Count {
+            option,
+            given,
+            sensors,
+        }),
+    }
+}
+
+/// The nominal linear config `dlw estimator-config ROBOT` writes: every sensor's linear model
+/// (`gauge_factor`, `r0_ohm`: once for all sensors or once per sensor, in `dlw inspect`'s
+/// order), its divider (`divider_ohm`, likewise; empty: [`default_dividers_ohm`]) on
+/// `supply_v`, and the geometry's crosstalk matrix.
+///
+/// # Errors
+/// [`NominalConfigError`]: a count of values, a sensor's model or divider, or the config.
+pub fn nominal_linear(
+    robot: &CheckedRobot,
+    gauge_factor: &[f64],
+    r0_ohm: &[f64],
+    divider_ohm: &[f64],
+    supply_v: f64,
+) -> Result<RobotEstimatorConfig, NominalConfigError> {
+    let m = robot.sensors.len();
+    let gf = per_sensor("gauge-factor", gauge_factor, None, m)?;
+    let r0 = per_sensor("r0-ohm", r0_ohm, None, m)?;
+    let dividers = default_dividers_ohm(robot);
+    let rk = per_sensor("divider-ohm", divider_ohm, Some(&dividers), m)?;
+    let settings = (0..m)
+        .map(|i| {
+            let model =
+                LinearModel::new(gf[i], r0[i]).map_err(|source| NominalConfigError::Model {
+                    sensor: i + 1,
+                    source,
+                })?;
+            let divider =
+                Divider::new(rk[i], supply_v).map_err(|source| NominalConfigError::Divider {
+                    sensor: i + 1,
+                    source,
+                })?;
+            Ok(SensorSetting {
+                model: ModelConfig::Linear(model),
+                divider,
+            })
+        })
+        .collect::<Result<Vec<_>, NominalConfigError>>()?;
+    estimator_config(robot, &settings, &robot.crosstalk_matrix()).map_err(|source| {
+        NominalConfigError::Config {
+            robot: robot.robot.name.clone(),
+            source,
+        }
+    })
 }

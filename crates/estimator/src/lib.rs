@@ -18,7 +18,12 @@
 //! - [`Pid`]: a discrete PID controller with output limits, anti-windup and the derivative on
 //!   the measurement, to close the loop on the estimated angle (Section IV-C);
 //! - [`Estimator`]: all of it from an [`EstimatorConfig`], for one sensor (Eq. 3) or both
-//!   sensors of a BSN joint (Eq. 7), returning an [`Estimate`] with [`Flags`].
+//!   sensors of a BSN joint (Eq. 7), returning an [`Estimate`] with [`Flags`];
+//! - [`RobotEstimator`]: a robot of several joints on one tube, from a
+//!   [`RobotEstimatorConfig`]: one [`Estimator`] per sensor gives each sensor's mixed angle,
+//!   and the crosstalk of the leads is undone by least squares ([`Unmixing`]); with the
+//!   robot's [`Kinematics`] (from `dlw-geometry`), the tip's [`Pose`] and the backbone
+//!   (`docs/robot-runtime.md`).
 //!
 //! Strain ↔ angle is `dlw_geometry::Joint`, the code the planner cuts the joint with.
 //!
@@ -29,6 +34,22 @@
 //! `Q₁ = 1/P₁`, `ζᵢ = Σ_{j≤i} Pⱼ(ρᵢ − ρⱼ)`); see [`PiOperator::inverse`] for the derivation.
 //! This crate uses the corrected form; its tests show that the printed form does not invert
 //! the forward model. `docs/estimator.md` writes out every formula.
+//!
+//! # A robot's PI sensors need no iteration over the joints
+//! Sensor `i` of a robot reads the mixed angle `a_i = Σ_j C[i][j]·θ_j` (`C` the crosstalk
+//! matrix, `M × N`, `C[i][J(i)] = 1`) through its own joint's model, and its hysteresis acts on
+//! that one lumped strain, as for a single joint (the sensing model of `docs/robot-runtime.md`).
+//! Each sensor's model is invertible on its own, so its [`Estimator`] recovers `a_i` exactly
+//! whatever the other joints do, and `a = C·θ` is linear: `θ = C⁺·a` is then the exact
+//! solution (least squares for `M > N`). Issue 34 asked for PI sensors to "iterate from the
+//! last sample's angles, with a stated bound on iterations and a flag when it does not
+//! converge"; under this model that iteration converges in one step to the same answer, so the
+//! bound on joint-level iterations is 0. The one iterative step left is a sensor's continuous
+//! PI inverse: at most [`MAX_INVERSE_ITERATIONS`] steps per sample, flagged
+//! [`Flags::NOT_CONVERGED`] when it stops short of its tolerance, a flag that reaches every
+//! joint whose angle depends on that sensor. (A model whose hysteresis acted on each joint's
+//! share of a sensor's strain separately would need the outer iteration; it is not the model
+//! `dlw` simulates or fits.)
 //!
 //! # Examples
 //! ```

@@ -3,21 +3,23 @@
 //! Every function is a thin layer over the library the command line uses, so a result here is
 //! the command's result: `fit` is `dlw::fit::fit`, `Estimator.run` steps the runtime crate's
 //! estimator exactly as `dlw estimate` does, `discover` builds `dlw discover --json`'s
-//! summary. `RobotEstimator`, `tip` and `backbone` are the robot runtime (`robot.rs`). Bad
+//! summary. `RobotEstimator`, `tip` and `backbone` are the robot runtime (`robot.rs`), `Robot`
+//! a robot file with its inspection, estimator and kinematics (`robot_file.rs`). Bad
 //! input raises `ValueError` with the command's message; long work releases the GIL.
 //! `docs/python.md` is the user's guide.
 
 use std::path::PathBuf;
 
 mod robot;
+mod robot_file;
 
 use dlw_core::analysis::Analysis as _;
 use dlw_core::design::{Design as CoreDesign, DesignFile};
 use dlw_core::discover as discovery;
 use dlw_core::fit::{FitRequest, ModelKind, PlayOrder};
-use dlw_core::signal::Prefilter;
 use dlw_core::recording::{Recording, Rig, Samples};
 use dlw_core::sensor::Sensors;
+use dlw_core::signal::Prefilter;
 use dlw_core::sim::{self, ProtocolKind, Scenario};
 use dlw_estimator::{Estimator as Runtime, EstimatorConfig};
 use numpy::{PyArray1, PyReadonlyArray1};
@@ -558,7 +560,7 @@ fn characterize<'py>(
     min_hold_s: f64,
     paper_processing: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use dlw_core::characterize::{CharacterizeRequest, AnalysisKind, Options};
+    use dlw_core::characterize::{AnalysisKind, CharacterizeRequest, Options};
     let recording_name = recording
         .extract::<PathBuf>()
         .map_or_else(|_| "recording".to_owned(), |p| p.display().to_string());
@@ -605,6 +607,7 @@ fn _dlw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Estimator>()?;
     m.add_class::<Fit>()?;
     m.add_class::<robot::RobotEstimator>()?;
+    m.add_class::<robot_file::Robot>()?;
     m.add_function(wrap_pyfunction!(robot::tip, m)?)?;
     m.add_function(wrap_pyfunction!(robot::backbone, m)?)?;
     m.add_function(wrap_pyfunction!(read_recording, m)?)?;

@@ -2,10 +2,8 @@
 //! Python, vectorised over numpy arrays. Angles are in degrees at this edge, as in
 //! `Estimator.run`.
 //!
-//! Seam for issue 33's robot file: `dlw.Robot.from_file(path)` with `.inspect()` belongs next
-//! to `Design` once `dlw::robot` reads robot files; [`kinematics_arg`] is where a `Robot`
-//! argument will be accepted beside a robot estimator config, and `Robot.estimator(config)`
-//! is `RobotEstimator.from_dict(config)`.
+//! `dlw.Robot` (`robot_file.rs`) reuses [`config_arg`], [`tip_of`] and [`backbone_of`] with
+//! the kinematics of a robot file.
 
 use std::path::{Path, PathBuf};
 
@@ -36,7 +34,7 @@ fn load(path: &Path) -> PyResult<RobotEstimatorConfig> {
 
 /// A robot estimator config: a path to a config file, a dict (the file's tables), or a
 /// `RobotEstimator`.
-fn config_arg(value: &Bound<'_, PyAny>) -> PyResult<RobotEstimatorConfig> {
+pub(crate) fn config_arg(value: &Bound<'_, PyAny>) -> PyResult<RobotEstimatorConfig> {
     if let Ok(e) = value.extract::<PyRef<'_, RobotEstimator>>() {
         return Ok(e.config);
     }
@@ -123,7 +121,7 @@ pub(crate) struct RobotEstimator {
 }
 
 impl RobotEstimator {
-    fn new(config: RobotEstimatorConfig) -> PyResult<Self> {
+    pub(crate) fn new(config: RobotEstimatorConfig) -> PyResult<Self> {
         let runtime = Box::new(Runtime::new(&config).map_err(|e| message(e.to_string()))?);
         Ok(Self {
             flags: vec![0; config.joint_count()],
@@ -269,7 +267,16 @@ pub(crate) fn tip<'py>(
     angles: &Bound<'py, PyAny>,
     config: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let kinematics = kinematics_arg(config)?;
+    tip_of(py, &kinematics_arg(config)?, angles)
+}
+
+/// [`tip`] for a robot's kinematics.
+pub(crate) fn tip_of<'py>(
+    py: Python<'py>,
+    kinematics: &Kinematics,
+    angles: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let kinematics = *kinematics;
     let (angles, single) = rows(angles, kinematics.joint_count(), "angles")?;
     let angles = radians(angles.view())?;
     let n = angles.nrows();
@@ -323,7 +330,17 @@ pub(crate) fn backbone<'py>(
     config: &Bound<'py, PyAny>,
     points: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let kinematics = kinematics_arg(config)?;
+    backbone_of(py, &kinematics_arg(config)?, angles, points)
+}
+
+/// [`backbone`] for a robot's kinematics.
+pub(crate) fn backbone_of<'py>(
+    py: Python<'py>,
+    kinematics: &Kinematics,
+    angles: &Bound<'py, PyAny>,
+    points: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let kinematics = *kinematics;
     let (angles, single) = rows(angles, kinematics.joint_count(), "angles")?;
     let angles = radians(angles.view())?;
     let n = angles.nrows();

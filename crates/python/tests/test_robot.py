@@ -1,9 +1,13 @@
-"""pytest for the robot runtime from Python (`dlw.RobotEstimator`, `dlw.tip`, `dlw.backbone`):
-each result must be the Rust runtime's over the same inputs, to 1e-9. The Rust outputs are
-crates/estimator/tests/data/robot-runtime.json, which the Rust test robot_golden checks is what
-the runtime computes today."""
+"""pytest for the robot runtime from Python (`dlw.RobotEstimator`, `dlw.tip`, `dlw.backbone`,
+`dlw.Robot`): each result must be the Rust runtime's over the same inputs, to 1e-9. The Rust
+outputs are crates/estimator/tests/data/robot-runtime.json, which the Rust test robot_golden
+checks is what the runtime computes today; `dlw.Robot` is compared with the `dlw` binary
+(DLW_BIN, default target/debug/dlw): `inspect --json`, `estimator-config` and `estimate`."""
 
+import csv
 import json
+import os
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -14,6 +18,27 @@ import dlw
 ROOT = Path(__file__).resolve().parents[3]
 GOLDEN = json.loads((ROOT / "crates/estimator/tests/data/robot-runtime.json").read_text())
 TOLERANCE = 1e-9
+DESIGNS = ROOT / "designs"
+BIN = os.environ.get("DLW_BIN", str(ROOT / "target" / "debug" / "dlw"))
+
+
+def cli(*args):
+    out = subprocess.run([BIN, *map(str, args)], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    return out.stdout
+
+
+def cli_error(*args):
+    out = subprocess.run([BIN, *map(str, args)], capture_output=True, text=True)
+    assert out.returncode != 0
+    return out.stderr
+
+
+def columns(path, names):
+    """Columns `names` of a CSV file, as float arrays."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: np.array([float(r[k]) for r in rows]) for k in names}
 
 
 @pytest.fixture(scope="module")
@@ -97,3 +122,106 @@ def test_bad_input_raises_value_error_naming_it(estimator, tmp_path):
     bad.write_text("joint = 3\n")
     with pytest.raises(ValueError, match="bad.toml"):
         dlw.RobotEstimator.from_config(bad)
+
+
+@pytest.mark.parametrize("name", ["robot-bdb.toml", "robot-bc.toml"])
+def test_robot_inspect_is_the_cli_json(name):
+    path = DESIGNS / name
+    robot = dlw.Robot.from_file(path)
+    expected = json.loads(cli("inspect", path, "--json"))
+    assert robot.inspect() == expected
+    assert (robot.name, robot.joints, robot.sensors) == (
+        expected["name"], len(expected["joints"]), len(expected["sensors"]))
+    assert any(c != 0.0 for s in expected["sensors"] for j, c in enumerate(s["crosstalk"]) if j + 1 != s["joint"])
+
+
+@pytest.fixture(scope="module")
+def bdb_run(tmp_path_factory):
+    """A simulated robot-bdb recording, the config `dlw estimator-config` writes for it and
+    `dlw estimate`'s estimates, at 15 decimals."""
+    d = tmp_path_factory.mktemp("bdb")
+    robot = DESIGNS / "robot-bdb.toml"
+    cli("simulate", "--design", robot, "--protocol", "random", "--seed", "2", "--duration-s", "20", "-o", d / "rec")
+    cli("estimator-config", robot, "--gauge-factor", "15.3", "--r0-ohm", "215e3", "-o", d / "cfg.toml")
+    cli("estimate", "--config", d / "cfg.toml", d / "rec", "-o", d / "est.csv", "--precision", "15")
+    return d
+
+
+def test_robot_estimator_and_tip_equal_dlw_estimate(bdb_run):
+    robot = dlw.Robot.from_file(DESIGNS / "robot-bdb.toml")
+    v = [f"v{i}_V" for i in range(1, robot.sensors + 1)]
+    a = [f"angle{k}_est_deg" for k in range(1, robot.joints + 1)]
+    rec = columns(bdb_run / "rec" / "data.csv", v)
+    est = columns(bdb_run / "est.csv", a + ["tip_x_mm", "tip_y_mm", "tip_z_mm"])
+    volts = np.column_stack([rec[k] for k in v])
+    angles = robot.estimator(bdb_run / "cfg.toml").run(volts)
+    expected_angles = np.column_stack([est[k] for k in a])
+    assert np.max(np.abs(angles - expected_angles)) <= TOLERANCE
+    assert np.abs(angles).max() > 5.0, "the robot bends"
+    expected_tip = np.column_stack([est["tip_x_mm"], est["tip_y_mm"], est["tip_z_mm"]])
+    pose = robot.tip(angles)
+    assert pose["position_mm"].shape == (len(angles), 3)
+    assert np.max(np.abs(pose["position_mm"] - expected_tip)) <= TOLERANCE
+    # The tip moves: a straight robot's tip would pass a comparison of constants.
+    assert np.ptp(expected_tip, axis=0).max() > 1.0
+    # One row of angles, as a list, gives that row's pose.
+    one = robot.tip(list(angles[100]))
+    assert np.max(np.abs(one["position_mm"] - expected_tip[100])) <= TOLERANCE
+    # The backbone ends at the tip; the module's tip with the config file agrees.
+    points = robot.backbone(angles[:50], points=7)
+    assert points.shape == (50, 7, 3)
+    assert np.max(np.abs(points[:, -1] - expected_tip[:50])) <= TOLERANCE
+    assert np.array_equal(dlw.tip(angles[:50], bdb_run / "cfg.toml")["position_mm"], pose["position_mm"][:50])
+
+
+def test_robot_estimator_config_is_the_cli_config(bdb_run):
+    robot = dlw.Robot.from_file(DESIGNS / "robot-bdb.toml")
+    config = robot.estimator_config(gauge_factor=15.3, r0_ohm=215e3)
+    assert config == dlw.RobotEstimator.from_config(bdb_run / "cfg.toml").config()
+    # One value per sensor, and the estimator takes the dict and the TOML text.
+    per_sensor = robot.estimator_config(gauge_factor=[15.3, 15.3, 15.3], r0_ohm=215e3, divider_ohm=[99.6e3] * 3)
+    assert per_sensor == config
+    text = (bdb_run / "cfg.toml").read_text()
+    assert robot.estimator(text).config() == robot.estimator(config).config() == config
+    with pytest.raises(ValueError, match="--gauge-factor is given 2 times; the robot has 3 sensors"):
+        robot.estimator_config(gauge_factor=[15.3, 15.0], r0_ohm=215e3)
+    message = cli_error("estimator-config", DESIGNS / "robot-bdb.toml", "--gauge-factor", "15.3", "--r0-ohm=-1", "-o", bdb_run / "bad.toml")
+    with pytest.raises(ValueError) as e:
+        robot.estimator_config(gauge_factor=15.3, r0_ohm=-1.0)
+    assert str(e.value) in message
+
+
+def test_robot_refuses_another_robots_config(bdb_run):
+    bdb = dlw.Robot.from_file(DESIGNS / "robot-bdb.toml")
+    bc = dlw.Robot.from_file(DESIGNS / "robot-bc.toml")
+    bc_config = bc.estimator_config(gauge_factor=15.3, r0_ohm=215e3)
+    assert bc.estimator(bc_config).joints == 2
+    with pytest.raises(ValueError, match=r'the config has 2 joints and 3 sensors, the robot "Robot BDB" has 3 joints and 3 sensors'):
+        bdb.estimator(bc_config)
+    with pytest.raises(ValueError, match=r'the config has 3 joints and 3 sensors, the robot "Robot BC" has 2 joints and 3 sensors'):
+        bc.estimator(bdb_run / "cfg.toml")
+    # Same counts, another robot: joint 2 turned elsewhere, or with 9 notches.
+    config = bdb.estimator_config(gauge_factor=15.3, r0_ohm=215e3)
+    turned = json.loads(json.dumps(config))
+    turned["joint"][1]["rotation_deg"] = 90.0
+    with pytest.raises(ValueError, match=r'joint 2: the config\'s rotation_deg = 90 and the robot "Robot BDB"\'s 120'):
+        bdb.estimator(turned)
+    other = json.loads(json.dumps(config))
+    other["joint"][1]["geometry"]["notch_count"] = 9
+    with pytest.raises(ValueError, match=r"joint 2: the config's geometry is not the robot \"Robot BDB\"'s design"):
+        bdb.estimator(other)
+
+
+def test_robot_bad_input_raises_the_commands_message(tmp_path):
+    missing = tmp_path / "robot.toml"
+    missing.write_text('name = "R"\n[[joint]]\ndesign = "no-such-joint.toml"\nrotation_deg = 0.0\n')
+    message = cli_error("inspect", missing, "--json")
+    with pytest.raises(ValueError) as e:
+        dlw.Robot.from_file(missing)
+    assert "no-such-joint.toml" in str(e.value)
+    assert message.strip() == "dlw: error: " + str(e.value)
+    robot = dlw.Robot.from_file(DESIGNS / "robot-bdb.toml")
+    with pytest.raises(ValueError, match="angles has 2 columns, must have 3"):
+        robot.tip(np.zeros((4, 2)))
+    with pytest.raises(ValueError, match=r"angles\[0, 1\] = inf is not a finite number"):
+        robot.backbone([[0.0, np.inf, 0.0]])

@@ -2,8 +2,9 @@
 
 The same library as the ``dlw`` command: design geometry (``Design``), bench recordings
 (``read_recording``, ``simulate``), sensor fits (``fit``), the runtime estimator
-(``Estimator``), characterization (``characterize``), the robot runtime (``RobotEstimator``,
-``tip``, ``backbone``) and discovery (``discover``). Bad input raises ``ValueError`` with the command's
+(``Estimator``), characterization (``characterize``), robots (``Robot``: a robot file with its
+inspection, estimator and kinematics), the robot runtime (``RobotEstimator``, ``tip``,
+``backbone``) and discovery (``discover``). Bad input raises ``ValueError`` with the command's
 message. See docs/python.md.
 """
 
@@ -11,6 +12,7 @@ from ._dlw import (
     Design,
     Estimator,
     Fit,
+    Robot,
     RobotEstimator,
     __version__,
     backbone,
@@ -26,6 +28,7 @@ __all__ = [
     "Design",
     "Estimator",
     "Fit",
+    "Robot",
     "RobotEstimator",
     "__version__",
     "backbone",

@@ -126,3 +126,37 @@ def tip(angles: _Rows, config: _RobotConfig) -> Dict[str, npt.NDArray[np.float64
 def backbone(angles: _Rows, config: _RobotConfig, points: int = 20) -> npt.NDArray[np.float64]:
     """Backbone points (mm), equally spaced from the base to the tip: (n, points, 3), or
     (points, 3) for one row of angles."""
+
+class Robot:
+    """A sensing robot: several joints on one tube, read and checked from a robot file as
+    ``dlw inspect ROBOT`` reads it (docs/robots.md)."""
+
+    @staticmethod
+    def from_file(path: _Path) -> "Robot": ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def path(self) -> _Path: ...
+    @property
+    def joints(self) -> int: ...
+    @property
+    def sensors(self) -> int: ...
+    def inspect(self) -> Dict[str, Any]:
+        """``dlw inspect ROBOT --json``'s dict: ``joints``, ``sensors`` (with ``crosstalk``),
+        ``warnings``."""
+    def estimator(self, config: Union[_RobotConfig, str]) -> RobotEstimator:
+        """The runtime estimator of a config of this robot (a path, TOML text, a dict or a
+        ``RobotEstimator``); ``ValueError`` when its joints or sensors are not this robot's."""
+    def estimator_config(
+        self,
+        gauge_factor: Union[float, "list[float]"],
+        r0_ohm: Union[float, "list[float]"],
+        divider_ohm: Optional[Union[float, "list[float]"]] = None,
+        supply_v: float = 5.0,
+    ) -> Dict[str, Any]:
+        """The nominal linear config ``dlw estimator-config ROBOT`` writes, as a dict: each
+        value once for every sensor or once per sensor."""
+    def tip(self, angles: _Rows) -> Dict[str, npt.NDArray[np.float64]]:
+        """The tip's pose at joint angles (°, (n, N) or (N,)), as ``dlw.tip``."""
+    def backbone(self, angles: _Rows, points: int = 20) -> npt.NDArray[np.float64]:
+        """Backbone points (mm) from the base to the tip, as ``dlw.backbone``."""
