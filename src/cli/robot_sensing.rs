@@ -275,7 +275,14 @@ pub(crate) fn fit(
         robot.robot.checksum,
         fitted.model,
         if fitted.crosstalk_fitted {
-            "the crosstalk matrix fitted by least squares on the recorded joint angles"
+            match fitted.angles_from {
+                dlw::fit::robot::AnglesFrom::Joints => {
+                    "the crosstalk matrix fitted by least squares on the recorded joint angles"
+                }
+                dlw::fit::robot::AnglesFrom::Tip => {
+                    "the crosstalk matrix fitted by least squares on the joint angles from the tracked tip (inverse kinematics)"
+                }
+            }
         } else {
             "the crosstalk matrix the geometry's (the recording cannot tell the joints apart)"
         }
@@ -314,6 +321,17 @@ pub(crate) fn fit(
             "kept from the geometry"
         }
     );
+    if let Some(t) = &fitted.tip_angles {
+        println!(
+            "  angles from the tip {} of {} tracked rows used; dropped {} not identifiable, {} ambiguous, {} off the kinematics; tracker noise {:.3e} mm",
+            t.used,
+            t.rows,
+            t.dropped_not_identifiable,
+            t.dropped_ambiguous,
+            t.dropped_off_kinematics,
+            t.tip_noise_mm
+        );
+    }
     for (i, s) in fitted.sensors.iter().enumerate() {
         let row = |c: &[f64]| {
             c.iter()
