@@ -340,7 +340,7 @@ impl TipSolver {
             let Some((angles, miss)) = self.refine(&self.grid_angles(start), target) else {
                 continue;
             };
-            if best.as_ref().is_none_or(|b| miss < b.1) {
+            if best.as_ref().map_or(true, |b| miss < b.1) {
                 best = Some((angles.clone(), miss));
             }
             if miss <= tolerance_mm && self.within_range(&angles) {
