@@ -857,6 +857,54 @@ mod tests {
         );
     }
 
+    /// A tip whose noise is large against the angles' spread (0.2 mm against ±0.1 rad) would
+    /// flatten a fitted line by more than 0.5 %: refused, naming the joint and the share; with
+    /// ten times the spread, the same noise is accepted and every row used.
+    #[test]
+    fn angles_too_noisy_for_a_line_are_refused() {
+        let sections = [section(0.0, 10.0, 20.0), section(90.0, 25.0, 35.0)];
+        let solver = TipSolver::new(&sections, &[1.5, 1.5]).unwrap();
+        let k = Kinematics::new(&sections).unwrap();
+        let mut state = 11u64;
+        let mut uniform = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+        };
+        let mut gauss = move || {
+            let (a, b) = (uniform(), uniform());
+            (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
+        };
+        let rows = 1500;
+        let mut make = |amplitude: f64| -> [Vec<f64>; 3] {
+            let mut tip: [Vec<f64>; 3] = Default::default();
+            for i in 0..rows {
+                let t = i as f64 * 0.01;
+                let angles = [
+                    amplitude * (0.7 * t).sin() + 0.3,
+                    amplitude * (1.1 * t + 1.0).sin() - 0.3,
+                ];
+                let p = k.tip(&angles).unwrap().position_mm;
+                for c in 0..3 {
+                    tip[c].push(p[c] + 0.2 * gauss());
+                }
+            }
+            tip
+        };
+        let narrow = make(0.1);
+        let err = angles_from_tip(&solver, &narrow, |_| true).unwrap_err();
+        let text = err.to_string();
+        assert!(
+            matches!(err, TipAnglesError::AngleNoise { .. }) && text.contains("at most 0.5 %"),
+            "{text}"
+        );
+        let wide = make(1.0);
+        let got = angles_from_tip(&solver, &wide, |_| true).unwrap();
+        assert_eq!(got.summary.dropped_off_kinematics, 0, "{:?}", got.summary);
+        assert!(got.summary.used > rows * 9 / 10, "{:?}", got.summary);
+    }
+
     /// White noise of σ gives σ back from the second differences, whatever the smooth motion.
     #[test]
     fn the_noise_is_measured_from_second_differences() {
