@@ -222,6 +222,21 @@ pub(crate) fn estimate(
     Ok(())
 }
 
+/// How the config's note says the crosstalk matrix was had.
+fn crosstalk_source(fitted: &dlw::fit::robot::RobotFit) -> &'static str {
+    if !fitted.crosstalk_fitted {
+        return "the crosstalk matrix the geometry's (the recording cannot tell the joints apart)";
+    }
+    match fitted.angles_from {
+        dlw::fit::robot::AnglesFrom::Joints => {
+            "the crosstalk matrix fitted by least squares on the recorded joint angles"
+        }
+        dlw::fit::robot::AnglesFrom::Tip => {
+            "the crosstalk matrix fitted by least squares on the joint angles from the tracked tip (inverse kinematics)"
+        }
+    }
+}
+
 /// What `fit --json` prints for a robot; the keys are part of the interface.
 #[derive(Debug, Serialize)]
 struct FitReport<'a> {
@@ -274,18 +289,7 @@ pub(crate) fn fit(
         robot.robot.name,
         robot.robot.checksum,
         fitted.model,
-        if fitted.crosstalk_fitted {
-            match fitted.angles_from {
-                dlw::fit::robot::AnglesFrom::Joints => {
-                    "the crosstalk matrix fitted by least squares on the recorded joint angles"
-                }
-                dlw::fit::robot::AnglesFrom::Tip => {
-                    "the crosstalk matrix fitted by least squares on the joint angles from the tracked tip (inverse kinematics)"
-                }
-            }
-        } else {
-            "the crosstalk matrix the geometry's (the recording cannot tell the joints apart)"
-        }
+        crosstalk_source(&fitted)
     );
     let text = robot_config_text(&config, format, &note)?;
     // Everything printed is computed before the config is written, so a failure leaves none.
