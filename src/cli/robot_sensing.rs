@@ -194,6 +194,21 @@ pub(crate) fn estimate(
     Ok(())
 }
 
+/// How the config's note says the crosstalk matrix was had.
+fn crosstalk_source(fitted: &dlw::fit::robot::RobotFit) -> &'static str {
+    if !fitted.crosstalk_fitted {
+        return "the crosstalk matrix the geometry's (the recording cannot tell the joints apart)";
+    }
+    match fitted.angles_from {
+        dlw::fit::robot::AnglesFrom::Joints => {
+            "the crosstalk matrix fitted by least squares on the recorded joint angles"
+        }
+        dlw::fit::robot::AnglesFrom::Tip => {
+            "the crosstalk matrix fitted by least squares on the joint angles from the tracked tip (inverse kinematics)"
+        }
+    }
+}
+
 /// What `fit --json` prints for a robot; the keys are part of the interface.
 #[derive(Debug, Serialize)]
 struct FitReport<'a> {
@@ -246,11 +261,7 @@ pub(crate) fn fit(
         robot.robot.name,
         robot.robot.checksum,
         fitted.model,
-        if fitted.crosstalk_fitted {
-            "the crosstalk matrix fitted by least squares on the recorded joint angles"
-        } else {
-            "the crosstalk matrix the geometry's (the recording cannot tell the joints apart)"
-        }
+        crosstalk_source(&fitted)
     );
     let text = robot_config_text(&config, format, &note)?;
     // Everything printed is computed before the config is written, so a failure leaves none.
@@ -286,6 +297,17 @@ pub(crate) fn fit(
             "kept from the geometry"
         }
     );
+    if let Some(t) = &fitted.tip_angles {
+        println!(
+            "  angles from the tip {} of {} tracked rows used; dropped {} not identifiable, {} ambiguous, {} off the kinematics; tracker noise {:.3e} mm",
+            t.used,
+            t.rows,
+            t.dropped_not_identifiable,
+            t.dropped_ambiguous,
+            t.dropped_off_kinematics,
+            t.tip_noise_mm
+        );
+    }
     for (i, s) in fitted.sensors.iter().enumerate() {
         let row = |c: &[f64]| {
             c.iter()

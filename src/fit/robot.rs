@@ -22,6 +22,10 @@
 //! sensor and the number. For `--model pi` the crosstalk comes from the
 //! line, then each sensor's PI model is fitted by the one-joint fit on its own mixed angle
 //! (a recording of that one sensor, `angle_deg = a_i`), exactly as for a joint alone.
+//!
+//! A recording without per-joint angles but with a tracked tip is fitted through the
+//! kinematics: each row's angles from the tip by [`super::tip_angles`], the rows it cannot vouch
+//! for marked invalid, then the same fit; [`RobotFit::angles_from`] says which.
 
 use dlw_estimator::{LinearModel, ModelConfig};
 use dlw_geometry::Divider;
@@ -32,6 +36,8 @@ use crate::recording::robot::RobotRecording;
 use crate::recording::{Recording, Samples};
 use crate::robot::{CheckedRobot, RobotSensor};
 
+use super::tip_angles::MIN_SINGULAR_RATIO;
+use super::tip_angles::{angles_from_tip, TipAnglesError, TipAnglesSummary, TipSolver};
 use super::{fit, FitRequest, ModelKind, Prefilter};
 
 /// The largest condition number of the standardized angle columns a fit accepts: above it the
@@ -58,9 +64,36 @@ pub enum RobotFitError {
         /// Sensors in the recording.
         rec_sensors: usize,
     },
-    /// No per-joint angles.
-    #[error("the recording has no per-joint angles (angleK_deg empty): fitting through the kinematics from a tip tracker alone is not implemented; record each joint's angle")]
+    /// Neither per-joint angles nor a tip.
+    #[error("the recording has neither per-joint angles (angleK_deg empty) nor a tracked tip (tip_x_mm, tip_y_mm, tip_z_mm): there is no angle to fit the sensors against")]
     NoJointAngles,
+    /// The angles could not be had from the tip.
+    #[error("joint angles from the tracked tip: {0}")]
+    Tip(#[from] TipAnglesError),
+    /// Too few rows gave angles from the tip.
+    #[error("joint angles from the tracked tip: {used} of {rows} tracked rows gave usable angles, at least {min} needed to fit {unknowns} numbers per sensor; dropped: {not_identifiable} not identifiable (the tip Jacobian's smallest singular value under {min_ratio} of its largest{largest}: some combination of the angles barely moves the tip; near straight the tip moves only sideways, its height being second order in the angles), {ambiguous} ambiguous (another set of angles within the joints' ranges puts the tip as close), {off} off the kinematics (no angles put the tip within {tolerance_mm:.3e} mm)")]
+    TooFewTipRows {
+        /// Rows with usable angles.
+        used: usize,
+        /// Rows tracked.
+        rows: usize,
+        /// Rows needed.
+        min: usize,
+        /// Unknowns per sensor.
+        unknowns: usize,
+        /// Rows dropped as not identifiable.
+        not_identifiable: usize,
+        /// Rows dropped as ambiguous.
+        ambiguous: usize,
+        /// Rows dropped as off the kinematics.
+        off: usize,
+        /// [`MIN_SINGULAR_RATIO`].
+        min_ratio: f64,
+        /// `", at most X in these rows"`, or nothing.
+        largest: String,
+        /// The residual tolerance (mm).
+        tolerance_mm: f64,
+    },
     /// Too few rows.
     #[error("{rows} rows with a tracked angle, at least {min} needed to fit {unknowns} numbers per sensor")]
     TooFewRows {
@@ -119,9 +152,24 @@ pub struct SensorFitReport {
     pub model: ModelConfig,
 }
 
+/// Where the fitted joint angles came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AnglesFrom {
+    /// The recording's `angleK_deg` columns.
+    Joints,
+    /// The tracked tip, by inverse kinematics ([`super::tip_angles`]).
+    Tip,
+}
+
 /// A robot's fit.
 #[derive(Debug, Clone, Serialize)]
 pub struct RobotFit {
+    /// Where the joint angles came from.
+    pub angles_from: AnglesFrom,
+    /// With angles from the tip: how many rows gave them, how many were dropped and why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tip_angles: Option<TipAnglesSummary>,
     /// One per sensor, in the robot's order.
     pub sensors: Vec<SensorFitReport>,
     /// Rows fitted (tracker valid).
@@ -161,10 +209,33 @@ pub fn fit_robot(
             rec_sensors: s.sensors(),
         });
     }
-    if !s.has_joint_angles() {
-        return Err(RobotFitError::NoJointAngles);
-    }
-    let rows = fitted_rows(recording, n)?;
+    let from_tip;
+    let (recording, tip_angles) = if s.has_joint_angles() {
+        (recording, None)
+    } else {
+        from_tip = with_angles_from_tip(robot, recording)?;
+        (&from_tip.0, Some(from_tip.1.clone()))
+    };
+    let s = &recording.samples;
+    let rows = fitted_rows(recording, n).map_err(|e| match (&e, &tip_angles) {
+        (RobotFitError::TooFewRows { min, unknowns, .. }, Some(t)) => {
+            RobotFitError::TooFewTipRows {
+                used: t.used,
+                rows: t.rows,
+                min: *min,
+                unknowns: *unknowns,
+                not_identifiable: t.dropped_not_identifiable,
+                ambiguous: t.dropped_ambiguous,
+                off: t.dropped_off_kinematics,
+                min_ratio: MIN_SINGULAR_RATIO,
+                largest: t.largest_singular_ratio.map_or(String::new(), |r| {
+                    format!(", at most {r:.3} at the angles found in these rows")
+                }),
+                tolerance_mm: t.tolerance_mm,
+            }
+        }
+        _ => e,
+    })?;
     let theta = |j: usize, i: usize| s.angle_deg[j][i].to_radians();
     let (angle_condition, still) = angle_conditioning(n, &rows, theta);
     let geometry = robot.crosstalk_matrix();
@@ -192,6 +263,12 @@ pub fn fit_robot(
         .map(|(i, sensor)| fitter.fit(i, sensor))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(RobotFit {
+        angles_from: if tip_angles.is_some() {
+            AnglesFrom::Tip
+        } else {
+            AnglesFrom::Joints
+        },
+        tip_angles,
         sensors: out,
         samples_fitted: rows.len(),
         angle_condition,
@@ -199,6 +276,29 @@ pub fn fit_robot(
         model: super::model_name(model).to_string(),
         warnings,
     })
+}
+
+/// `recording` with every joint's angle from its tracked tip, and the rows not to use marked
+/// invalid; or [`RobotFitError::NoJointAngles`] when it has no tip either.
+fn with_angles_from_tip(
+    robot: &CheckedRobot,
+    recording: &RobotRecording,
+) -> Result<(RobotRecording, TipAnglesSummary), RobotFitError> {
+    let s = &recording.samples;
+    let tip = s.tip_mm.as_ref().ok_or(RobotFitError::NoJointAngles)?;
+    let joints = &robot.robot.joints;
+    let sections: Vec<_> = joints.iter().map(|j| j.bending_section()).collect();
+    // Every angle the tube can reach: up to its notches' closing, either way.
+    let bounds: Vec<f64> = joints
+        .iter()
+        .map(|j| j.design().joint.closing_angle_rad())
+        .collect();
+    let solver = TipSolver::new(&sections, &bounds)?;
+    let got = angles_from_tip(&solver, tip, |i| s.tracker_valid_at(i))?;
+    let mut out = recording.clone();
+    out.samples.angle_deg = got.angle_deg;
+    out.samples.tracker_valid = got.used;
+    Ok((out, got.summary))
 }
 
 /// The rows the tracker saw, or an error when they are too few for `n` joints' line.

@@ -83,6 +83,15 @@ impl RobotJoint {
         self.x_end_mm() - self.x_start_mm()
     }
 
+    /// Its notched section as the kinematics take it (`docs/robot-runtime.md`).
+    pub fn bending_section(&self) -> dlw_geometry::BendingSection {
+        dlw_geometry::BendingSection {
+            rotation_rad: self.rotation_rad(),
+            x_start_mm: self.x_start_mm(),
+            x_end_mm: self.x_end_mm(),
+        }
+    }
+
     /// Its neutral plane `ȳ` in its own frame (mm).
     pub fn neutral_axis_mm(&self) -> f64 {
         self.design().joint.section().neutral_axis_mm()

@@ -280,11 +280,7 @@ pub fn plan_robot(
         .robot
         .joints
         .iter()
-        .map(|j| BendingSection {
-            rotation_rad: j.rotation_deg.to_radians(),
-            x_start_mm: j.x_start_mm(),
-            x_end_mm: j.x_end_mm(),
-        })
+        .map(|j| j.bending_section())
         .collect();
     Ok(RobotPlan {
         joints,
