@@ -18,11 +18,17 @@ if ! python3 -c "import nptdms" 2>/dev/null; then
 fi
 # pytest and numpy for the Python package's tests, then the package itself, built from this
 # checkout by maturin (PEP 517; an abi3 wheel, docs/python.md). Rebuilt every run, so the tests
-# see the current source.
+# see the current source. The wheel's release build runs in the background, beside the
+# workspace's build below (each has its own target folder; on two cores the one fills the
+# other's single-threaded stretches), and is waited for before the Python tests.
 python3 -m pip install --quiet --disable-pip-version-check pytest numpy
-echo "building and installing the dlw Python package (pip install ./crates/python)"
-python3 -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps ./crates/python
-python3 -c "import dlw; print('import dlw:', dlw.__version__)"
+mkdir -p target
+wheel_log="target/python-wheel-build.log"
+echo "building and installing the dlw Python package in the background (pip install ./crates/python, log: $wheel_log)"
+python3 -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps ./crates/python \
+  >"$wheel_log" 2>&1 &
+wheel_pid=$!
+trap 'kill "$wheel_pid" 2>/dev/null || true' EXIT
 
 if ! command -v rs274 >/dev/null 2>&1; then
   echo "installing linuxcnc-uspace (apt) for rs274"
@@ -39,11 +45,21 @@ export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261125}"
 
 # The runtime crates must build without std (no_std, libm only).
 cargo build --quiet -p dlw-geometry -p dlw-estimator --no-default-features
-cargo test --workspace --all-targets "$@"
+# Every test target but the criterion benches, which are built (dev profile, next line) but not
+# run: run as tests they take one iteration each of full-size work (2 min of CI for no check);
+# `cargo bench` measures them (docs/performance.md).
+cargo test --workspace --lib --bins --tests --examples "$@"
+cargo build --quiet --workspace --benches --profile dev
 cargo test --workspace --doc
 
 # The Python package against the command line it mirrors.
 cargo build --quiet --bin dlw
+if ! wait "$wheel_pid"; then
+  cat "$wheel_log" >&2
+  echo "building the dlw Python package failed (log above)" >&2
+  exit 1
+fi
+python3 -c "import dlw; print('import dlw:', dlw.__version__)"
 DLW_BIN="$PWD/target/debug/dlw" python3 -m pytest -q crates/python/tests
 
 # Opt-in: a short libFuzzer run of each cargo-fuzz target (docs/fuzzing.md). Needs a nightly
