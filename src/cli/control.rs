@@ -3,6 +3,7 @@
 //! robot config, every joint's loop on its estimated angle (`--profile` once or once per joint,
 //! `--coupling`).
 
+use super::written::Written;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context};
@@ -46,16 +47,8 @@ pub struct Args {
     /// Filter on the sensed angle, replacing the config's output_filter: none, ma:N or lp:T.
     #[arg(long)]
     filter: Option<FilterSpec>,
-    /// Output folder: report.html, its SVG figures and control.csv.
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
-    /// Print every number as JSON.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    out: Written,
 }
 
 fn parse_gains(s: &str) -> Result<Gains, String> {
@@ -77,13 +70,11 @@ fn parse_gains(s: &str) -> Result<Gains, String> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim_folder(
-        &args.output,
+    args.out.claim_folder(
         [&args.design, &args.config]
             .into_iter()
             .chain(&args.scenario.scenario)
             .chain(&args.profile),
-        args.force,
     )?;
     let robot = dlw::robot::is_robot_file(&args.design);
     if robot != dlw::replay::is_robot_config(&args.config) {
@@ -133,10 +124,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .with_context(|| format!("simulating control of {}", design.file.name))?;
     let mut result = ControlResult::new(control, run);
     let files = result.files().context("drawing the report")?;
-    write_folder_atomic(&args.output, &files)
-        .with_context(|| format!("writing {}", args.output.display()))?;
-    result.written_to(&args.output);
-    if args.json {
+    write_folder_atomic(&args.out.output, &files)
+        .with_context(|| format!("writing {}", args.out.output.display()))?;
+    result.written_to(&args.out.output);
+    if args.out.json {
         println!("{}", dlw::finite::to_json(&result)?);
     } else {
         for w in &result.warnings {
@@ -169,10 +160,10 @@ fn run_robot(args: Args) -> anyhow::Result<()> {
         .with_context(|| format!("simulating control of the robot {:?}", robot.robot.name))?;
     let mut result = RobotControlResult::new(control, run);
     let files = result.files().context("drawing the report")?;
-    write_folder_atomic(&args.output, &files)
-        .with_context(|| format!("writing {}", args.output.display()))?;
-    result.written_to(&args.output);
-    if args.json {
+    write_folder_atomic(&args.out.output, &files)
+        .with_context(|| format!("writing {}", args.out.output.display()))?;
+    result.written_to(&args.out.output);
+    if args.out.json {
         println!("{}", dlw::finite::to_json(&result)?);
     } else {
         for w in &result.warnings {

@@ -1,6 +1,7 @@
 //! `dlw fit --design D REC [--model linear|pi|continuous-pi] [--order N] [--prefilter none|ma:N]
 //! [--sensor 1|2|both] [--validate REC2] -o CONFIG [--json] [--report DIR]`.
 
+use super::written::Written;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -44,16 +45,8 @@ pub struct Args {
     /// runtime estimator and its angle RMSE reported.
     #[arg(long)]
     validate: Option<PathBuf>,
-    /// Output config (.toml or .json), as `dlw estimate` and the runtime crate read it.
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
-    /// Print every fitted number and the timings as JSON.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    out: Written,
     /// Write an HTML report with SVG plots into this folder.
     #[arg(long)]
     report: Option<PathBuf>,
@@ -66,19 +59,15 @@ fn sensors_parser() -> impl clap::builder::TypedValueParser<Value = Sensors> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
-        .chain(&args.report)
-        .map(|p| p.as_path())
-        .collect();
-    dlw::output::claim_all(
-        &outputs,
+    let report: Vec<&std::path::Path> = args.report.iter().map(|p| p.as_path()).collect();
+    args.out.claim_with(
+        &report,
         [&args.design, &args.recording]
             .into_iter()
             .chain(&args.validate),
-        args.force,
     )?;
     let start = Instant::now();
-    let format = ConfigFormat::of(&args.output)?;
+    let format = ConfigFormat::of(&args.out.output)?;
     if dlw::robot::is_robot_file(&args.design) {
         if args.compare || args.validate.is_some() || args.sensor.is_some() || args.report.is_some()
         {
@@ -90,9 +79,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             args.model,
             args.order,
             args.prefilter,
-            &args.output,
+            &args.out.output,
             format,
-            args.json,
+            args.out.json,
         );
     }
     let design = Design::load(&args.design)?;
@@ -130,12 +119,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let (Some(dir), Some(files)) = (&args.report, page) {
         dlw::output::write_folder_atomic(dir, &files)?;
     }
-    write_atomic(&args.output, text.as_bytes())?;
-    result.config = Some(args.output.clone());
+    write_atomic(&args.out.output, text.as_bytes())?;
+    result.config = Some(args.out.output.clone());
     result.report = args.report.clone();
     result.timings_s.read = t_read;
     result.timings_s.total = start.elapsed().as_secs_f64();
-    if args.json {
+    if args.out.json {
         let json = result.to_json().context("serializing the report")?;
         println!("{}", dlw::finite::to_json(&json)?);
     } else {

@@ -59,6 +59,8 @@ enum Command {
     /// Run the runtime estimator over a recording and report its error.
     Estimate(estimate::Args),
     /// Fit linear and PI sensor models to a recording and write an estimator config.
+    ///
+    /// Writes the config -o (.toml or .json), as `dlw estimate` and the runtime crate read it.
     Fit(fit::Args),
     /// Find where the simulator and a recording disagree, name the missing effect, add it.
     ///
@@ -74,7 +76,10 @@ enum Command {
     ImportRecording(import_recording::Args),
     /// List what a DAQ file (TDMS, LVM, CSV) or a tracker log holds, before importing it.
     DaqInfo(daq_info::Args),
-    /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI).
+    /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI), or of each
+    /// joint of a robot on its estimated angle.
+    ///
+    /// Writes into the folder -o: report.html, its SVG figures and control.csv.
     Control(control::Args),
     /// Run one of the paper's characterization analyses on a recording (Section IV-A, IV-B).
     ///
