@@ -237,7 +237,7 @@ fn bad_robot_imports_are_refused_naming_the_value_and_leave_no_output() {
                 &strokes,
             ]
             .concat(),
-            "5",
+            "tracker log has no tool 5 (its map lists 4 tool(s))",
         ),
         (
             [&JOINT_TOOLS[..], &strokes[..4]].concat(),
