@@ -22,13 +22,18 @@ const NOISE_DEG: f64 = 0.05;
 /// and the frames either side they are interpolated from span at most 10 frame periods.
 const MOST_INVALID_ROWS: usize = 10 * 5 + 2;
 
-/// Writes the bench into a fresh folder and returns it.
-fn bench() -> tempfile::TempDir {
+/// The base's sway (°) on the bench that needs the reference tool.
+const SWAY_DEG: f64 = 3.0;
+
+/// Writes the bench, its base swaying by up to `sway_deg`, into a fresh folder and returns it.
+fn bench(sway_deg: f64) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scripts/robot_bench.py");
     let out = Command::new("python3")
         .arg(script)
         .arg(dir.path())
+        .arg("7")
+        .arg(sway_deg.to_string())
         .output()
         .unwrap_or_else(|e| panic!("cannot run python3 ({e}): this test needs python3 with numpy"));
     assert!(
@@ -100,11 +105,10 @@ fn truth(dir: &Path) -> Vec<Vec<f64>> {
     cols
 }
 
-/// Imports the bench with `extra` options and checks every joint's angle against the truth:
-/// returns each joint's (RMS, max) error (°) over the valid rows.
-fn import_and_compare(extra: &[&str]) -> Vec<(f64, f64)> {
-    let dir = bench();
-    let out = dir.path().join("rec");
+/// Imports the bench in `dir` with `extra` options into `dir/NAME` and checks every joint's
+/// angle against the truth: returns each joint's (RMS, max) error (°) over the valid rows.
+fn import_and_compare(dir: &tempfile::TempDir, name: &str, extra: &[&str]) -> Vec<(f64, f64)> {
+    let out = dir.path().join(name);
     let mut args = import_args(dir.path(), &out, &JOINT_TOOLS);
     args.extend(STROKES.iter().map(|s| s.to_string()));
     args.extend(extra.iter().map(|s| s.to_string()));
@@ -130,7 +134,7 @@ fn import_and_compare(extra: &[&str]) -> Vec<(f64, f64)> {
     let info = rec.rig.import.as_ref().expect("[import] provenance");
     assert_eq!(info.joint_tools, vec![3, 4, 2]);
     // The recording is read by the robot's estimator: every valid row is estimated.
-    let cfg = dir.path().join("cfg.toml");
+    let cfg = dir.path().join(format!("{name}-cfg.toml"));
     dlw_ok(&[
         "estimator-config",
         &arg(&robot()),
@@ -148,7 +152,7 @@ fn import_and_compare(extra: &[&str]) -> Vec<(f64, f64)> {
         &arg(&out),
         "--json",
         "-o",
-        &arg(&dir.path().join("est.csv")),
+        &arg(&dir.path().join(format!("{name}-est.csv"))),
     ]);
     let json: serde_json::Value = serde_json::from_slice(&est.stdout).unwrap();
     assert_eq!(json["joints"].as_array().unwrap().len(), 3);
@@ -180,24 +184,37 @@ fn assert_within_noise(errors: &[(f64, f64)]) {
     }
 }
 
+/// On a swaying base, each joint's angle is the truth within the noise with the reference
+/// tool; without it, the proximal joint's carries the sway (joints 1 and 2, in their
+/// neighbours' frames, do not).
 #[test]
 fn each_joint_angle_is_the_truth_within_the_tracker_noise_with_a_reference_tool() {
-    let errors = import_and_compare(&["--reference-tool", "1"]);
-    eprintln!("with the reference tool: {errors:?}");
+    let dir = bench(SWAY_DEG);
+    let errors = import_and_compare(&dir, "ref", &["--reference-tool", "1"]);
+    eprintln!("swaying base, with the reference tool: {errors:?}");
     assert_within_noise(&errors);
+    let without = import_and_compare(&dir, "noref", &[]);
+    eprintln!("swaying base, without it: {without:?}");
+    assert_within_noise(&without[..2]);
+    assert!(
+        without[2].0 > SWAY_DEG / 4.0,
+        "joint 3 without the reference tool is off by {:.3}° RMS only: is the reference tool used?",
+        without[2].0
+    );
 }
 
 #[test]
 fn the_proximal_joint_is_taken_against_its_rest_axis_without_a_reference_tool() {
-    let errors = import_and_compare(&[]);
-    eprintln!("without a reference tool: {errors:?}");
+    let dir = bench(0.0);
+    let errors = import_and_compare(&dir, "rec", &[]);
+    eprintln!("still base, without a reference tool: {errors:?}");
     assert_within_noise(&errors);
 }
 
 /// Each refusal: a non-zero exit, a message naming the value and the limit, no output.
 #[test]
 fn bad_robot_imports_are_refused_naming_the_value_and_leave_no_output() {
-    let dir = bench();
+    let dir = bench(0.0);
     let out = dir.path().join("rec");
     let strokes: Vec<&str> = STROKES.to_vec();
     let cases: Vec<(Vec<&str>, &str)> = vec![

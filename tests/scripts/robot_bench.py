@@ -13,7 +13,12 @@ aurora.csv, truth.csv (time_s, angle1_deg..angle3_deg: the true joint angles at 
 rows). The log's tools are in the order LOG_ORDER (not the joints' order) so that the
 import's tool mapping is exercised.
 
-Usage: python3 robot_bench.py OUT [SEED]
+With SWAY_DEG > 0 the base (and the reference tool on it) sways by up to that angle about an
+axis across the tube after the still start, so only a reference tool gives the proximal joint's
+angle. Joint 1's tool is 5-DOF: its roll about its axis is random every frame (no other tool's
+angle is taken in its frame).
+
+Usage: python3 robot_bench.py OUT [SEED] [SWAY_DEG]
 """
 
 import sys
@@ -97,6 +102,7 @@ def tool_orientations(theta_deg, mount):
 def main():
     out = sys.argv[1]
     rng = np.random.default_rng(int(sys.argv[2]) if len(sys.argv) > 2 else 7)
+    sway_deg = float(sys.argv[3]) if len(sys.argv) > 3 else 0.0
     # DAQ.
     t = np.arange(int(DURATION_S * DAQ_HZ)) / DAQ_HZ
     theta = angles_deg(t)
@@ -122,12 +128,17 @@ def main():
     for k in range(frames):
         tau = k / TRACKER_HZ
         td = OFFSET_S + tau * (1.0 + DRIFT_PPM * 1e-6)
-        tools = tool_orientations(angles_deg([td])[:, 0], mount)
+        onset = np.clip((td - STILL_S) / 3.0, 0.0, 1.0)
+        sway = np.radians(sway_deg) * onset * np.sin(2 * np.pi * (td - STILL_S) / 23.0)
+        base = mul(mount, quat([0.0, 1.0, 0.0], sway))  # about the base's own y, across the tube
+        tools = tool_orientations(angles_deg([td])[:, 0], base)
+        # A 5-DOF sensor has no roll: what the log holds about its z is arbitrary.
+        tools[0] = mul(tools[0], quat([0.0, 0.0, 1.0], 2 * np.pi * rng.uniform()))
         cells = [f"{len(LOG_ORDER)}", "Aurora", f"{1000 + k}"]
         for i, (what, port) in enumerate(LOG_ORDER):
             if i > 0:
                 cells.append("3")
-            q = mount if what == "reference" else tools[int(what.split()[1]) - 1]
+            q = base if what == "reference" else tools[int(what.split()[1]) - 1]
             q = noisy(q, rng)
             if what == "joint 2" and LOST_FROM <= k < LOST_FROM + LOST_FRAMES:
                 cells += [f"Port:{port}", "0", "Missing"] + [""] * 8
