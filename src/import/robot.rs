@@ -10,6 +10,9 @@
 //! ([`place`](super::place)), the sign rule (pulling a joint's tendon bends it positive) and
 //! the provenance. A row any joint's angle cannot vouch for gets `tracker_valid = 0`.
 //!
+//! The recording is checked by the robot recording's reader's rules before it is returned
+//! ([`RobotRecording::check`]).
+//!
 //! A tip tool alone is refused by the caller: its positions cannot be put in the robot's base
 //! frame without the base's pose in the tracker's frame ([`TIP_TOOL_REFUSAL`]).
 
@@ -248,12 +251,11 @@ pub fn import_robot(
         tip_mm: None,
         tracker_valid: if invalid_rows > 0 { valid } else { Vec::new() },
     };
+    let recording = RobotRecording { rig, samples };
+    recording.check()?;
     let mut import = shared;
     import.tracker.missing_frames = missing;
-    Ok((
-        RobotRecording { rig, samples },
-        RobotImportSummary { import, joints },
-    ))
+    Ok((recording, RobotImportSummary { import, joints }))
 }
 
 /// The most frames any joint misses.
