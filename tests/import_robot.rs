@@ -107,9 +107,14 @@ fn truth(dir: &Path) -> Vec<Vec<f64>> {
 
 /// Imports the bench in `dir` with `extra` options into `dir/NAME` and checks every joint's
 /// angle against the truth: returns each joint's (RMS, max) error (°) over the valid rows.
-fn import_and_compare(dir: &tempfile::TempDir, name: &str, extra: &[&str]) -> Vec<(f64, f64)> {
+fn import_and_compare(
+    dir: &tempfile::TempDir,
+    name: &str,
+    tools: &[&str],
+    extra: &[&str],
+) -> Vec<(f64, f64)> {
     let out = dir.path().join(name);
-    let mut args = import_args(dir.path(), &out, &JOINT_TOOLS);
+    let mut args = import_args(dir.path(), &out, tools);
     args.extend(STROKES.iter().map(|s| s.to_string()));
     args.extend(extra.iter().map(|s| s.to_string()));
     dlw_ok(&args);
@@ -190,10 +195,10 @@ fn assert_within_noise(errors: &[(f64, f64)]) {
 #[test]
 fn each_joint_angle_is_the_truth_within_the_tracker_noise_with_a_reference_tool() {
     let dir = bench(SWAY_DEG);
-    let errors = import_and_compare(&dir, "ref", &["--reference-tool", "1"]);
+    let errors = import_and_compare(&dir, "ref", &JOINT_TOOLS, &["--reference-tool", "1"]);
     eprintln!("swaying base, with the reference tool: {errors:?}");
     assert_within_noise(&errors);
-    let without = import_and_compare(&dir, "noref", &[]);
+    let without = import_and_compare(&dir, "noref", &JOINT_TOOLS, &[]);
     eprintln!("swaying base, without it: {without:?}");
     assert_within_noise(&without[..2]);
     assert!(
@@ -203,10 +208,20 @@ fn each_joint_angle_is_the_truth_within_the_tracker_noise_with_a_reference_tool(
     );
 }
 
+/// On a still base, the proximal joint's angle against its rest axis is the truth within the
+/// noise; the tools named by their port handles, as NDI's log names them.
 #[test]
 fn the_proximal_joint_is_taken_against_its_rest_axis_without_a_reference_tool() {
     let dir = bench(0.0);
-    let errors = import_and_compare(&dir, "rec", &[]);
+    let by_port = [
+        "--joint-tool",
+        "1=Port:3",
+        "--joint-tool",
+        "2=port:4",
+        "--joint-tool",
+        "3=Port:2",
+    ];
+    let errors = import_and_compare(&dir, "rec", &by_port, &[]);
     eprintln!("still base, without a reference tool: {errors:?}");
     assert_within_noise(&errors);
 }
@@ -255,6 +270,21 @@ fn bad_robot_imports_are_refused_naming_the_value_and_leave_no_output() {
             ]
             .concat(),
             "tracker log has no tool 5 (its map lists 4 tool(s))",
+        ),
+        (
+            [
+                &[
+                    "--joint-tool",
+                    "1=3",
+                    "--joint-tool",
+                    "2=Port:9",
+                    "--joint-tool",
+                    "3=2",
+                ][..],
+                &strokes,
+            ]
+            .concat(),
+            r#"tool "Port:9" is not in the tracker log: its first row's PortHandle columns hold ["Port:1", "Port:2", "Port:3", "Port:4"]"#,
         ),
         (
             [&JOINT_TOOLS[..], &strokes[..4]].concat(),

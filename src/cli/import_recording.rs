@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use dlw::import::report::report_page;
-use dlw::import::robot::{import_robot, RobotImportRequest, TIP_TOOL_REFUSAL};
+use dlw::import::robot::{import_robot, tool_by_name, RobotImportRequest, TIP_TOOL_REFUSAL};
 use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod, TrackerMap};
 use dlw::limits::{MAX_RECORDING_BYTES, MAX_TEXT_INPUT_BYTES};
 use dlw::recording::Recording;
@@ -50,8 +50,8 @@ pub struct Args {
     #[arg(long, value_name = "ROBOT.toml")]
     design: Option<PathBuf>,
     /// With --design ROBOT: joint K's tool (K 1-based, joint 1 distal, as `dlw inspect
-    /// ROBOT --json` numbers them; TOOL the tool's number in the log's order, as --tool), one
-    /// per joint.
+    /// ROBOT --json` numbers them; TOOL the tool's number in the log's order, as --tool, or in
+    /// NDI's layout its port handle, e.g. Port:3), one per joint.
     #[arg(long, value_name = "K=TOOL")]
     joint_tool: Vec<String>,
     /// With --design ROBOT: a tip tool alone. Refused: its positions cannot be put in the
@@ -316,6 +316,11 @@ fn run_robot(args: &Args, robot_path: &std::path::Path) -> anyhow::Result<()> {
     claim(args)?;
     let (daq_format, sync) = (daq_format(args)?, sync_method(args)?);
     let inputs = Inputs::read(args)?;
+    let joint_tools = joint_tools
+        .iter()
+        .map(|name| tool_by_name(&inputs.tracker_text, inputs.map.as_ref(), name))
+        .collect::<Result<Vec<usize>, _>>()
+        .with_context(|| args.tracker.display().to_string())?;
     let mut base = inputs.request(args, daq_format, sync);
     base.tool = joint_tools[0];
     let request = RobotImportRequest {
@@ -344,18 +349,16 @@ fn run_robot(args: &Args, robot_path: &std::path::Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `--joint-tool K=TOOL` for a robot of `joints` joints: each joint's tool, joint 1 first.
-fn joint_tools(given: &[String], joints: usize) -> anyhow::Result<Vec<usize>> {
-    let mut tools: Vec<Option<usize>> = vec![None; joints];
+/// `--joint-tool K=TOOL` for a robot of `joints` joints: each joint's tool as named, joint 1
+/// first.
+fn joint_tools(given: &[String], joints: usize) -> anyhow::Result<Vec<String>> {
+    let mut tools: Vec<Option<String>> = vec![None; joints];
     for g in given {
-        let parsed = g.split_once('=').and_then(|(k, t)| {
-            Some((
-                k.trim().parse::<usize>().ok()?,
-                t.trim().parse::<usize>().ok()?,
-            ))
-        });
-        let Some((k, tool)) = parsed.filter(|&(_, t)| t >= 1) else {
-            anyhow::bail!("--joint-tool {g:?} is not K=TOOL (a joint number and a tool number from 1, e.g. 1=2)");
+        let parsed = g
+            .split_once('=')
+            .and_then(|(k, t)| Some((k.trim().parse::<usize>().ok()?, t.trim().to_owned())));
+        let Some((k, tool)) = parsed.filter(|(_, t)| !t.is_empty() && t != "0") else {
+            anyhow::bail!("--joint-tool {g:?} is not K=TOOL (a joint number from 1 and a tool: its number from 1, or its port handle; e.g. 1=2 or 1=Port:2)");
         };
         if !(1..=joints).contains(&k) {
             anyhow::bail!(
@@ -372,7 +375,7 @@ fn joint_tools(given: &[String], joints: usize) -> anyhow::Result<Vec<usize>> {
         .iter()
         .enumerate()
         .map(|(k, t)| {
-            t.ok_or_else(|| {
+            t.clone().ok_or_else(|| {
                 anyhow::anyhow!(
                     "joint {} has no --joint-tool; the robot has {joints} joints and each needs its own tool (K=TOOL)",
                     k + 1

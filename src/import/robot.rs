@@ -95,6 +95,52 @@ impl RobotImportSummary {
     }
 }
 
+/// The tool named `name` in a tracker log: a number is the tool's place in the log's order
+/// (as `--tool`); in NDI's own layout (no map), a name is the port handle a tool block's
+/// `PortHandle` column holds on the log's first data row (`Port:3`). A map's tools have no
+/// names.
+///
+/// # Errors
+/// [`ImportError::Options`] naming the name and the handles the log holds.
+pub fn tool_by_name(
+    tracker_text: &str,
+    map: Option<&super::TrackerMap>,
+    name: &str,
+) -> Result<usize, ImportError> {
+    let name = name.trim();
+    if let Ok(n) = name.parse::<usize>() {
+        return Ok(n);
+    }
+    if map.is_some() {
+        return Err(ImportError::Options(format!(
+            "tool {name:?}: a tracker map's tools have no names; give the tool's number (its [[tool]] table's place, from 1)"
+        )));
+    }
+    let mut lines = tracker_text.lines().filter(|l| !l.trim().is_empty());
+    let cells = |line: Option<&str>| -> Vec<String> {
+        line.unwrap_or("")
+            .split(',')
+            .map(|c| c.trim().to_owned())
+            .collect()
+    };
+    let (header, first) = (cells(lines.next()), cells(lines.next()));
+    let handles: Vec<&str> = header
+        .iter()
+        .enumerate()
+        .filter(|(_, h)| h.eq_ignore_ascii_case("PortHandle"))
+        .map(|(i, _)| first.get(i).map_or("", String::as_str))
+        .collect();
+    handles
+        .iter()
+        .position(|h| h.eq_ignore_ascii_case(name))
+        .map(|i| i + 1)
+        .ok_or_else(|| {
+            ImportError::Options(format!(
+                "tool {name:?} is not in the tracker log: its first row's PortHandle columns hold {handles:?} (or give the tool's number, from 1)"
+            ))
+        })
+}
+
 /// Checks the robot's lists against the robot: one voltage per sensor, one stroke and one tool
 /// per joint, no tool named twice.
 fn check_lists(req: &RobotImportRequest<'_>) -> Result<(), ImportError> {
