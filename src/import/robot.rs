@@ -368,3 +368,28 @@ fn joint_summaries(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LOG: &str = "#Tools,ToolInfo,Frame#,PortHandle,Face#,TransformStatus,Q0,Qx,Qy,Qz,#Markers,PortHandle,Face#,TransformStatus,Q0,Qx,Qy,Qz\n\
+        2,Aurora,1,Port:7,0,OK,1,0,0,0,3,Port:2,0,Missing,,,,\n";
+
+    #[test]
+    fn tools_are_found_by_number_or_by_the_logs_port_handle() {
+        assert_eq!(tool_by_name(LOG, None, "2").unwrap(), 2);
+        assert_eq!(tool_by_name(LOG, None, "Port:7").unwrap(), 1);
+        assert_eq!(tool_by_name(LOG, None, " port:2 ").unwrap(), 2);
+        let e = tool_by_name(LOG, None, "Port:1").unwrap_err().to_string();
+        assert!(e.contains(r#"hold ["Port:7", "Port:2"]"#), "{e}");
+        let map = crate::import::TrackerMap::from_toml(
+            "header_line = 1\nframe = \"Frame#\"\n[[tool]]\nquaternion = [\"Q0\", \"Qx\", \"Qy\", \"Qz\"]\nmissing = \"empty\"\n",
+        )
+        .unwrap();
+        let e = tool_by_name(LOG, Some(&map), "Port:7")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("have no names"), "{e}");
+    }
+}
