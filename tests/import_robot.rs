@@ -224,6 +224,19 @@ fn the_proximal_joint_is_taken_against_its_rest_axis_without_a_reference_tool() 
     let errors = import_and_compare(&dir, "rec", &by_port, &[]);
     eprintln!("still base, without a reference tool: {errors:?}");
     assert_within_noise(&errors);
+    // --json names each joint's tool and the frame its angle is taken in.
+    let out = dir.path().join("json");
+    let mut args = import_args(dir.path(), &out, &by_port);
+    args.extend(STROKES.iter().map(|s| s.to_string()));
+    args.push("--json".into());
+    let json: serde_json::Value = serde_json::from_slice(&dlw_ok(&args).stdout).unwrap();
+    let joints = json["joints"].as_array().unwrap();
+    let named: Vec<(u64, &str)> = joints
+        .iter()
+        .map(|j| (j["tool"].as_u64().unwrap(), j["frame"].as_str().unwrap()))
+        .collect();
+    assert_eq!(named, [(3, "tool 4"), (4, "tool 2"), (2, "rest axis")]);
+    assert_eq!(joints[1]["missing_frames"], 8);
 }
 
 /// Each refusal: a non-zero exit, a message naming the value and the limit, no output.
