@@ -300,6 +300,10 @@ fn bad_robot_imports_are_refused_naming_the_value_and_leave_no_output() {
             r#"tool "Port:9" is not in the tracker log: its first row's PortHandle columns hold ["Port:1", "Port:2", "Port:3", "Port:4"]"#,
         ),
         (
+            [&JOINT_TOOLS[..], &strokes, &["--tool", "3"]].concat(),
+            "--tool 3 is a joint's tip tool; a robot's tools are --joint-tool K=TOOL",
+        ),
+        (
             [&JOINT_TOOLS[..], &strokes[..4]].concat(),
             "--stroke names 2 channels; the robot has 3 joints",
         ),

@@ -72,9 +72,9 @@ pub struct Args {
     /// line, time columns, frame counter and each tool's quaternion columns (docs/import.md).
     #[arg(long, value_name = "MAP.toml")]
     tracker_map: Option<PathBuf>,
-    /// The tip tool: the n-th tool block of the log (1-based).
-    #[arg(long, default_value_t = 1)]
-    tool: usize,
+    /// The tip tool: the n-th tool block of the log (1-based; default 1).
+    #[arg(long)]
+    tool: Option<usize>,
     /// A reference tool on the base: the angle is taken relative to it.
     #[arg(long)]
     reference_tool: Option<usize>,
@@ -254,7 +254,7 @@ impl Inputs {
             daq_rate_hz: args.daq_rate_hz,
             tracker: (&self.paths.1, &self.tracker_text),
             tracker_map: self.map.as_ref(),
-            tool: args.tool,
+            tool: args.tool.unwrap_or(1),
             reference_tool: args.reference_tool,
             tracker_hz: args.tracker_hz,
             rest_s: args.rest_s,
@@ -301,6 +301,9 @@ fn run_robot(args: &Args, robot_path: &std::path::Path) -> anyhow::Result<()> {
     }
     if args.report.is_some() {
         anyhow::bail!("--report draws a joint's import; a robot's import has none yet");
+    }
+    if let Some(tool) = args.tool {
+        anyhow::bail!("--tool {tool} is a joint's tip tool; a robot's tools are --joint-tool K=TOOL, one per joint");
     }
     let robot = dlw::robot::Robot::load(robot_path)
         .with_context(|| format!("reading robot {}", robot_path.display()))?;
