@@ -1,12 +1,15 @@
 //! `dlw import-recording --daq FILE --voltage CH[,CH2] --divider-ohm R[,R2] --supply-v V
 //! --stroke CH --stroke-mm-per-v K --tracker FILE [--tool N] [--reference-tool M]
 //! [--tracker-hz 40] -o REC [--force] [--json] [--report DIR]`: a DAQ's CSV export, TDMS or LVM file and an
-//! NDI Aurora log become one recording folder (`docs/import.md`).
+//! NDI Aurora log become one recording folder (`docs/import.md`). With `--design ROBOT.toml`
+//! and one `--joint-tool K=TOOL` per joint (`--voltage` per sensor, `--stroke` per joint), a
+//! robot recording (`docs/robots.md`).
 
 use std::path::PathBuf;
 
 use anyhow::Context;
 use dlw::import::report::report_page;
+use dlw::import::robot::{import_robot, tool_by_name, RobotImportRequest, TIP_TOOL_REFUSAL};
 use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod, TrackerMap};
 use dlw::limits::{MAX_RECORDING_BYTES, MAX_TEXT_INPUT_BYTES};
 use dlw::recording::Recording;
@@ -31,12 +34,30 @@ pub struct Args {
     /// The divider supply (V).
     #[arg(long)]
     supply_v: f64,
-    /// The stroke channel (V) by header name.
-    #[arg(long)]
-    stroke: String,
-    /// The stroke sensor's scale (mm per V).
-    #[arg(long, allow_hyphen_values = true)]
-    stroke_mm_per_v: f64,
+    /// The stroke channel (V) by header name; a robot's: one per joint, joint 1 first
+    /// (repeat the option or separate by commas).
+    #[arg(long, value_delimiter = ',', required = true)]
+    stroke: Vec<String>,
+    /// The stroke sensor's scale (mm per V); a robot's: one for every joint, or one per joint.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        required = true
+    )]
+    stroke_mm_per_v: Vec<f64>,
+    /// A robot file: import a robot recording, one tracker tool per joint (--joint-tool).
+    #[arg(long, value_name = "ROBOT.toml")]
+    design: Option<PathBuf>,
+    /// With --design ROBOT: joint K's tool (K 1-based, joint 1 distal, as `dlw inspect
+    /// ROBOT --json` numbers them; TOOL the tool's number in the log's order, as --tool, or in
+    /// NDI's layout its port handle, e.g. Port:3), one per joint.
+    #[arg(long, value_name = "K=TOOL")]
+    joint_tool: Vec<String>,
+    /// With --design ROBOT: a tip tool alone. Refused: its positions cannot be put in the
+    /// robot's base frame from the log alone (docs/robots.md).
+    #[arg(long, value_name = "TOOL")]
+    tip_tool: Option<String>,
     /// The DAQ's time column, when it is not named time_s, time, Time or t.
     #[arg(long)]
     time_column: Option<String>,
@@ -51,9 +72,9 @@ pub struct Args {
     /// line, time columns, frame counter and each tool's quaternion columns (docs/import.md).
     #[arg(long, value_name = "MAP.toml")]
     tracker_map: Option<PathBuf>,
-    /// The tip tool: the n-th tool block of the log (1-based).
-    #[arg(long, default_value_t = 1)]
-    tool: usize,
+    /// The tip tool: the n-th tool block of the log (1-based; default 1).
+    #[arg(long)]
+    tool: Option<usize>,
     /// A reference tool on the base: the angle is taken relative to it.
     #[arg(long)]
     reference_tool: Option<usize>,
@@ -95,6 +116,19 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if let Some(robot) = &args.design {
+        return run_robot(&args, robot);
+    }
+    if !args.joint_tool.is_empty() || args.tip_tool.is_some() {
+        anyhow::bail!("--joint-tool and --tip-tool are a robot's: they need --design ROBOT.toml");
+    }
+    if args.stroke.len() != 1 || args.stroke_mm_per_v.len() != 1 {
+        anyhow::bail!(
+            "--stroke names {} channels and --stroke-mm-per-v {} scales; a joint has one of each (several are a robot's, with --design ROBOT.toml)",
+            args.stroke.len(),
+            args.stroke_mm_per_v.len()
+        );
+    }
     claim(&args)?;
     let (daq_format, sync) = (daq_format(&args)?, sync_method(&args)?);
     let inputs = Inputs::read(&args)?;
@@ -129,6 +163,7 @@ fn claim(args: &Args) -> anyhow::Result<()> {
     let inputs: Vec<&PathBuf> = [&args.daq, &args.tracker]
         .into_iter()
         .chain(&args.tracker_map)
+        .chain(&args.design)
         .collect();
     for folder in &outputs {
         dlw::output::claim_folder(folder, &inputs, args.force)?;
@@ -214,12 +249,12 @@ impl Inputs {
             voltage_channels: args.voltage.clone(),
             divider_ohm: args.divider_ohm.clone(),
             supply_v: args.supply_v,
-            stroke: (args.stroke.clone(), args.stroke_mm_per_v),
+            stroke: (args.stroke[0].clone(), args.stroke_mm_per_v[0]),
             time_column: args.time_column.clone(),
             daq_rate_hz: args.daq_rate_hz,
             tracker: (&self.paths.1, &self.tracker_text),
             tracker_map: self.map.as_ref(),
-            tool: args.tool,
+            tool: args.tool.unwrap_or(1),
             reference_tool: args.reference_tool,
             tracker_hz: args.tracker_hz,
             rest_s: args.rest_s,
@@ -257,4 +292,98 @@ fn write(
         })?;
     }
     Ok(())
+}
+
+/// `--design ROBOT`: the robot's import, written as a robot recording.
+fn run_robot(args: &Args, robot_path: &std::path::Path) -> anyhow::Result<()> {
+    if args.tip_tool.is_some() {
+        anyhow::bail!("{TIP_TOOL_REFUSAL}");
+    }
+    if args.report.is_some() {
+        anyhow::bail!("--report draws a joint's import; a robot's import has none yet");
+    }
+    if let Some(tool) = args.tool {
+        anyhow::bail!("--tool {tool} is a joint's tip tool; a robot's tools are --joint-tool K=TOOL, one per joint");
+    }
+    let robot = dlw::robot::Robot::load(robot_path)
+        .with_context(|| format!("reading robot {}", robot_path.display()))?;
+    let joints = robot.joints.len();
+    let joint_tools = joint_tools(&args.joint_tool, joints)?;
+    let scales = match args.stroke_mm_per_v.len() {
+        1 => vec![args.stroke_mm_per_v[0]; joints],
+        n if n == joints => args.stroke_mm_per_v.clone(),
+        n => anyhow::bail!(
+            "--stroke-mm-per-v gives {n} scales; the robot has {joints} joints (one for all, or one per joint)"
+        ),
+    };
+    claim(args)?;
+    let (daq_format, sync) = (daq_format(args)?, sync_method(args)?);
+    let inputs = Inputs::read(args)?;
+    let joint_tools = joint_tools
+        .iter()
+        .map(|name| tool_by_name(&inputs.tracker_text, inputs.map.as_ref(), name))
+        .collect::<Result<Vec<usize>, _>>()
+        .with_context(|| args.tracker.display().to_string())?;
+    let mut base = inputs.request(args, daq_format, sync);
+    base.tool = joint_tools[0];
+    let request = RobotImportRequest {
+        base,
+        strokes: args.stroke.iter().cloned().zip(scales).collect(),
+        joint_tools,
+        sensors: robot.sensors().len(),
+    };
+    let (recording, mut summary) = import_robot(&request)?;
+    dlw::finite::check(&summary)?;
+    recording
+        .write(&args.output, args.force)
+        .with_context(|| format!("writing recording {}", args.output.display()))?;
+    summary.import.recording = Some(args.output.display().to_string());
+    for w in &summary.import.warnings {
+        eprintln!("warning: {w}");
+    }
+    if args.json {
+        println!(
+            "{}",
+            dlw::finite::to_json(&serde_json::to_value(&summary)?)?
+        );
+    } else {
+        print!("{}", summary.summary());
+    }
+    Ok(())
+}
+
+/// `--joint-tool K=TOOL` for a robot of `joints` joints: each joint's tool as named, joint 1
+/// first.
+fn joint_tools(given: &[String], joints: usize) -> anyhow::Result<Vec<String>> {
+    let mut tools: Vec<Option<String>> = vec![None; joints];
+    for g in given {
+        let parsed = g
+            .split_once('=')
+            .and_then(|(k, t)| Some((k.trim().parse::<usize>().ok()?, t.trim().to_owned())));
+        let Some((k, tool)) = parsed.filter(|(_, t)| !t.is_empty() && t != "0") else {
+            anyhow::bail!("--joint-tool {g:?} is not K=TOOL (a joint number from 1 and a tool: its number from 1, or its port handle; e.g. 1=2 or 1=Port:2)");
+        };
+        if !(1..=joints).contains(&k) {
+            anyhow::bail!(
+                "--joint-tool {g:?}: joint {k} is out of range; the robot has joints 1 to {joints}"
+            );
+        }
+        if let Some(before) = tools[k - 1].replace(tool) {
+            anyhow::bail!(
+                "--joint-tool {g:?}: joint {k} already has tool {before}; one tool per joint"
+            );
+        }
+    }
+    tools
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            t.clone().ok_or_else(|| {
+                anyhow::anyhow!(
+                    "joint {} has no --joint-tool; the robot has {joints} joints and each needs its own tool (K=TOOL)",
+                    k + 1
+                )
+            })
+        })
+        .collect()
 }

@@ -73,7 +73,7 @@ enum Command {
     /// Render synthetic fluoroscopy frames of a recording's angle, to try `dlw fluoro`.
     FluoroRender(fluoro_render::Args),
     /// Import a bench's DAQ export and EM-tracker log as one recording, clocks aligned.
-    ImportRecording(import_recording::Args),
+    ImportRecording(Box<import_recording::Args>),
     /// List what a DAQ file (TDMS, LVM, CSV) or a tracker log holds, before importing it.
     DaqInfo(daq_info::Args),
     /// Simulate open- and closed-loop control of a joint (Section IV-C, Table VI), or of each
@@ -112,7 +112,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Discover(args) => discover::run(args),
         Command::Fluoro(args) => fluoro::run(args),
         Command::FluoroRender(args) => fluoro_render::run(args),
-        Command::ImportRecording(args) => import_recording::run(args),
+        Command::ImportRecording(args) => import_recording::run(*args),
         Command::DaqInfo(args) => daq_info::run(args),
         Command::Control(args) => control::run(args),
         Command::Characterize(args) => characterize::run(args),

@@ -20,6 +20,7 @@ pub mod map;
 pub mod place;
 pub mod report;
 pub mod resample;
+pub mod robot;
 pub mod stretch;
 pub mod sync;
 pub mod tdms;
@@ -157,6 +158,18 @@ pub enum ImportError {
     /// The recording to be written breaks its readers' rules.
     #[error("the recording to be written would be refused by its readers: {0}")]
     Recording(#[from] RecordingError),
+    /// A robot joint's angle ([`robot`]).
+    #[error("joint {joint} (tool {tool}, in the frame of {frame})")]
+    Joint {
+        /// The joint (1-based, 1 distal).
+        joint: usize,
+        /// Its tool.
+        tool: usize,
+        /// The frame its angle is taken in.
+        frame: String,
+        /// Why.
+        source: AngleError,
+    },
     /// Bad options.
     #[error("{0}")]
     Options(String),
@@ -395,15 +408,17 @@ fn sha256(bytes: &[u8]) -> String {
 /// [`ImportError`].
 pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), ImportError> {
     values::check_options(req)?;
-    let columns = DaqColumns::of(req);
+    let columns = DaqColumns::of(req, &[req.stroke.0.as_str()]);
     let daq = read_daq(req, &columns.names).map_err(|source| ImportError::Daq {
         path: req.daq.0.to_owned(),
         source,
     })?;
-    values::check_daq(req, &daq, &columns.names)?;
+    values::check_daq(req, &daq, &columns.names, &[req.stroke.1])?;
     values::check_rate(req, &daq)?;
     let stretches = stretch::stretches(&daq.time_s)?;
-    let log = read_tracker(req, columns.sync_column)?;
+    let mut tools = vec![req.tool];
+    tools.extend(req.reference_tool);
+    let log = read_tracker(req, &tools, columns.sync_column)?;
     refuse_jumps(req, &log, daq.time_s[daq.time_s.len() - 1])?;
     let angles: BendingAngles = angle::bending_angles(
         &log.tools[0],
@@ -477,23 +492,23 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
     Ok((recording, summary))
 }
 
-/// The DAQ channels an import reads, in the DAQ table's order: the voltages, the stroke, then
-/// a sync pulse's channel.
+/// The DAQ channels an import reads, in the DAQ table's order: the voltages, the strokes (one
+/// for a joint, one per joint for a robot), then a sync pulse's channel.
 struct DaqColumns<'a> {
     /// The channels' names.
     names: Vec<&'a str>,
-    /// The stroke's index in `names` (the voltages come before it).
+    /// The first stroke's index in `names` (the voltages come before it).
     stroke_at: usize,
     /// With a sync pulse: the tracker log's column holding it.
     sync_column: Option<&'a str>,
 }
 
 impl<'a> DaqColumns<'a> {
-    /// The channels the request names.
-    fn of(req: &'a ImportRequest<'_>) -> Self {
+    /// The channels the request names, with the stroke channels `strokes`.
+    fn of(req: &'a ImportRequest<'_>, strokes: &[&'a str]) -> Self {
         let mut names: Vec<&str> = req.voltage_channels.iter().map(String::as_str).collect();
         let stroke_at = names.len();
-        names.push(&req.stroke.0);
+        names.extend_from_slice(strokes);
         let sync_column = match &req.sync {
             SyncMethod::Pulse {
                 daq_channel,
@@ -512,18 +527,18 @@ impl<'a> DaqColumns<'a> {
     }
 }
 
-/// The request's tracker log: its tip tool, its reference tool, and the sync pulse's column.
+/// The request's tracker log: the tools `tools` (1-based, the first the tip, whose frame
+/// counter is read), and the sync pulse's column.
 fn read_tracker(
     req: &ImportRequest<'_>,
+    tools: &[usize],
     sync_column: Option<&str>,
 ) -> Result<TrackerLog, ImportError> {
-    let mut tools = vec![req.tool];
-    tools.extend(req.reference_tool);
     TrackerLog::parse(
         req.tracker.1,
         req.tracker_map,
         &tracker::ReadOptions {
-            tools: &tools,
+            tools,
             frame_hz: req.tracker_hz,
             extra_column: sync_column,
         },
@@ -664,6 +679,7 @@ fn provenance(
         } else {
             Vec::new()
         },
+        joint_tools: Vec::new(),
     }
 }
 

@@ -24,14 +24,23 @@ pub const MAX_OFFSET_LIMIT_S: f64 = 3600.0;
 /// # Errors
 /// [`ImportError::Options`] naming the option, its value and what it must be.
 pub fn check_options(req: &ImportRequest<'_>) -> Result<(), ImportError> {
-    let bad = |message: String| Err(ImportError::Options(message));
-    let positive = |v: f64| v.is_finite() && v > 0.0;
     if req.voltage_channels.is_empty() || req.voltage_channels.len() > 2 {
-        return bad(format!(
+        return Err(ImportError::Options(format!(
             "--voltage names {} channels; a joint has 1 or 2 sensors",
             req.voltage_channels.len()
-        ));
+        )));
     }
+    check_settings(req)
+}
+
+/// Checks the options that need no file but the count of voltage channels (which the caller
+/// checks against its joint's or robot's sensors).
+///
+/// # Errors
+/// [`ImportError::Options`] naming the option, its value and what it must be.
+pub fn check_settings(req: &ImportRequest<'_>) -> Result<(), ImportError> {
+    let bad = |message: String| Err(ImportError::Options(message));
+    let positive = |v: f64| v.is_finite() && v > 0.0;
     if req.divider_ohm.len() != req.voltage_channels.len() {
         return bad(format!(
             "--divider-ohm gives {} resistors for {} voltage channels",
@@ -73,7 +82,8 @@ pub fn check_options(req: &ImportRequest<'_>) -> Result<(), ImportError> {
 }
 
 /// Checks every DAQ value the recording will hold: the voltage channels (the first
-/// `req.voltage_channels.len()` of `daq`) and the stroke (the next), named by `names`.
+/// `req.voltage_channels.len()` of `daq`) and the strokes (the next, one per scale of
+/// `mm_per_v`), named by `names`.
 ///
 /// # Errors
 /// [`ImportError::Value`] naming the row (1-based, as the DAQ file's samples count), its time,
@@ -82,6 +92,7 @@ pub fn check_daq(
     req: &ImportRequest<'_>,
     daq: &DaqTable,
     names: &[&str],
+    mm_per_v: &[f64],
 ) -> Result<(), ImportError> {
     let sensors = req.voltage_channels.len();
     let at = |i: usize, name: &str| {
@@ -91,7 +102,12 @@ pub fn check_daq(
             daq.time_s[i]
         )
     };
-    for (c, values) in daq.channels.iter().enumerate().take(sensors + 1) {
+    for (c, values) in daq
+        .channels
+        .iter()
+        .enumerate()
+        .take(sensors + mm_per_v.len())
+    {
         let name = names.get(c).copied().unwrap_or("?");
         for (i, &v) in values.iter().enumerate() {
             if v.abs() > MAX_ABS_VOLTS {
@@ -109,13 +125,14 @@ pub fn check_daq(
                     short(req.supply_v)
                 )));
             }
-            if c == sensors && (v * req.stroke.1).abs() > MAX_ABS_STROKE_MM {
+            let scale = c.checked_sub(sensors).and_then(|k| mm_per_v.get(k));
+            if let Some(&scale) = scale.filter(|&&k| (v * k).abs() > MAX_ABS_STROKE_MM) {
                 return Err(ImportError::Value(format!(
                     "{}: {} V × --stroke-mm-per-v {} is a stroke of {} mm, beyond the limit of ±{MAX_ABS_STROKE_MM} mm",
                     at(i, name),
                     short(v),
-                    short(req.stroke.1),
-                    short(v * req.stroke.1)
+                    short(scale),
+                    short(v * scale)
                 )));
             }
         }

@@ -59,6 +59,10 @@ pub struct ImportInfo {
     /// alignment (the figures above are the longest stretch's). Absent for one stretch.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub stretches: Vec<ImportStretch>,
+    /// A robot's import: each joint's tool, joint 1 (distal) first; `tool` is then joint 1's.
+    /// Absent for a joint's import.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joint_tools: Vec<u32>,
 }
 
 /// One stretch of an imported recording's DAQ clock, aligned on its own.

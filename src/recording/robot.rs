@@ -156,6 +156,29 @@ impl RobotRecording {
         Ok(Self { rig, samples })
     }
 
+    /// Checks the recording by its reader's rules on what [`RobotRecording::write`] would put in
+    /// the folder (the rig, `data.csv` as written, parsed back, and the sample rate), without
+    /// writing it: an importer's last check before it writes.
+    ///
+    /// # Errors
+    /// [`RecordingError`] naming `rig.toml` or `data.csv`, the line and the value.
+    pub fn check(&self) -> Result<(), RecordingError> {
+        let (rig_path, data_path) = (Path::new(RIG_FILE), Path::new(DATA_FILE));
+        self.rig
+            .check_with(rig_path, MAX_RECORDING_SENSORS, "1 to 16 sensors")?;
+        let text = String::from_utf8_lossy(&self.csv_bytes()).into_owned();
+        let samples = parse_robot_data(&text, &self.rig, data_path)?;
+        check_sample_rate(&self.rig, &samples.time_s).map_err(|measured_hz| {
+            RecordingError::SampleRate {
+                rig: rig_path.to_path_buf(),
+                data: data_path.to_path_buf(),
+                sample_hz: self.rig.sample_hz,
+                measured_hz,
+                tolerance_percent: SAMPLE_RATE_TOLERANCE * 100.0,
+            }
+        })
+    }
+
     /// Writes the recording as folder `dest`, atomically; an existing non-empty `dest` is
     /// replaced only with `replace`.
     ///
