@@ -134,7 +134,7 @@ fn one_path_per_sensor(layout: &Layout) -> Vec<String> {
     let mut out = Vec::new();
     for sensor in 0..sensors {
         // (kind, first point, last point) per piece.
-        let mut pieces: Vec<(char, (f64, f64), (f64, f64))> = Vec::new();
+        let mut pieces: Vec<Piece> = Vec::new();
         for (kind, traces) in [
             ('U', &layout.sensors),
             ('L', &layout.leads),
@@ -294,7 +294,7 @@ enum Outcome {
     Routed(Box<CheckedRobot>),
 }
 
-fn random_robot(dir: &Path, r_o: f64, joints: &[(bool, [f64; 5], f64, f64)]) -> Outcome {
+fn random_robot(dir: &Path, r_o: f64, joints: &[JointDraw]) -> Outcome {
     let r_i = 0.78 * r_o;
     let mut robot = String::from("name = \"random\"\n");
     for (i, (bsn, u, rotation, gap)) in joints.iter().enumerate() {
@@ -321,7 +321,12 @@ fn random_robot(dir: &Path, r_o: f64, joints: &[(bool, [f64; 5], f64, f64)]) -> 
     }
 }
 
-fn joints_strategy() -> impl Strategy<Value = (f64, Vec<(bool, [f64; 5], f64, f64)>)> {
+/// A drawn piece of a trace: its kind (`U` or `L`), its first and its last point (mm).
+type Piece = (char, (f64, f64), (f64, f64));
+/// A random joint: BSN or not, its five dimensions, its rotation and its gap.
+type JointDraw = (bool, [f64; 5], f64, f64);
+
+fn joints_strategy() -> impl Strategy<Value = (f64, Vec<JointDraw>)> {
     (
         0.8f64..1.6,
         prop::collection::vec(
