@@ -712,3 +712,80 @@ fn files_a_spec_or_a_design_names_are_inputs_too() {
         assert_eq!(snapshot(w), before, "{args:?}: an input changed");
     }
 }
+
+/// The joint designs a robot file names are inputs of every command given the robot: with
+/// `--force`, an output on one of them is refused and nothing changes (before, `control`,
+/// `simulate`, `build` and `estimator-config` replaced `joint-b.toml` with their output).
+#[test]
+fn the_joint_designs_a_robot_names_are_inputs_too() {
+    let work = tempfile::tempdir().unwrap();
+    let w = work.path();
+    for name in ["robot-bdb.toml", "joint-b.toml", "joint-d.toml"] {
+        std::fs::copy(shipped_design(name), w.join(name)).unwrap();
+    }
+    let robot = arg(&w.join("robot-bdb.toml"));
+    let config = w.join("cfg.toml");
+    let o = dlw(&[
+        "estimator-config",
+        &robot,
+        "--gauge-factor",
+        "15.3",
+        "--r0-ohm",
+        "215e3",
+        "-o",
+        &arg(&config),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (b, d, cfg) = (
+        arg(&w.join("joint-b.toml")),
+        arg(&w.join("joint-d.toml")),
+        arg(&config),
+    );
+    let before = snapshot(w);
+    for args in [
+        vec![
+            "control",
+            "--design",
+            &robot,
+            "--config",
+            &cfg,
+            "--duration-s",
+            "2",
+            "-o",
+            &b,
+        ],
+        vec![
+            "simulate",
+            "--design",
+            &robot,
+            "--duration-s",
+            "2",
+            "-o",
+            &d,
+        ],
+        vec![
+            "estimator-config",
+            &robot,
+            "--gauge-factor",
+            "15",
+            "--r0-ohm",
+            "2e5",
+            "-o",
+            &b,
+        ],
+        vec!["build", &robot, "-o", &d],
+        vec!["program", &robot, "-o", &b],
+        vec!["draw", &robot, "--svg", &d],
+    ] {
+        let mut args = args;
+        args.push("--force");
+        let o = dlw(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?}: accepted");
+        assert!(
+            err.contains("refused even with --force") && err.contains("joint-"),
+            "{args:?}: {err}"
+        );
+        assert_eq!(snapshot(w), before, "{args:?}: an input changed");
+    }
+}

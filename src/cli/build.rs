@@ -33,7 +33,11 @@ pub struct Args {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     if dlw::robot::is_robot_file(&args.design) {
-        dlw::output::claim_folder(&args.output, [&args.design], args.force)?;
+        let read: Vec<_> = dlw::robot::design_inputs(&args.design)
+            .iter()
+            .flat_map(|d| dlw::job::input_files(d, args.machine.as_deref()))
+            .collect();
+        dlw::output::claim_folder(&args.output, &read, args.force)?;
         let stem = args
             .design
             .file_stem()

@@ -71,8 +71,9 @@ fn parse_gains(s: &str) -> Result<Gains, String> {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     args.out.claim_folder(
-        [&args.design, &args.config]
-            .into_iter()
+        dlw::robot::design_inputs(&args.design)
+            .iter()
+            .chain([&args.config])
             .chain(&args.scenario.scenario)
             .chain(&args.profile),
     )?;

@@ -37,7 +37,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .chain(&args.section)
         .map(|p| p.as_path())
         .collect();
-    dlw::output::claim_all(&outputs, [&args.design], args.force)?;
+    dlw::output::claim_all(
+        &outputs,
+        dlw::robot::design_inputs(&args.design),
+        args.force,
+    )?;
     if args.dxf.is_none() && args.svg.is_none() && args.section.is_none() {
         anyhow::bail!("nothing to draw: give --dxf, --svg and/or --section FILE");
     }

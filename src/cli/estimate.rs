@@ -76,10 +76,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         vec![args.recording.clone()]
     };
+    let designs: Vec<std::path::PathBuf> = args
+        .design
+        .iter()
+        .flat_map(|d| dlw::robot::design_inputs(d))
+        .collect();
     let inputs = std::iter::once(&args.config)
         .chain(&recording_files)
         .chain(&args.truth)
-        .chain(&args.design);
+        .chain(&designs);
     let output = args
         .output
         .clone()

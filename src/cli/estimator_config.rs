@@ -58,7 +58,11 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(&args.output, [&args.design], args.force)?;
+    dlw::output::claim(
+        &args.output,
+        dlw::robot::design_inputs(&args.design),
+        args.force,
+    )?;
     let format = ConfigFormat::of(&args.output)?;
     if dlw::robot::is_robot_file(&args.design) && args.joint.is_none() {
         if args.second_gauge_factor.is_some()

@@ -62,8 +62,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let report: Vec<&std::path::Path> = args.report.iter().map(|p| p.as_path()).collect();
     args.out.claim_with(
         &report,
-        [&args.design, &args.recording]
-            .into_iter()
+        dlw::robot::design_inputs(&args.design)
+            .iter()
+            .chain([&args.recording])
             .chain(&args.validate),
     )?;
     let start = Instant::now();

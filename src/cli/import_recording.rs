@@ -160,10 +160,15 @@ fn claim(args: &Args) -> anyhow::Result<()> {
         .chain(&args.report)
         .map(|p| p.as_path())
         .collect();
+    let designs: Vec<PathBuf> = args
+        .design
+        .iter()
+        .flat_map(|d| dlw::robot::design_inputs(d))
+        .collect();
     let inputs: Vec<&PathBuf> = [&args.daq, &args.tracker]
         .into_iter()
         .chain(&args.tracker_map)
-        .chain(&args.design)
+        .chain(&designs)
         .collect();
     for folder in &outputs {
         dlw::output::claim_folder(folder, &inputs, args.force)?;

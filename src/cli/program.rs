@@ -116,7 +116,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .design
         .iter()
         .chain(&args.design_flag)
-        .flat_map(|d| dlw::job::input_files(d, args.machine.as_deref()))
+        .flat_map(|d| dlw::robot::design_inputs(d))
+        .flat_map(|d| dlw::job::input_files(&d, args.machine.as_deref()))
         .chain(args.from_dxf.iter().cloned())
         .collect();
     dlw::output::claim_all(&outputs, &read, args.force)?;

@@ -70,7 +70,8 @@ enum NoisePreset {
 pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim_folder(
         &args.output,
-        std::iter::once(&args.design)
+        dlw::robot::design_inputs(&args.design)
+            .iter()
             .chain(&args.scenario.scenario)
             .chain(&args.profile),
         args.force,

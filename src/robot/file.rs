@@ -122,6 +122,22 @@ pub fn is_robot_file(path: &Path) -> bool {
         .unwrap_or(false)
 }
 
+/// The files a command given `path` as its design reads: `path` itself and, for a robot file,
+/// each joint's design file it names (resolved beside it, as the robot is assembled). Every
+/// command claims its outputs against these (docs/outputs.md), so that `--force` never
+/// replaces a joint design a robot names. A robot file that cannot be read gives `path` alone:
+/// the command then refuses it with the reader's message.
+pub fn design_inputs(path: &Path) -> Vec<std::path::PathBuf> {
+    let mut files = vec![path.to_path_buf()];
+    if is_robot_file(path) {
+        if let Ok(file) = RobotFile::read(path) {
+            let base = path.parent().unwrap_or_else(|| Path::new(""));
+            files.extend(file.joints.iter().map(|entry| base.join(&entry.design)));
+        }
+    }
+    files
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

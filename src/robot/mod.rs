@@ -65,7 +65,7 @@ pub use drawing::{check_robot_drawing, CheckedRobotDrawing};
 /// Why a robot was refused.
 pub use error::{RobotError, RobotViolation};
 /// The robot file.
-pub use file::{is_robot_file, is_robot_toml, JointEntry, RobotFile, MAX_JOINTS};
+pub use file::{design_inputs, is_robot_file, is_robot_toml, JointEntry, RobotFile, MAX_JOINTS};
 /// What `dlw inspect ROBOT --json` prints.
 pub use inspect::{JointInspection, RobotInspection, SensorInspection};
 /// The router's property.
