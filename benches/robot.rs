@@ -44,7 +44,7 @@ fn bench(c: &mut Criterion) {
         let sets = ProcessLibrary::beside(&designs)
             .resolve(&robot.robot.joints[0].design().file.process)
             .expect("process sets");
-        dlw::robot::files::build_files(&robot, "five", &sets, &profile).expect("files")
+        dlw::build::robot_files::build_files(&robot, "five", &sets, &profile).expect("files")
     };
     let files = build();
     eprintln!(

@@ -119,7 +119,7 @@ pub fn make_job_from(
     })
 }
 
-/// [`make_job_from`] for any [`Part`] (a robot's; `crate::robot::job`), with the sheet written
+/// [`make_job_from`] for any [`Part`] (a robot's; `crate::build::robot_job`), with the sheet written
 /// by `sheet` (the caller has checked the wall against the sets, [`crate::rules::check_wall`]).
 ///
 /// # Errors

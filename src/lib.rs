@@ -28,10 +28,14 @@
 //! - [`toolpath`]: the dialect-free laser plan (sensor → notches → parting);
 //! - [`post`]: post-processors that write the plan in a controller's dialect;
 //! - [`sheet`]: the operator's setup sheet, an emitter like the posts;
+//! - [`robot`]: several joints on one tube, described: the robot file, its leads routed past
+//!   each other's notches to one pad section, the crosstalk, one layout for the whole robot
+//!   (`docs/robots.md`). It reuses the joint's layout, and bends it not; the sensing side
+//!   reads it too;
 //! - [`job`]: a design made into a program and a setup sheet for one machine;
-//! - [`robot`]: several joints on one tube: the robot file, its leads routed past each other's
-//!   notches to one pad section, the crosstalk, one layout and one program for the whole robot
-//!   (`docs/robots.md`). It reuses the joint's layout and planner, and bends neither.
+//! - [`build`]: what `dlw build`, `program`, `draw` and `import-dxf` make of a joint or a robot:
+//!   the part with its process sets and machine profile, a drawing read back and checked, the
+//!   drawings, the job (a robot's through the joint's planner) and the build folder.
 //!
 //! # Sensing: recording → fit → config → estimator; recording → discover → scenario
 //! - [`recording`]: recording folders (`rig.toml`, `data.csv`), read, checked and written, with
@@ -70,6 +74,7 @@
 //! runtime estimator (`dlw-estimator`).
 
 pub mod analysis;
+pub mod build;
 pub mod calibrate;
 pub mod characterize;
 pub mod control;

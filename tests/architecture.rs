@@ -13,8 +13,10 @@ const SHARED: &[&str] = &[
 ];
 const FABRICATION: &[&str] = &[
     "design", "layout", "process", "machine", "drawing", "rules", "toolpath", "post", "sheet",
-    "job", "robot",
+    "job", "robot", "build",
 ];
+/// The laser job's side of fabrication: what no sensing module may reach, even through others.
+const LASER_JOB: &[&str] = &["post", "sheet", "job", "build"];
 /// Above both sides: they join a design to what the sensing side predicts of it.
 const ABOVE_BOTH: &[&str] = &["cli", "explore"];
 /// What the sensing side may use from fabrication: the design file it was made from.
@@ -75,6 +77,34 @@ fn floors_use_only_what_is_below_or_beside_them() {
             } else if !fab(m) && fab(u) && !SENSING_USES_FROM_FABRICATION.contains(&u) {
                 wrong.push(format!("sensing's {m} uses fabrication's {u}"));
             }
+        }
+    }
+    assert!(wrong.is_empty(), "{wrong:#?}");
+}
+
+/// A robot's description sits below the job and its fabrication (`build`) above it, so the
+/// sensing side, which reads robots, never reaches the programs and setup sheets.
+#[test]
+fn the_sensing_side_never_reaches_the_laser_job() {
+    let (modules, _) = graph();
+    let sensing = modules.keys().filter(|m| {
+        !FABRICATION.contains(&m.as_str())
+            && !SHARED.contains(&m.as_str())
+            && !ABOVE_BOTH.contains(&m.as_str())
+    });
+    let mut wrong = Vec::new();
+    for start in sensing {
+        let mut seen = std::collections::BTreeSet::new();
+        let mut stack = vec![start.clone()];
+        while let Some(m) = stack.pop() {
+            for used in modules.get(&m).into_iter().flatten() {
+                if seen.insert(used.clone()) {
+                    stack.push(used.clone());
+                }
+            }
+        }
+        for m in LASER_JOB.iter().filter(|m| seen.contains(**m)) {
+            wrong.push(format!("{start} reaches {m}"));
         }
     }
     assert!(wrong.is_empty(), "{wrong:#?}");

@@ -539,7 +539,7 @@ fn the_robot_svg_labels_joints_colours_sensors_and_marks_bending_planes() {
             .collect()
     };
     let l = &robot.layout;
-    let colour_of = |t: &dlw::layout::Trace| dlw::robot::sensor_colour(t.sensor).to_string();
+    let colour_of = |t: &dlw::layout::Trace| dlw::build::sensor_colour(t.sensor).to_string();
     for (class, traces) in [("sensor", &l.sensors), ("lead", &l.leads), ("pad", &l.pads)] {
         let want: Vec<String> = traces
             .iter()

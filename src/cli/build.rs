@@ -7,83 +7,48 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
-use dlw::drawing::layout_to_dxf;
-use dlw::drawing::svg::{layout_svg, section_svg};
-use dlw::job::program_file_name;
+use dlw::build::{joint_build_files, JointInputs, RobotInputs};
 use dlw::output::write_folder_atomic;
 
-use super::program::{job, resolve_inputs};
+use super::written::Output;
 
 /// Arguments of `dlw build`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Design file (TOML), or a robot file (`docs/robots.md`).
     design: PathBuf,
-    /// Folder to write (must not exist or be empty, unless --force).
-    #[arg(short, long, value_name = "DIR")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
+    /// `-o DIR`: the folder to write (must not exist or be empty, unless --force).
+    #[command(flatten)]
+    out: Output,
     /// Machine profile: a name or a path (default: linuxcnc-reference).
     #[arg(long, value_name = "PROFILE")]
     machine: Option<String>,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    if dlw::robot::is_robot_file(&args.design) {
-        let read: Vec<_> = dlw::robot::design_inputs(&args.design)
-            .iter()
-            .flat_map(|d| dlw::job::input_files(d, args.machine.as_deref()))
-            .collect();
-        dlw::output::claim_folder(&args.output, &read, args.force)?;
-        let stem = args
-            .design
-            .file_stem()
-            .map_or_else(|| "robot".to_string(), |s| s.to_string_lossy().into_owned());
-        let files = super::robot::build_files(&args.design, &stem, args.machine.as_deref())?;
-        write_folder(&args.output, &files)?;
-        for (name, _) in &files {
-            println!("wrote {}", args.output.join(name).display());
-        }
-        return Ok(());
-    }
-    let read = dlw::job::input_files(&args.design, args.machine.as_deref());
-    dlw::output::claim_folder(&args.output, &read, args.force)?;
-    let inputs = resolve_inputs(&args.design, None, args.machine.as_deref())?;
-    for w in &inputs.warnings {
-        eprintln!("warning: {w}");
-    }
-    let stem = args
-        .design
-        .file_stem()
-        .map_or_else(|| "joint".to_string(), |s| s.to_string_lossy().into_owned());
-    let program_file = program_file_name(&stem, &inputs.profile);
-    let job = job(&inputs, &program_file)?;
-    let files: Vec<(String, Vec<u8>)> = vec![
-        (
-            format!("{stem}.dxf"),
-            layout_to_dxf(&inputs.layout, inputs.clearance_mm).context("drawing the DXF")?,
-        ),
-        (
-            format!("{stem}-layout.svg"),
-            layout_svg(&inputs.layout, &inputs.design)
-                .context("drawing the layout SVG")?
-                .into_bytes(),
-        ),
-        (
-            format!("{stem}-section.svg"),
-            section_svg(&inputs.design)
-                .context("drawing the section SVG")?
-                .into_bytes(),
-        ),
-        (program_file, job.program.into_bytes()),
-        (format!("{stem}-setup.md"), job.sheet.into_bytes()),
-    ];
-    write_folder(&args.output, &files)?;
+    let machine = args.machine.as_deref();
+    let read: Vec<PathBuf> = dlw::robot::design_inputs(&args.design)
+        .iter()
+        .flat_map(|d| dlw::job::input_files(d, machine))
+        .collect();
+    args.out.claim_folder(&read)?;
+    let robot = dlw::robot::is_robot_file(&args.design);
+    let stem = args.design.file_stem().map_or_else(
+        || if robot { "robot" } else { "joint" }.to_string(),
+        |s| s.to_string_lossy().into_owned(),
+    );
+    let files = if robot {
+        let inputs = RobotInputs::resolve(&args.design, None, machine)?;
+        super::print_warnings(&inputs.warnings);
+        inputs.build_files(&stem)?
+    } else {
+        let inputs = JointInputs::resolve(&args.design, None, machine)?;
+        super::print_warnings(&inputs.warnings);
+        joint_build_files(&inputs, &stem)?
+    };
+    write_folder(&args.out.output, &files)?;
     for (name, _) in &files {
-        println!("wrote {}", args.output.join(name).display());
+        println!("wrote {}", args.out.output.join(name).display());
     }
     Ok(())
 }

@@ -2,11 +2,10 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
+use dlw::build::{joint_drawings, robot_drawings, Drawings};
 use dlw::design::DesignFile;
-use dlw::drawing::layout_to_dxf;
-use dlw::drawing::svg::{layout_svg, section_svg};
 use dlw::output::write_all_atomic;
+use dlw::robot::CheckedRobot;
 use dlw::rules;
 
 /// Arguments of `dlw draw`.
@@ -30,11 +29,14 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let outputs: Vec<&std::path::Path> = args
-        .dxf
-        .iter()
-        .chain(&args.svg)
-        .chain(&args.section)
+    let wanted = Drawings {
+        dxf: args.dxf,
+        svg: args.svg,
+        section: args.section,
+    };
+    let outputs: Vec<&std::path::Path> = [&wanted.dxf, &wanted.svg, &wanted.section]
+        .into_iter()
+        .flatten()
         .map(|p| p.as_path())
         .collect();
     dlw::output::claim_all(
@@ -42,39 +44,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         dlw::robot::design_inputs(&args.design),
         args.force,
     )?;
-    if args.dxf.is_none() && args.svg.is_none() && args.section.is_none() {
+    if wanted.is_empty() {
         anyhow::bail!("nothing to draw: give --dxf, --svg and/or --section FILE");
     }
-    if dlw::robot::is_robot_file(&args.design) {
-        let outputs = super::robot::draw(&args.design, args.dxf, args.svg, args.section)?;
-        write_all_atomic(&outputs)?;
-        for (path, _) in &outputs {
-            println!("wrote {}", path.display());
-        }
-        return Ok(());
-    }
-    let checked = rules::check_file(DesignFile::read(&args.design)?)?;
-    for w in &checked.warnings {
-        eprintln!("warning: {w}");
-    }
-    // Make every drawing before writing any, so a failure leaves no file behind.
-    let (design, layout) = (&checked.design, &checked.layout);
-    let mut outputs: Vec<(PathBuf, Vec<u8>)> = Vec::new();
-    if let Some(path) = args.dxf {
-        let clearance_mm = design.file.fabrication.clearance_mm();
-        let bytes = layout_to_dxf(layout, clearance_mm).context("drawing the DXF")?;
-        outputs.push((path, bytes));
-    }
-    if let Some(path) = args.svg {
-        let svg = layout_svg(layout, design).context("drawing the layout SVG")?;
-        outputs.push((path, svg.into_bytes()));
-    }
-    if let Some(path) = args.section {
-        let svg = section_svg(design).context("drawing the section SVG")?;
-        outputs.push((path, svg.into_bytes()));
-    }
-    write_all_atomic(&outputs)?;
-    for (path, _) in &outputs {
+    // Every drawing is made before any is written, so a failure leaves no file behind.
+    let files = if dlw::robot::is_robot_file(&args.design) {
+        let robot = CheckedRobot::load(&args.design)?;
+        super::print_warnings(&robot.warnings);
+        robot_drawings(&robot, &wanted)?
+    } else {
+        let checked = rules::check_file(DesignFile::read(&args.design)?)?;
+        super::print_warnings(&checked.warnings);
+        joint_drawings(&checked, &wanted)?
+    };
+    write_all_atomic(&files)?;
+    for (path, _) in &files {
         println!("wrote {}", path.display());
     }
     Ok(())

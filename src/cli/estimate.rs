@@ -10,6 +10,8 @@ use dlw::recording::{read_angles, Recording};
 use dlw::replay::{estimate, load_config, EstimateRequest};
 use dlw::signal::FilterSpec;
 
+use super::written::DefaultedOutput;
+
 /// The default estimates file, inside the recording folder.
 const DEFAULT_OUTPUT: &str = "estimates.csv";
 
@@ -29,13 +31,8 @@ pub struct Args {
     /// Print the report as JSON (keys rmse_deg, max_abs_error_deg, samples, …).
     #[arg(long)]
     json: bool,
-    /// Estimates CSV (default: estimates.csv in the recording folder).
-    #[arg(short = 'o', long = "output")]
-    output: Option<PathBuf>,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
+    #[command(flatten)]
+    out: DefaultedOutput,
     /// Ground truth from fluoroscopy (`dlw fluoro`'s angles.csv, or any CSV with time_s and
     /// angle_deg columns): the estimates are interpolated at its frame times and compared with
     /// it, in place of the tracker column, which may then be empty.
@@ -85,14 +82,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .chain(&recording_files)
         .chain(&args.truth)
         .chain(&designs);
-    let output = args
-        .output
-        .clone()
-        .unwrap_or_else(|| args.recording.join(DEFAULT_OUTPUT));
-    let outputs: Vec<&std::path::Path> = std::iter::once(output.as_path())
-        .chain(args.report.as_deref())
-        .collect();
-    dlw::output::claim_all(&outputs, inputs, args.force)?;
+    let out = args.out.or(|| args.recording.join(DEFAULT_OUTPUT));
+    let report: Vec<&std::path::Path> = args.report.iter().map(|p| p.as_path()).collect();
+    out.claim_with(&report, inputs)?;
+    let output = out.output;
     if dlw::replay::is_robot_config(&args.config) {
         if args.truth.is_some() || args.filter.is_some() {
             bail!("--truth and --filter are for a joint's config; a robot's config sets its filters in the file (docs/robot-runtime.md)");

@@ -3,15 +3,15 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Context};
+use anyhow::bail;
 use dlw::design::Design;
 use dlw::output::write_atomic;
+use dlw::replay::nominal::{nominal_config, nominal_note, NominalSensor};
 use dlw::replay::{config_text, ConfigFormat};
-use dlw_estimator::{
-    EstimatorConfig, JointConfig, LinearModel, ModelConfig, SensorConfig, DEFAULT_DIVIDER_OHM,
-    DEFAULT_SUPPLY_V,
-};
-use dlw_geometry::{Divider, NotchStyle};
+use dlw::robot::estimator_config::joint_alone;
+use dlw_estimator::{DEFAULT_DIVIDER_OHM, DEFAULT_SUPPLY_V};
+
+use super::written::Output;
 
 /// Arguments of `dlw estimator-config`.
 #[derive(Debug, clap::Args)]
@@ -48,22 +48,13 @@ pub struct Args {
     /// used 102.5 kΩ).
     #[arg(long)]
     second_divider_ohm: Option<f64>,
-    /// Output file: .toml or .json (the extension picks the format).
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
+    #[command(flatten)]
+    out: Output,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim(
-        &args.output,
-        dlw::robot::design_inputs(&args.design),
-        args.force,
-    )?;
-    let format = ConfigFormat::of(&args.output)?;
+    args.out.claim(dlw::robot::design_inputs(&args.design))?;
+    let format = ConfigFormat::of(&args.out.output)?;
     if dlw::robot::is_robot_file(&args.design) && args.joint.is_none() {
         if args.second_gauge_factor.is_some()
             || args.second_r0_ohm.is_some()
@@ -77,12 +68,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             &args.r0_ohm,
             &args.divider_ohm,
             args.supply_v,
-            &args.output,
+            &args.out.output,
             format,
         );
     }
     let (design, robot_note) = if dlw::robot::is_robot_file(&args.design) {
-        super::robot::joint_for_estimator(&args.design, args.joint)?
+        let robot = super::robot::load(&args.design)?;
+        let (design, note) = joint_alone(&robot, &args.design, args.joint)?;
+        (design, Some(note))
     } else {
         if args.joint.is_some() {
             bail!(
@@ -102,54 +95,30 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         )),
     }
     };
-    let gauge_factor = one("gauge-factor", &args.gauge_factor, None)?;
-    let r0_ohm = one("r0-ohm", &args.r0_ohm, None)?;
-    let divider_ohm = one("divider-ohm", &args.divider_ohm, Some(DEFAULT_DIVIDER_OHM))?;
-    let divider = Divider::new(divider_ohm, args.supply_v).context("divider")?;
-    let joint = JointConfig::from_joint(&design.joint);
-    let mut config = EstimatorConfig::nominal_linear(joint, gauge_factor, r0_ohm, divider)
-        .context("linear model")?;
+    let first = NominalSensor {
+        gauge_factor: one("gauge-factor", &args.gauge_factor, None)?,
+        r0_ohm: one("r0-ohm", &args.r0_ohm, None)?,
+        divider_ohm: one("divider-ohm", &args.divider_ohm, Some(DEFAULT_DIVIDER_OHM))?,
+    };
     let second_given = args.second_gauge_factor.is_some()
         || args.second_r0_ohm.is_some()
         || args.second_divider_ohm.is_some();
-    match (design.joint.style(), second_given) {
-        (NotchStyle::Uan, true) => bail!(
-            "--second-* options need a BSN design, but {:?} is UAN with one sensor",
-            design.file.name
-        ),
-        (NotchStyle::Bsn, true) => {
-            let divider = Divider::new(
-                args.second_divider_ohm.unwrap_or(divider_ohm),
-                args.supply_v,
-            )
-            .context("sensor 2 divider")?;
-            let model = LinearModel::new(
-                args.second_gauge_factor.unwrap_or(gauge_factor),
-                args.second_r0_ohm.unwrap_or(r0_ohm),
-            )
-            .context("sensor 2 linear model")?;
-            config.second_sensor = Some(SensorConfig::new(divider, ModelConfig::Linear(model)));
-            config.validate().context("sensor 2")?;
-        }
-        _ => {}
-    }
-    let mut note = format!(
-        "Nominal linear estimator config for {} (design checksum {}),\nwritten by dlw estimator-config before any characterization.",
-        design.file.name, design.checksum
-    );
-    if let Some(extra) = robot_note {
-        note.push('\n');
-        note.push_str(&extra);
-    }
+    let second = second_given.then(|| NominalSensor {
+        gauge_factor: args.second_gauge_factor.unwrap_or(first.gauge_factor),
+        r0_ohm: args.second_r0_ohm.unwrap_or(first.r0_ohm),
+        divider_ohm: args.second_divider_ohm.unwrap_or(first.divider_ohm),
+    });
+    let config = nominal_config(&design, first, second, args.supply_v)?;
+    let note = nominal_note(&design, robot_note.as_deref());
     let text = config_text(&config, format, &note)?;
-    write_atomic(&args.output, text.as_bytes())?;
+    write_atomic(&args.out.output, text.as_bytes())?;
     println!(
         "wrote {}: linear model, GF {}, R0 {} Ω, {} sensor(s), divider {} Ω at {} V",
-        args.output.display(),
-        gauge_factor,
-        r0_ohm,
+        args.out.output.display(),
+        first.gauge_factor,
+        first.r0_ohm,
         config.sensor_count(),
-        divider_ohm,
+        first.divider_ohm,
         args.supply_v
     );
     Ok(())

@@ -12,6 +12,8 @@ use dlw::sim::Recording;
 /// The most frames one run writes.
 const MAX_FRAMES: usize = 100_000;
 
+use super::written::Output;
+
 /// Arguments of `dlw fluoro-render`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -38,17 +40,12 @@ pub struct Args {
     /// Noise-free, unblurred frames without the distracting blob.
     #[arg(long)]
     clean: bool,
-    /// Output folder of PNG frames (must not exist or be empty, unless --force).
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
+    #[command(flatten)]
+    out: Output,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim_folder(&args.output, [&args.recording], args.force)?;
+    dlw::output::claim_folder(&args.out.output, [&args.recording], args.out.force)?;
     dlw::limits::within(
         "--fps",
         args.fps,
@@ -90,7 +87,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         scene.photons = 0.0;
         scene.distractor = None;
     }
-    let folder = StagedFolder::create(&args.output, args.force)?;
+    let folder = StagedFolder::create(&args.out.output, args.out.force)?;
     for k in 0..frames {
         let name = RecordedAngle::name(k);
         let bytes = png_bytes(&film.render(&scene, k)).map_err(|message| {
@@ -103,10 +100,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     folder
         .finish()
-        .with_context(|| format!("writing frames {}", args.output.display()))?;
+        .with_context(|| format!("writing frames {}", args.out.output.display()))?;
     println!(
         "wrote {}: {frames} frames ({}×{} px, {}-bit) at {} fps from {t0} s, pin at the recording's angle + {}°",
-        args.output.display(),
+        args.out.output.display(),
         args.size,
         args.size,
         args.bits,

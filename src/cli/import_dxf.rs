@@ -2,14 +2,13 @@
 //! drawing in dlw's DXF convention, as CAD tools save it, and summarizes it; with a design, also
 //! checks it against the design and lists every difference from the design's own layout.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{bail, Context};
+use dlw::build::{read_design_drawing, read_drawing, read_robot_drawing, DrawingReading};
 use dlw::design::DesignFile;
-use dlw::drawing::{
-    read_dxf, DrawingUnits, ImportOptions, ImportedDxf, LayoutNumbers, DEFAULT_JOIN_TOLERANCE_MM,
-};
-use dlw::rules::{self, Checked, CheckedDrawing, RulesError};
+use dlw::drawing::{DrawingUnits, DEFAULT_JOIN_TOLERANCE_MM};
+use dlw::robot::CheckedRobot;
+use dlw::rules::{self, RulesError};
 
 /// How to read a drawing that does not say everything itself (shared with `dlw program`).
 #[derive(Debug, Clone, clap::Args)]
@@ -27,54 +26,14 @@ fn parse_units(s: &str) -> Result<DrawingUnits, String> {
     DrawingUnits::from_name(s).ok_or_else(|| format!("unknown unit {s:?}: use mm, um or in"))
 }
 
-/// A drawing read, checked against its design.
-pub(crate) fn read(
-    path: &Path,
-    options: &DrawingOptions,
-    numbers: Option<LayoutNumbers>,
-) -> anyhow::Result<(ImportedDxf, Vec<u8>)> {
-    let tol = options.join_tolerance;
-    if !(tol.is_finite() && tol > 0.0 && tol <= 0.1) {
-        bail!("--join-tolerance {tol} mm must be greater than 0 and at most 0.1 mm");
+impl DrawingOptions {
+    /// The library's reading of a drawing.
+    pub fn reading(&self) -> DrawingReading {
+        DrawingReading {
+            units: self.units,
+            join_tolerance_mm: self.join_tolerance,
+        }
     }
-    let bytes = dlw::output::read_limited_bytes(path, dlw::limits::MAX_DRAWING_BYTES)
-        .with_context(|| format!("cannot read drawing {}", path.display()))?;
-    let imported = read_dxf(
-        &bytes,
-        &ImportOptions {
-            units: options.units,
-            numbers,
-            join_tolerance_mm: tol,
-        },
-    )
-    .with_context(|| format!("reading {}", path.display()))?;
-    for w in imported.ignored_warnings() {
-        eprintln!("warning: {}: {w}", path.display());
-    }
-    Ok((imported, bytes))
-}
-
-/// Reads the drawing at `path` for the checked design `checked` and checks it against the
-/// design: the design gives the layout's numbers when the drawing lost its XDATA, and its kerf,
-/// trace width and clearance are the ones used.
-///
-/// # Errors
-/// Reading errors, and a [`RulesError`] listing every rule the drawing breaks.
-pub(crate) fn read_for_design(
-    path: &Path,
-    options: &DrawingOptions,
-    checked: &Checked,
-) -> anyhow::Result<(ImportedDxf, CheckedDrawing)> {
-    let clearance_mm = checked.design.file.fabrication.clearance_mm();
-    let numbers = LayoutNumbers::of(&checked.layout, clearance_mm);
-    let (imported, bytes) = read(path, options, Some(numbers))?;
-    let file_name = path.file_name().map_or_else(
-        || path.display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    );
-    let drawing = rules::check_imported(checked, &imported, &file_name, &bytes)
-        .with_context(|| format!("drawing {} checked against the design", path.display()))?;
-    Ok((imported, drawing))
 }
 
 /// Arguments of `dlw import-dxf`.
@@ -91,25 +50,33 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let reading = args.drawing.reading();
     if let Some(robot) = args
         .design
         .as_deref()
         .filter(|p| dlw::robot::is_robot_file(p))
     {
-        return super::robot::import_dxf(&args.dxf, robot, &args.drawing);
+        let robot = CheckedRobot::load(robot)?;
+        super::print_warnings(&robot.warnings);
+        let (read, drawing) = read_robot_drawing(&args.dxf, &reading, &robot)?;
+        super::print_warnings(&read.warnings);
+        super::print_warnings(&drawing.warnings);
+        return super::robot::print_drawing(&args.dxf, &robot, &drawing);
     }
     let (imported, layout, clearance_mm, drawing) = match &args.design {
         Some(design) => {
             let checked = rules::check_file(DesignFile::read(design)?)?;
-            let (imported, d) = read_for_design(&args.dxf, &args.drawing, &checked)?;
+            let (read, d) = read_design_drawing(&args.dxf, &reading, &checked)?;
+            super::print_warnings(&read.warnings);
             let clearance = checked.design.file.fabrication.clearance_mm();
-            (imported, d.layout.clone(), clearance, Some(d))
+            (read.imported, d.layout.clone(), clearance, Some(d))
         }
         None => {
-            let (imported, _) = read(&args.dxf, &args.drawing, None)?;
-            let layout = imported.layout.clone();
-            let clearance = imported.clearance_mm;
-            (imported, layout, clearance, None)
+            let read = read_drawing(&args.dxf, &reading, None)?;
+            super::print_warnings(&read.warnings);
+            let layout = read.imported.layout.clone();
+            let clearance = read.imported.clearance_mm;
+            (read.imported, layout, clearance, None)
         }
     };
     println!("{} (read from {})", layout.name, args.dxf.display());

@@ -8,11 +8,13 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
+use dlw::import::files::ImportFiles;
 use dlw::import::report::report_page;
 use dlw::import::robot::{import_robot, tool_by_name, RobotImportRequest, TIP_TOOL_REFUSAL};
-use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod, TrackerMap};
-use dlw::limits::{MAX_RECORDING_BYTES, MAX_TEXT_INPUT_BYTES};
+use dlw::import::{import, DaqFormat, ImportRequest, SyncMethod};
 use dlw::recording::Recording;
+
+use super::written::Written;
 
 /// Arguments of `dlw import-recording`.
 #[derive(Debug, clap::Args)]
@@ -99,16 +101,8 @@ pub struct Args {
     /// down to it, or interpolated up (at most 10 times the DAQ's rate).
     #[arg(long)]
     rate_hz: Option<f64>,
-    /// Output recording folder (must not exist or be empty, unless --force).
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
-    /// Print the summary as JSON.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    out: Written,
     /// Write an HTML report with SVG plots into this folder: the lag between the clocks, the
     /// stroke and the angle before and after the alignment, the angle with its gaps marked.
     #[arg(long)]
@@ -131,8 +125,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     claim(&args)?;
     let (daq_format, sync) = (daq_format(&args)?, sync_method(&args)?);
-    let inputs = Inputs::read(&args)?;
-    let request = inputs.request(&args, daq_format, sync);
+    let files = read_files(&args)?;
+    let request = request(&files, &args, daq_format, sync);
     let (recording, mut summary) = import(&request)?;
     dlw::finite::check(&summary)?;
     let report = args
@@ -142,11 +136,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .transpose()
         .context("drawing the report")?;
     write(&args, &recording, report)?;
-    summary.recording = Some(args.output.display().to_string());
+    summary.recording = Some(args.out.output.display().to_string());
     for w in &summary.warnings {
         eprintln!("warning: {w}");
     }
-    if args.json {
+    if args.out.json {
         println!("{}", dlw::finite::to_json(&summary.to_json()?)?);
     } else {
         print!("{}", summary.summary());
@@ -156,7 +150,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
 /// Claims the recording folder and the report's (docs/outputs.md).
 fn claim(args: &Args) -> anyhow::Result<()> {
-    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
+    let outputs: Vec<&std::path::Path> = std::iter::once(&args.out.output)
         .chain(&args.report)
         .map(|p| p.as_path())
         .collect();
@@ -171,10 +165,19 @@ fn claim(args: &Args) -> anyhow::Result<()> {
         .chain(&designs)
         .collect();
     for folder in &outputs {
-        dlw::output::claim_folder(folder, &inputs, args.force)?;
+        dlw::output::claim_folder(folder, &inputs, args.out.force)?;
     }
-    dlw::output::claim_all(&outputs, &inputs, args.force)?;
+    dlw::output::claim_all(&outputs, &inputs, args.out.force)?;
     Ok(())
+}
+
+/// `--daq`, `--tracker` and `--tracker-map`, read.
+fn read_files(args: &Args) -> anyhow::Result<ImportFiles> {
+    Ok(ImportFiles::read(
+        &args.daq,
+        &args.tracker,
+        args.tracker_map.as_deref(),
+    )?)
 }
 
 /// `--daq-format`, else the DAQ file's extension.
@@ -202,74 +205,33 @@ fn sync_method(args: &Args) -> anyhow::Result<SyncMethod> {
     })
 }
 
-/// The input files, read through the bounded reader.
-struct Inputs {
-    /// `--tracker-map`.
-    map: Option<TrackerMap>,
-    /// `--daq`'s bytes.
-    daq_bytes: Vec<u8>,
-    /// `--tracker`'s text.
-    tracker_text: String,
-    /// `--daq` and `--tracker` as messages and the provenance name them.
-    paths: (String, String),
-}
-
-impl Inputs {
-    /// Reads the tracker map, the DAQ file and the tracker log, in that order.
-    fn read(args: &Args) -> anyhow::Result<Self> {
-        let map = args
-            .tracker_map
-            .as_ref()
-            .map(|path| -> anyhow::Result<TrackerMap> {
-                let text = dlw::output::read_limited(path, MAX_TEXT_INPUT_BYTES)
-                    .with_context(|| format!("reading {}", path.display()))?;
-                TrackerMap::from_toml(&text).with_context(|| format!("{}", path.display()))
-            })
-            .transpose()?;
-        let daq_bytes = dlw::output::read_limited_bytes(&args.daq, MAX_RECORDING_BYTES)
-            .with_context(|| format!("reading {}", args.daq.display()))?;
-        let tracker_text = dlw::output::read_limited(&args.tracker, MAX_RECORDING_BYTES)
-            .with_context(|| format!("reading {}", args.tracker.display()))?;
-        Ok(Inputs {
-            map,
-            daq_bytes,
-            tracker_text,
-            paths: (
-                args.daq.display().to_string(),
-                args.tracker.display().to_string(),
-            ),
-        })
-    }
-
-    /// The import's request: these inputs and the command line's settings.
-    fn request<'a>(
-        &'a self,
-        args: &Args,
-        daq_format: DaqFormat,
-        sync: SyncMethod,
-    ) -> ImportRequest<'a> {
-        ImportRequest {
-            daq: (&self.paths.0, &self.daq_bytes),
-            daq_format,
-            voltage_channels: args.voltage.clone(),
-            divider_ohm: args.divider_ohm.clone(),
-            supply_v: args.supply_v,
-            stroke: (args.stroke[0].clone(), args.stroke_mm_per_v[0]),
-            time_column: args.time_column.clone(),
-            daq_rate_hz: args.daq_rate_hz,
-            tracker: (&self.paths.1, &self.tracker_text),
-            tracker_map: self.map.as_ref(),
-            tool: args.tool.unwrap_or(1),
-            reference_tool: args.reference_tool,
-            tracker_hz: args.tracker_hz,
-            rest_s: args.rest_s,
-            sync,
-            max_offset_s: args.max_offset_s,
-            rate_hz: args.rate_hz,
-        }
+/// The import's request: the files read and the command line's settings.
+fn request<'a>(
+    files: &'a ImportFiles,
+    args: &Args,
+    daq_format: DaqFormat,
+    sync: SyncMethod,
+) -> ImportRequest<'a> {
+    ImportRequest {
+        daq: (&files.daq_name, &files.daq_bytes),
+        daq_format,
+        voltage_channels: args.voltage.clone(),
+        divider_ohm: args.divider_ohm.clone(),
+        supply_v: args.supply_v,
+        stroke: (args.stroke[0].clone(), args.stroke_mm_per_v[0]),
+        time_column: args.time_column.clone(),
+        daq_rate_hz: args.daq_rate_hz,
+        tracker: (&files.tracker_name, &files.tracker_text),
+        tracker_map: files.map.as_ref(),
+        tool: args.tool.unwrap_or(1),
+        reference_tool: args.reference_tool,
+        tracker_hz: args.tracker_hz,
+        rest_s: args.rest_s,
+        sync,
+        max_offset_s: args.max_offset_s,
+        rate_hz: args.rate_hz,
     }
 }
-
 /// Writes the recording and the report's files. Everything is computed: both folders are
 /// staged (the recording read back through the recording's reader) before either is put in
 /// place, so a failure leaves neither.
@@ -279,20 +241,20 @@ fn write(
     report: Option<Vec<(String, Vec<u8>)>>,
 ) -> anyhow::Result<()> {
     let staged = recording
-        .stage_checked(&args.output, args.force)
-        .with_context(|| format!("writing recording {}", args.output.display()))?;
+        .stage_checked(&args.out.output, args.out.force)
+        .with_context(|| format!("writing recording {}", args.out.output.display()))?;
     let staged_report = match (&args.report, report) {
         (Some(dir), Some(files)) => Some(dlw::output::stage_folder(dir, &files)?),
         _ => None,
     };
     staged
         .commit()
-        .with_context(|| format!("writing recording {}", args.output.display()))?;
+        .with_context(|| format!("writing recording {}", args.out.output.display()))?;
     if let Some(report) = staged_report {
         report.commit().with_context(|| {
             format!(
                 "the recording {} is written, but not the report",
-                args.output.display()
+                args.out.output.display()
             )
         })?;
     }
@@ -323,13 +285,13 @@ fn run_robot(args: &Args, robot_path: &std::path::Path) -> anyhow::Result<()> {
     };
     claim(args)?;
     let (daq_format, sync) = (daq_format(args)?, sync_method(args)?);
-    let inputs = Inputs::read(args)?;
+    let files = read_files(args)?;
     let joint_tools = joint_tools
         .iter()
-        .map(|name| tool_by_name(&inputs.tracker_text, inputs.map.as_ref(), name))
+        .map(|name| tool_by_name(&files.tracker_text, files.map.as_ref(), name))
         .collect::<Result<Vec<usize>, _>>()
         .with_context(|| args.tracker.display().to_string())?;
-    let mut base = inputs.request(args, daq_format, sync);
+    let mut base = request(&files, args, daq_format, sync);
     base.tool = joint_tools[0];
     let request = RobotImportRequest {
         base,
@@ -340,13 +302,13 @@ fn run_robot(args: &Args, robot_path: &std::path::Path) -> anyhow::Result<()> {
     let (recording, mut summary) = import_robot(&request)?;
     dlw::finite::check(&summary)?;
     recording
-        .write(&args.output, args.force)
-        .with_context(|| format!("writing recording {}", args.output.display()))?;
-    summary.import.recording = Some(args.output.display().to_string());
+        .write(&args.out.output, args.out.force)
+        .with_context(|| format!("writing recording {}", args.out.output.display()))?;
+    summary.import.recording = Some(args.out.output.display().to_string());
     for w in &summary.import.warnings {
         eprintln!("warning: {w}");
     }
-    if args.json {
+    if args.out.json {
         println!(
             "{}",
             dlw::finite::to_json(&serde_json::to_value(&summary)?)?

@@ -45,18 +45,31 @@ enum Command {
     /// Read a DXF drawing in dlw's convention back and summarize it, with the design rules.
     ImportDxf(import_dxf::Args),
     /// Write the laser program (sensor, notches, parting in one setup) and its setup sheet.
+    ///
+    /// Writes the program file -o, and the setup sheet --sheet.
     Program(program::Args),
     /// Write everything for one joint into a folder: DXF, SVGs, laser program, setup sheet.
+    ///
+    /// Writes into the folder -o (which must not exist or be empty, unless --force): the DXF,
+    /// the layout and section SVGs (one section per joint of a robot), the laser program and
+    /// the setup sheet, named after the design file.
     Build(build::Args),
     /// Search a grid of designs for the Pareto front of a spec's objectives; write the best.
     ///
     /// Writes into the folder -o: designs.csv, front.csv, best-K.toml, report.html.
     Explore(explore::Args),
     /// Simulate the paper's bench and write a recording folder.
+    ///
+    /// Writes the recording folder -o (rig.toml, data.csv), which must not exist or be empty,
+    /// unless --force.
     Simulate(simulate::Args),
     /// Write a nominal linear estimator config from a design's geometry.
+    ///
+    /// Writes the config -o: .toml or .json (the extension picks the format).
     EstimatorConfig(estimator_config::Args),
     /// Run the runtime estimator over a recording and report its error.
+    ///
+    /// Writes the estimates CSV -o (default: estimates.csv in the recording folder).
     Estimate(estimate::Args),
     /// Fit linear and PI sensor models to a recording and write an estimator config.
     ///
@@ -71,8 +84,13 @@ enum Command {
     /// Writes the CSV -o: time_s,angle_deg,raw_deg,area_px,axis_ratio,flags.
     Fluoro(fluoro::Args),
     /// Render synthetic fluoroscopy frames of a recording's angle, to try `dlw fluoro`.
+    ///
+    /// Writes the folder -o of PNG frames, which must not exist or be empty, unless --force.
     FluoroRender(fluoro_render::Args),
     /// Import a bench's DAQ export and EM-tracker log as one recording, clocks aligned.
+    ///
+    /// Writes the recording folder -o (rig.toml, data.csv), which must not exist or be empty,
+    /// unless --force.
     ImportRecording(Box<import_recording::Args>),
     /// List what a DAQ file (TDMS, LVM, CSV) or a tracker log holds, before importing it.
     DaqInfo(daq_info::Args),
@@ -118,6 +136,13 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Characterize(args) => characterize::run(args),
         Command::Reproduce(args) => reproduce::run(args),
         Command::Calibrate(args) => calibrate::run(args),
+    }
+}
+
+/// Prints each warning on stderr, as `warning: …`.
+pub(crate) fn print_warnings<W: std::fmt::Display>(warnings: &[W]) {
+    for w in warnings {
+        eprintln!("warning: {w}");
     }
 }
 

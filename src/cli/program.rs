@@ -1,19 +1,14 @@
 //! `dlw program DESIGN [--machine PROFILE] -o FILE [--sheet FILE.md]` and
 //! `dlw program --from-dxf DRAWING.dxf --design DESIGN -o FILE …`.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{bail, Context};
-use dlw::design::{Design, DesignFile};
-use dlw::drawing::Provenance;
-use dlw::job::{make_job_from, Job};
-use dlw::layout::Layout;
-use dlw::machine::{MachineLibrary, MachineProfile};
+use anyhow::bail;
+use dlw::build::{JointInputs, RobotInputs};
 use dlw::output::write_all_atomic;
-use dlw::process::{ProcessLibrary, ProcessSets};
-use dlw::rules::{self, Warning};
 
-use super::import_dxf::{read_for_design, DrawingOptions};
+use super::import_dxf::DrawingOptions;
+use super::written::Output;
 
 /// Arguments of `dlw program`.
 #[derive(Debug, clap::Args)]
@@ -35,13 +30,9 @@ pub struct Args {
     /// built-in profiles, or a path to a `.toml`. Default: linuxcnc-reference.
     #[arg(long, value_name = "PROFILE")]
     machine: Option<String>,
-    /// Program file to write.
-    #[arg(short, long, value_name = "FILE")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
+    /// `-o FILE`: the program file to write.
+    #[command(flatten)]
+    out: Output,
     /// Also write the operator's setup sheet (Markdown) here.
     #[arg(long, value_name = "FILE.md")]
     sheet: Option<PathBuf>,
@@ -50,101 +41,43 @@ pub struct Args {
     drawing: DrawingOptions,
 }
 
-/// What a job is made from, resolved and checked.
-pub(crate) struct Inputs {
-    pub design: Design,
-    pub layout: Layout,
-    pub sets: ProcessSets,
-    pub profile: MachineProfile,
-    pub warnings: Vec<Warning>,
-    /// The clearance the layout was checked with (mm).
-    pub clearance_mm: f64,
-    /// The drawing the layout was read from (`--from-dxf`).
-    pub provenance: Option<Provenance>,
-}
-
-/// Reads and checks the design (every design rule), takes its layout or the DXF's (checked
-/// against the design), finds the process sets and the machine profile.
-pub(crate) fn resolve_inputs(
-    design_path: &Path,
-    from_dxf: Option<(&Path, &DrawingOptions)>,
-    machine: Option<&str>,
-) -> anyhow::Result<Inputs> {
-    let checked = rules::check_file(DesignFile::read(design_path)?)?;
-    let clearance_mm = checked.design.file.fabrication.clearance_mm();
-    let (layout, warnings, provenance) = match from_dxf {
-        None => (checked.layout, checked.warnings, None),
-        Some((dxf, options)) => {
-            let (_, drawing) = read_for_design(dxf, options, &checked)?;
-            (drawing.layout, drawing.warnings, Some(drawing.provenance))
-        }
-    };
-    let design = checked.design;
-    let sets = ProcessLibrary::beside(design_path).resolve(&design.file.process)?;
-    let profile = MachineLibrary::beside(design_path).find(machine)?;
-    Ok(Inputs {
-        design,
-        layout,
-        sets,
-        profile,
-        warnings,
-        clearance_mm,
-        provenance,
-    })
-}
-
-/// Makes the job, naming the program `program_file` on the sheet.
-pub(crate) fn job(inputs: &Inputs, program_file: &str) -> anyhow::Result<Job> {
-    let job = make_job_from(
-        &inputs.design,
-        &inputs.layout,
-        &inputs.sets,
-        &inputs.profile,
-        program_file,
-        inputs.provenance.clone(),
-    )
-    .with_context(|| format!("planning the laser job for {:?}", inputs.design.file.name))?;
-    Ok(job)
-}
-
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let outputs: Vec<&std::path::Path> = std::iter::once(&args.output)
-        .chain(&args.sheet)
-        .map(|p| p.as_path())
-        .collect();
+    let machine = args.machine.as_deref();
     let read: Vec<PathBuf> = args
         .design
         .iter()
         .chain(&args.design_flag)
         .flat_map(|d| dlw::robot::design_inputs(d))
-        .flat_map(|d| dlw::job::input_files(&d, args.machine.as_deref()))
+        .flat_map(|d| dlw::job::input_files(&d, machine))
         .chain(args.from_dxf.iter().cloned())
         .collect();
-    dlw::output::claim_all(&outputs, &read, args.force)?;
+    let sheet: Vec<&std::path::Path> = args.sheet.iter().map(|p| p.as_path()).collect();
+    args.out.claim_with(&sheet, &read)?;
     if args.from_dxf.is_none() && args.drawing.units.is_some() {
         bail!("--units is for reading a drawing: give it with --from-dxf DRAWING.dxf");
     }
     let Some(design_path) = args.design.or(args.design_flag) else {
         bail!("give the design file: dlw program DESIGN -o FILE (or --from-dxf DRAWING.dxf --design DESIGN)");
     };
-    let program_file = args.output.file_name().map_or_else(
-        || args.output.display().to_string(),
+    let output = &args.out.output;
+    let program_file = output.file_name().map_or_else(
+        || output.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let from_dxf = args.from_dxf.as_deref().map(|p| (p, &args.drawing));
+    let reading = args.drawing.reading();
+    let from_dxf = args.from_dxf.as_deref().map(|p| (p, &reading));
     let job = if dlw::robot::is_robot_file(&design_path) {
-        let inputs = super::robot::resolve(&design_path, from_dxf, args.machine.as_deref())?;
-        super::robot::job(&inputs, &program_file)?
+        let inputs = RobotInputs::resolve(&design_path, from_dxf, machine)?;
+        super::print_warnings(&inputs.warnings);
+        inputs.job(&program_file)?
     } else {
-        let inputs = resolve_inputs(&design_path, from_dxf, args.machine.as_deref())?;
-        for w in &inputs.warnings {
-            eprintln!("warning: {w}");
-        }
-        job(&inputs, &program_file)?
+        let inputs = JointInputs::resolve(&design_path, from_dxf, machine)?;
+        super::print_warnings(&inputs.warnings);
+        inputs.job(&program_file)?
     };
     // Everything is made before anything is written, and the files are staged together, so a
     // failure leaves no file behind.
-    let mut files = vec![(args.output.clone(), job.program.into_bytes())];
+    let mut files = vec![(output.clone(), job.program.into_bytes())];
     if let Some(sheet) = &args.sheet {
         files.push((sheet.clone(), job.sheet.into_bytes()));
     }

@@ -9,6 +9,7 @@ use dlw::sim::robot::Coupling;
 use dlw::sim::{self, ProtocolKind, Recording};
 
 use super::scenario_args::ScenarioArgs;
+use super::written::Output;
 
 /// Arguments of `dlw simulate`.
 #[derive(Debug, clap::Args)]
@@ -30,13 +31,8 @@ pub struct Args {
     /// Stroke profile CSV (`time_s,stroke_mm`) for `--protocol custom`.
     #[arg(long)]
     profile: Option<PathBuf>,
-    /// Output recording folder (must not exist or be empty, unless --force).
-    #[arg(short = 'o', long = "output")]
-    output: PathBuf,
-    /// Replace an existing output; an output that is or holds an input is refused even with
-    /// it (docs/outputs.md).
-    #[arg(long)]
-    force: bool,
+    #[command(flatten)]
+    out: Output,
 }
 
 /// The `--coupling` choices.
@@ -69,12 +65,12 @@ enum NoisePreset {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     dlw::output::claim_folder(
-        &args.output,
+        &args.out.output,
         dlw::robot::design_inputs(&args.design)
             .iter()
             .chain(&args.scenario.scenario)
             .chain(&args.profile),
-        args.force,
+        args.out.force,
     )?;
     let mut scenario = args.scenario.load()?;
     if let Some(noise) = args.noise {
@@ -89,8 +85,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             &args.design,
             scenario,
             coupling,
-            &args.output,
-            args.force,
+            &args.out.output,
+            args.out.force,
         );
     }
     if args.coupling.is_some() {
@@ -109,8 +105,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         samples: run.samples,
     };
     recording
-        .write(&args.output, args.force)
-        .with_context(|| format!("writing recording {}", args.output.display()))?;
+        .write(&args.out.output, args.out.force)
+        .with_context(|| format!("writing recording {}", args.out.output.display()))?;
     let sc = &plan.scenario;
     let peak_deg = run
         .true_angle_deg
@@ -124,7 +120,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     println!(
         "wrote {}: {} samples ({} s at {} Hz), {} protocol, seed {}{correlated}, peak angle {:.2}°",
-        args.output.display(),
+        args.out.output.display(),
         plan.samples,
         sc.duration_s.unwrap_or(0.0),
         sc.sample_hz,

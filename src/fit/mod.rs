@@ -28,6 +28,7 @@ mod plays;
 pub(crate) mod report;
 mod request;
 pub mod robot;
+pub mod robot_config;
 pub mod tip_angles;
 
 use std::time::Instant;

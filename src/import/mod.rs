@@ -14,6 +14,7 @@ pub mod align;
 pub mod angle;
 pub mod check;
 pub mod daq_csv;
+pub mod files;
 pub mod info;
 pub mod lvm;
 pub mod map;

@@ -18,6 +18,7 @@
 
 mod config_file;
 mod estimate;
+pub mod nominal;
 pub mod robot;
 pub mod robot_report;
 pub mod truth;

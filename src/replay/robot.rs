@@ -182,7 +182,69 @@ pub fn replay_robot(
     })
 }
 
+/// What `dlw estimate --json` prints for a robot; the keys are part of the interface.
+#[derive(Debug, Serialize)]
+pub struct RobotEstimateReport<'a> {
+    /// Per joint, against `angleK_deg`; absent without per-joint angles.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joints: Option<&'a [JointMetrics]>,
+    /// Against the tracked tip; absent without tip columns.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tip: Option<&'a TipMetrics>,
+    /// Rows estimated.
+    pub samples: usize,
+    /// Rows the runtime flagged.
+    pub flagged_samples: usize,
+    /// The estimates file written.
+    pub estimates: &'a std::path::Path,
+    /// What the user should know.
+    pub warnings: &'a [String],
+}
+
 impl RobotReplay {
+    /// The JSON `dlw estimate --json` prints, the estimates written to `estimates`.
+    pub fn report<'a>(&'a self, estimates: &'a std::path::Path) -> RobotEstimateReport<'a> {
+        RobotEstimateReport {
+            joints: self.joints.as_deref(),
+            tip: self.tip.as_ref(),
+            samples: self.samples,
+            flagged_samples: self.flagged_samples,
+            estimates,
+            warnings: &self.warnings,
+        }
+    }
+
+    /// The terminal's lines for the estimates over `recording_name`, written to `estimates`:
+    /// each joint's error and the tip's, against what the recording holds.
+    pub fn summary(&self, recording_name: &str, estimates: &std::path::Path) -> String {
+        let mut out = format!("{recording_name}\n  samples             {}\n", self.samples);
+        match &self.joints {
+            Some(joints) => {
+                for (j, m) in joints.iter().enumerate() {
+                    out += &format!(
+                        "  joint {}             RMSE {:.3}°, max |error| {:.3}°\n",
+                        j + 1,
+                        m.rmse_deg,
+                        m.max_abs_deg
+                    );
+                }
+            }
+            None => out += "  joints              — (no per-joint angles in the recording)\n",
+        }
+        match &self.tip {
+            Some(t) => {
+                out += &format!(
+                    "  tip                 RMSE {:.3} mm, max {:.3} mm\n",
+                    t.rmse_mm, t.max_mm
+                );
+            }
+            None => out += "  tip                 — (no tip columns in the recording)\n",
+        }
+        out += &format!("  flagged samples     {}\n", self.flagged_samples);
+        out += &format!("  estimates           {}\n", estimates.display());
+        out
+    }
+
     /// `estimates.csv`: `time_s,angle1_est_deg,…,angleN_est_deg,tip_x_mm,tip_y_mm,tip_z_mm,flags`,
     /// angles and tip to `decimals` places, flags as the one-joint file's.
     pub fn csv_bytes(&self, recording: &RobotRecording, decimals: u32) -> Vec<u8> {

@@ -113,4 +113,18 @@ impl CheckedRobot {
     pub fn crosstalk_matrix(&self) -> Vec<Vec<f64>> {
         self.sensors.iter().map(|s| s.crosstalk.clone()).collect()
     }
+
+    /// The largest off-diagonal `|C[i][j]|`: the most any sensor reads of a joint not its own.
+    pub fn largest_crosstalk(&self) -> f64 {
+        self.crosstalk_matrix()
+            .iter()
+            .zip(self.robot.sensors())
+            .flat_map(|(row, s)| {
+                row.iter()
+                    .enumerate()
+                    .filter(move |(j, _)| *j != s.joint)
+                    .map(|(_, v)| v.abs())
+            })
+            .fold(0.0, f64::max)
+    }
 }

@@ -96,6 +96,17 @@ pub fn default_dividers_ohm(robot: &CheckedRobot) -> Vec<f64> {
         .collect()
 }
 
+/// The note a nominal robot config carries: the robot, and where its crosstalk came from.
+pub fn nominal_note(robot: &CheckedRobot) -> String {
+    format!(
+        "Nominal linear estimator config for the robot {:?} (robot checksum {}), written by dlw estimator-config\nbefore any characterization: {} joints, {} sensors, the crosstalk matrix from the geometry (dlw inspect).",
+        robot.robot.name,
+        robot.robot.checksum,
+        robot.robot.joints.len(),
+        robot.sensors.len()
+    )
+}
+
 /// Why [`nominal_linear`] refused its numbers. The messages name the command's options, as
 /// `dlw estimator-config ROBOT` prints them.
 #[derive(Debug, thiserror::Error)]
@@ -202,4 +213,86 @@ pub fn nominal_linear(
             source,
         }
     })
+}
+
+/// Why a joint of a robot could not be picked for a one-joint config.
+#[derive(Debug, thiserror::Error)]
+pub enum JointChoiceError {
+    /// No joint was named.
+    #[error("{file} is a robot of {joints} joints ({list}): give --joint N for the nominal config of joint N's own sensors alone, or no --joint for the robot's own config")]
+    NoJoint {
+        /// The robot file.
+        file: String,
+        /// Its joints.
+        joints: usize,
+        /// `1 = name, 2 = name, …`.
+        list: String,
+    },
+    /// The joint named is not one of the robot's.
+    #[error("--joint {joint} must be from 1 to {joints}, the robot's joints ({list})")]
+    OutOfRange {
+        /// The joint named.
+        joint: usize,
+        /// The robot's joints.
+        joints: usize,
+        /// `1 = name, 2 = name, …`.
+        list: String,
+    },
+}
+
+/// Joint `joint` (1-based) of `robot`, read from the robot file `file`, for a config of its own
+/// sensors alone: its design, and a note saying what such a config leaves out (the other
+/// joints' bending its sensors read).
+///
+/// # Errors
+/// [`JointChoiceError`] when `joint` is missing or not one of the robot's.
+pub fn joint_alone(
+    robot: &CheckedRobot,
+    file: &std::path::Path,
+    joint: Option<usize>,
+) -> Result<(crate::design::Design, String), JointChoiceError> {
+    let r = &robot.robot;
+    let joints = r.joints.len();
+    let list = r
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(i, j)| format!("{} = {}", i + 1, j.design().file.name))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let Some(n) = joint else {
+        return Err(JointChoiceError::NoJoint {
+            file: file.display().to_string(),
+            joints,
+            list,
+        });
+    };
+    if n == 0 || n > joints {
+        return Err(JointChoiceError::OutOfRange {
+            joint: n,
+            joints,
+            list,
+        });
+    }
+    let mut lines = vec![format!(
+        "Joint {n} of the robot {:?} (robot checksum {}); its sensors alone, as if the other joints did not bend.",
+        r.name, r.checksum
+    )];
+    for s in robot.sensors.iter().filter(|s| s.sensor.joint == n - 1) {
+        let others: Vec<String> = s
+            .crosstalk
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| *j != n - 1)
+            .map(|(j, v)| format!("{:.2} % of joint {}", v * 100.0, j + 1))
+            .collect();
+        if !others.is_empty() {
+            lines.push(format!(
+                "Its sensor {} also reads {} (crosstalk, docs/robots.md).",
+                s.sensor.sensor + 1,
+                others.join(", ")
+            ));
+        }
+    }
+    Ok((r.joints[n - 1].design().clone(), lines.join("\n")))
 }

@@ -5,7 +5,9 @@
 //! each joint's design and its own layout ([`crate::layout::Unrolled`]), places them along the
 //! tube and turns them ([`Robot`]), routes every lead ([`CheckedRobot`]) and hands back one
 //! [`crate::layout::Layout`]. From there the flow is a joint's: the same layout rules, the same
-//! DXF and SVG writers, the same toolpath planner and posts ([`job`]).
+//! DXF and SVG writers, the same toolpath planner and posts (`crate::build`, which sits above
+//! the job; this module is the robot's description, below it, so the sensing side can read a
+//! robot without reaching the laser job).
 //!
 //! # Frame
 //! The joint's (`docs/frames.md`): `x` along the tube from the distal end (joint 1's free end,
@@ -38,13 +40,10 @@
 mod assemble;
 mod checked;
 mod crosstalk;
-mod drawing;
 mod error;
 pub mod estimator_config;
 mod file;
-pub mod files;
 mod inspect;
-pub mod job;
 mod jogs;
 mod lanes;
 mod pads;
@@ -52,7 +51,6 @@ mod property;
 mod route;
 mod sensors;
 mod suggest;
-mod svg;
 
 /// A validated robot and its joints, placed.
 pub use assemble::{Robot, RobotJoint};
@@ -60,8 +58,6 @@ pub use assemble::{Robot, RobotJoint};
 pub use checked::CheckedRobot;
 /// Crosstalk: what each sensor reads of each joint's bending.
 pub use crosstalk::{findings, reports, CrosstalkFinding, SensorReport, CROSSTALK_WARNING};
-/// A robot's drawing read back and checked against it.
-pub use drawing::{check_robot_drawing, CheckedRobotDrawing};
 /// Why a robot was refused.
 pub use error::{RobotError, RobotViolation};
 /// The robot file.
@@ -72,8 +68,6 @@ pub use inspect::{JointInspection, RobotInspection, SensorInspection};
 pub use property::check_property;
 /// Sensor and lead identities.
 pub use sensors::{Arm, LeadName, RobotSensor};
-/// A robot as an SVG sheet: the unrolled robot, its joints labelled, a side view.
-pub use svg::{robot_svg, robot_svg_with, sensor_colour, SENSOR_COLOURS};
 
 #[cfg(test)]
 mod tests;

@@ -409,6 +409,30 @@ impl RobotPlan {
         }
     }
 
+    /// The terminal's line for `run`, written to `output`: samples, duration and rate, joints
+    /// and sensors, protocol, seed, coupling, and each joint's peak true angle.
+    pub fn summary(&self, run: &RobotRun, output: &std::path::Path) -> String {
+        let peaks: Vec<String> = run
+            .true_angle_deg
+            .iter()
+            .map(|a| format!("{:.1}°", a.iter().fold(0.0f64, |m, x| m.max(x.abs()))))
+            .collect();
+        let first = &self.joints[0].scenario;
+        format!(
+            "wrote {}: {} samples ({} s at {} Hz), {} joints, {} sensors, {} protocol, seed {}, tendon coupling {}, peak angles {}\n",
+            output.display(),
+            self.samples(),
+            first.duration_s.unwrap_or(0.0),
+            first.sample_hz,
+            self.joints.len(),
+            self.sensors.len(),
+            first.protocol.map_or("?", |p| p.name()),
+            first.seed,
+            self.coupling.name(),
+            peaks.join(", ")
+        )
+    }
+
     /// The recording of `run`.
     pub fn recording(&self, run: RobotRun) -> RobotRecording {
         RobotRecording {

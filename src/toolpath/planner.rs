@@ -43,7 +43,7 @@ impl Default for PlanOptions {
 
 /// What a plan is of, besides its layout: the name and checksum its program and sheet carry,
 /// the numbers they print, and any lines the header adds. A joint's design gives them
-/// ([`Part::of`]); a robot gives its own (`crate::robot::job`), so the planner need not know
+/// ([`Part::of`]); a robot gives its own (`crate::build::robot_job`), so the planner need not know
 /// which it plans.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Part {

@@ -13,7 +13,7 @@ use crate::rules;
 use crate::sheet::{robot_sheet, setup_sheet, SheetJoint};
 use crate::toolpath::{Part, ToolpathError};
 
-use super::checked::CheckedRobot;
+use crate::robot::CheckedRobot;
 
 /// The part a robot's plan is of: its name and checksum, the sum of its joints' bending
 /// lengths, and header lines naming each joint (none for a one-joint robot, whose program is

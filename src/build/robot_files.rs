@@ -2,7 +2,7 @@
 //! one-joint robot, else titled as a robot with each joint labelled above the tube), the robot
 //! sheet, one section sheet per joint, the program and the setup sheet.
 
-use super::robot_svg;
+use super::robot_svg::robot_svg;
 use crate::drawing::svg::{section_svg, SvgError};
 use crate::drawing::{layout_to_dxf, layout_to_dxf_with, DxfExportError, DxfNotes};
 use crate::job::{program_file_name, JobError};
@@ -10,7 +10,7 @@ use crate::layout::Layout;
 use crate::machine::MachineProfile;
 use crate::process::ProcessSets;
 
-use super::checked::CheckedRobot;
+use crate::robot::CheckedRobot;
 
 /// Why a robot's files could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -97,7 +97,7 @@ pub fn build_files(
     profile: &MachineProfile,
 ) -> Result<Vec<(String, Vec<u8>)>, FilesError> {
     let program_file = program_file_name(stem, profile);
-    let job = super::job::make_job(robot, &robot.layout, sets, profile, &program_file, None)?;
+    let job = super::robot_job::make_job(robot, &robot.layout, sets, profile, &program_file, None)?;
     let mut files = vec![
         (format!("{stem}.dxf"), dxf(robot, &robot.layout)?),
         (format!("{stem}-layout.svg"), robot_svg(robot)?.into_bytes()),

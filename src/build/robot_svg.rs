@@ -10,13 +10,13 @@
 
 use std::f64::consts::PI;
 
-use super::CheckedRobot;
 use crate::drawing::svg::annotate::{self, Table, SMALL_MM, TEXT_MM, THIN_MM};
 use crate::drawing::svg::options::{Drawn, SvgOptions};
 use crate::drawing::svg::palette;
 use crate::drawing::svg::sheet::{fixed, Anchor, Sheet, TextStyle};
 use crate::drawing::svg::SvgError;
 use crate::layout::Layout;
+use crate::robot::CheckedRobot;
 
 /// The sheet's layers, bottom first.
 const LAYERS: [&str; 9] = [

@@ -19,9 +19,9 @@ use crate::drawing::{ImportedDxf, Provenance};
 use crate::layout::{Layout, Trace};
 use crate::rules;
 
-use super::checked::CheckedRobot;
-use super::error::{RobotError, RobotViolation};
-use super::property::check_property;
+use crate::robot::check_property;
+use crate::robot::CheckedRobot;
+use crate::robot::{RobotError, RobotViolation};
 
 /// Notch edges closer than this share a level (mm), as the DXF reader's.
 const SAME_LEVEL_MM: f64 = 1e-3;
