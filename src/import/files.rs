@@ -31,6 +31,23 @@ pub enum ImportFilesError {
     },
 }
 
+/// Reads the tracker map at `path`.
+///
+/// # Errors
+/// [`ImportFilesError`] naming the file.
+pub fn read_map(path: &Path) -> Result<TrackerMap, ImportFilesError> {
+    let text = crate::output::read_limited(path, MAX_TEXT_INPUT_BYTES).map_err(|source| {
+        ImportFilesError::Read {
+            path: path.display().to_string(),
+            source,
+        }
+    })?;
+    TrackerMap::from_toml(&text).map_err(|source| ImportFilesError::Map {
+        path: path.display().to_string(),
+        source,
+    })
+}
+
 /// The files an import reads, read.
 #[derive(Debug)]
 pub struct ImportFiles {
@@ -56,16 +73,7 @@ impl ImportFiles {
             let path = path.display().to_string();
             move |source| ImportFilesError::Read { path, source }
         };
-        let map = map
-            .map(|path| {
-                let text = crate::output::read_limited(path, MAX_TEXT_INPUT_BYTES)
-                    .map_err(read_error(path))?;
-                TrackerMap::from_toml(&text).map_err(|source| ImportFilesError::Map {
-                    path: path.display().to_string(),
-                    source,
-                })
-            })
-            .transpose()?;
+        let map = map.map(read_map).transpose()?;
         let daq_bytes =
             crate::output::read_limited_bytes(daq, MAX_RECORDING_BYTES).map_err(read_error(daq))?;
         let tracker_text = crate::output::read_limited(tracker, MAX_RECORDING_BYTES)

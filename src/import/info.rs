@@ -102,6 +102,79 @@ pub struct TrackerInfo {
     pub warnings: Vec<String>,
 }
 
+impl DaqInfo {
+    /// The terminal's lines for the file `name`: each channel's type, length, unit, step and
+    /// first and last values, then the warnings.
+    pub fn summary(&self, name: &str) -> String {
+        let mut out = format!(
+            "{name}: {} file, {} channel(s)\n",
+            self.format,
+            self.channels.len()
+        );
+        let list = |v: &[Value]| {
+            v.iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        for c in &self.channels {
+            out += &format!(
+                "  {}: {}, {} values{}{}; first {}; last {}\n",
+                c.name,
+                c.kind.as_deref().unwrap_or("no data"),
+                c.length,
+                c.unit
+                    .as_ref()
+                    .map_or(String::new(), |u| format!(", unit {u}")),
+                c.increment_s
+                    .map_or(String::new(), |s| format!(", every {s} s")),
+                list(&c.first),
+                list(&c.last)
+            );
+        }
+        for w in &self.warnings {
+            out += &format!("warning: {w}\n");
+        }
+        out
+    }
+}
+
+impl TrackerInfo {
+    /// The terminal's lines for the log `name`: its layout, frames, span and rate (and where
+    /// the rate came from), each tool's frames, each gap, then the warnings.
+    pub fn summary(&self, name: &str) -> String {
+        let mut out = format!(
+            "{name}: {} layout, {} frames over {:.3} s at {:.3} Hz ({}), {} gap(s)\n",
+            self.format,
+            self.frames,
+            self.span_s,
+            self.rate_hz,
+            match self.rate_source {
+                RateSource::Given => "--tracker-hz",
+                RateSource::Measured => "measured from its time columns",
+                RateSource::Default => "the Aurora's default",
+            },
+            self.gaps.len()
+        );
+        for t in &self.tools {
+            out += &format!(
+                "  tool {}: seen in {} frames, missing in {}\n",
+                t.tool, t.seen, t.missing
+            );
+        }
+        for g in &self.gaps {
+            out += &format!(
+                "  gap before line {}: {:.3} s, {:.0} frames absent\n",
+                g.line, g.seconds, g.frames
+            );
+        }
+        for w in &self.warnings {
+            out += &format!("warning: {w}\n");
+        }
+        out
+    }
+}
+
 /// What is in the DAQ file `bytes` (of `format`); `time_column` names a CSV's time column when
 /// it is not found by name.
 ///
