@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{bail, Context};
 use dlw::design::Design;
 use dlw::sim::robot::Coupling;
-use dlw::sim::{self, ProtocolKind, Recording};
+use dlw::sim::{self, Recording};
 
 use super::scenario_args::ScenarioArgs;
 use super::written::Output;
@@ -64,13 +64,11 @@ enum NoisePreset {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    dlw::output::claim_folder(
-        &args.out.output,
+    args.out.claim_folder(
         dlw::robot::design_inputs(&args.design)
             .iter()
             .chain(&args.scenario.scenario)
             .chain(&args.profile),
-        args.out.force,
     )?;
     let mut scenario = args.scenario.load()?;
     if let Some(noise) = args.noise {
@@ -100,6 +98,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let run = plan
         .run()
         .with_context(|| format!("simulating {}", design.file.name))?;
+    let summary = plan.summary(&run, &args.out.output);
     let recording = Recording {
         rig: plan.rig(),
         samples: run.samples,
@@ -107,26 +106,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     recording
         .write(&args.out.output, args.out.force)
         .with_context(|| format!("writing recording {}", args.out.output.display()))?;
-    let sc = &plan.scenario;
-    let peak_deg = run
-        .true_angle_deg
-        .iter()
-        .fold(0.0f64, |m, a| m.max(a.abs()));
-    let correlated = match (sc.adc.correlated.enabled, sc.tracker.correlated.enabled) {
-        (true, true) => ", correlated ADC and tracker noise",
-        (true, false) => ", correlated ADC noise",
-        (false, true) => ", correlated tracker noise",
-        (false, false) => "",
-    };
-    println!(
-        "wrote {}: {} samples ({} s at {} Hz), {} protocol, seed {}{correlated}, peak angle {:.2}°",
-        args.out.output.display(),
-        plan.samples,
-        sc.duration_s.unwrap_or(0.0),
-        sc.sample_hz,
-        sc.protocol.map_or("?", ProtocolKind::name),
-        sc.seed,
-        peak_deg
-    );
+    print!("{summary}");
     Ok(())
 }

@@ -481,15 +481,7 @@ impl Recording {
         let data_path = dir.join(DATA_FILE);
         let text = read_text(&data_path, crate::limits::MAX_RECORDING_BYTES)?;
         let samples = parse_data(&text, &rig, &data_path)?;
-        check_sample_rate(&rig, &samples.time_s).map_err(|measured_hz| {
-            RecordingError::SampleRate {
-                rig: rig_path,
-                data: data_path,
-                sample_hz: rig.sample_hz,
-                measured_hz,
-                tolerance_percent: SAMPLE_RATE_TOLERANCE * 100.0,
-            }
-        })?;
+        check_sample_rate(&rig, &samples.time_s, &rig_path, &data_path)?;
         Ok(Self { rig, samples })
     }
 
@@ -594,27 +586,7 @@ impl Recording {
 
     /// The recording written into a staging folder beside `dest`, not yet in place.
     fn stage(&self, dest: &Path, replace: bool) -> Result<StagedFolder, RecordingError> {
-        let occupied = match std::fs::read_dir(dest) {
-            Ok(mut entries) => entries.next().is_some(),
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
-            // A file, or a folder we may not list: not ours to replace silently.
-            Err(_) => true,
-        };
-        if occupied && !replace {
-            return Err(RecordingError::Exists {
-                path: dest.to_path_buf(),
-            });
-        }
-        if replace {
-            crate::output::allow_replace(dest);
-        }
-        let rig = toml::to_string(&self.rig).map_err(|e| RecordingError::RigWrite {
-            message: e.to_string(),
-        })?;
-        let files = [
-            (RIG_FILE.to_string(), rig.into_bytes()),
-            (DATA_FILE.to_string(), self.csv_bytes()),
-        ];
+        let files = folder_files(dest, replace, &self.rig, self.csv_bytes())?;
         Ok(stage_folder(dest, &files)?)
     }
 
@@ -656,9 +628,15 @@ impl Recording {
 pub const SAMPLE_RATE_TOLERANCE: f64 = 0.01;
 
 /// `Ok` when `rig.sample_hz` is the rate of `time_s` (the reciprocal of its median spacing)
-/// within [`SAMPLE_RATE_TOLERANCE`], or when there are too few rows to tell; else the measured
-/// rate (Hz).
-pub(crate) fn check_sample_rate(rig: &Rig, time_s: &[f64]) -> Result<(), f64> {
+/// within [`SAMPLE_RATE_TOLERANCE`], or when there are too few rows to tell; else
+/// [`RecordingError::SampleRate`] naming the rig at `rig_path`, the data at `data_path`, both
+/// rates and the tolerance.
+pub(crate) fn check_sample_rate(
+    rig: &Rig,
+    time_s: &[f64],
+    rig_path: &Path,
+    data_path: &Path,
+) -> Result<(), RecordingError> {
     if time_s.len() < 3 {
         return Ok(());
     }
@@ -669,8 +647,49 @@ pub(crate) fn check_sample_rate(rig: &Rig, time_s: &[f64]) -> Result<(), f64> {
     if (measured_hz / rig.sample_hz - 1.0).abs() <= SAMPLE_RATE_TOLERANCE {
         Ok(())
     } else {
-        Err(measured_hz)
+        Err(RecordingError::SampleRate {
+            rig: rig_path.to_path_buf(),
+            data: data_path.to_path_buf(),
+            sample_hz: rig.sample_hz,
+            measured_hz,
+            tolerance_percent: SAMPLE_RATE_TOLERANCE * 100.0,
+        })
     }
+}
+
+/// A recording folder's two files, `rig.toml` and `data.csv` (`csv`), once `dest` may take
+/// them: absent or empty, or `replace` (then the output policy is told it may be replaced).
+///
+/// # Errors
+/// [`RecordingError::Exists`] for an occupied `dest` without `replace`;
+/// [`RecordingError::RigWrite`].
+pub(crate) fn folder_files(
+    dest: &Path,
+    replace: bool,
+    rig: &Rig,
+    csv: Vec<u8>,
+) -> Result<[(String, Vec<u8>); 2], RecordingError> {
+    let occupied = match std::fs::read_dir(dest) {
+        Ok(mut entries) => entries.next().is_some(),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
+        // A file, or a folder we may not list: not ours to replace silently.
+        Err(_) => true,
+    };
+    if occupied && !replace {
+        return Err(RecordingError::Exists {
+            path: dest.to_path_buf(),
+        });
+    }
+    if replace {
+        crate::output::allow_replace(dest);
+    }
+    let rig = toml::to_string(rig).map_err(|e| RecordingError::RigWrite {
+        message: e.to_string(),
+    })?;
+    Ok([
+        (RIG_FILE.to_string(), rig.into_bytes()),
+        (DATA_FILE.to_string(), csv),
+    ])
 }
 
 pub(crate) fn read_text(path: &Path, limit: u64) -> Result<String, RecordingError> {

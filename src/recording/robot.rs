@@ -26,8 +26,8 @@ use crate::fixed::push_fixed;
 use crate::output::write_folder_atomic;
 
 use super::{
-    check_sample_rate, parse_field, read_text, RecordingError, Rig, DATA_FILE, RIG_FILE,
-    SAMPLE_RATE_TOLERANCE, VALID_COLUMN_SUFFIX,
+    check_sample_rate, folder_files, parse_field, read_text, RecordingError, Rig, DATA_FILE,
+    RIG_FILE, VALID_COLUMN_SUFFIX,
 };
 
 /// The most joints a robot recording holds (the runtime's `MAX_JOINTS`).
@@ -144,15 +144,7 @@ impl RobotRecording {
         let data_path = dir.join(DATA_FILE);
         let text = read_text(&data_path, crate::limits::MAX_RECORDING_BYTES)?;
         let samples = parse_robot_data(&text, &rig, &data_path)?;
-        check_sample_rate(&rig, &samples.time_s).map_err(|measured_hz| {
-            RecordingError::SampleRate {
-                rig: rig_path,
-                data: data_path,
-                sample_hz: rig.sample_hz,
-                measured_hz,
-                tolerance_percent: SAMPLE_RATE_TOLERANCE * 100.0,
-            }
-        })?;
+        check_sample_rate(&rig, &samples.time_s, &rig_path, &data_path)?;
         Ok(Self { rig, samples })
     }
 
@@ -168,15 +160,7 @@ impl RobotRecording {
             .check_with(rig_path, MAX_RECORDING_SENSORS, "1 to 16 sensors")?;
         let text = String::from_utf8_lossy(&self.csv_bytes()).into_owned();
         let samples = parse_robot_data(&text, &self.rig, data_path)?;
-        check_sample_rate(&self.rig, &samples.time_s).map_err(|measured_hz| {
-            RecordingError::SampleRate {
-                rig: rig_path.to_path_buf(),
-                data: data_path.to_path_buf(),
-                sample_hz: self.rig.sample_hz,
-                measured_hz,
-                tolerance_percent: SAMPLE_RATE_TOLERANCE * 100.0,
-            }
-        })
+        check_sample_rate(&self.rig, &samples.time_s, rig_path, data_path)
     }
 
     /// Writes the recording as folder `dest`, atomically; an existing non-empty `dest` is
@@ -185,26 +169,7 @@ impl RobotRecording {
     /// # Errors
     /// [`RecordingError::Exists`], or an I/O error naming the path; `dest` is then untouched.
     pub fn write(&self, dest: &Path, replace: bool) -> Result<(), RecordingError> {
-        let occupied = match std::fs::read_dir(dest) {
-            Ok(mut entries) => entries.next().is_some(),
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
-            Err(_) => true,
-        };
-        if occupied && !replace {
-            return Err(RecordingError::Exists {
-                path: dest.to_path_buf(),
-            });
-        }
-        if replace {
-            crate::output::allow_replace(dest);
-        }
-        let rig = toml::to_string(&self.rig).map_err(|e| RecordingError::RigWrite {
-            message: e.to_string(),
-        })?;
-        let files = [
-            (RIG_FILE.to_string(), rig.into_bytes()),
-            (DATA_FILE.to_string(), self.csv_bytes()),
-        ];
+        let files = folder_files(dest, replace, &self.rig, self.csv_bytes())?;
         write_folder_atomic(dest, &files)?;
         Ok(())
     }

@@ -130,21 +130,13 @@ pub fn load_config(path: &Path) -> Result<EstimatorConfig, ConfigFileError> {
 /// the bounded reader; `false` for anything unreadable, which [`load_config`] then names, and
 /// for anything not a regular file (reading a pipe would consume what [`load_config`] needs).
 pub fn is_robot_config(path: &Path) -> bool {
-    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
-        return false;
+    /// A config's `joint` list, whatever its tables hold.
+    #[derive(serde::Deserialize)]
+    struct Joints {
+        joint: Option<Vec<serde::de::IgnoredAny>>,
     }
-    let Ok(format) = ConfigFormat::of(path) else {
-        return false;
-    };
-    let Ok(text) = crate::output::read_limited(path, crate::limits::MAX_TEXT_INPUT_BYTES) else {
-        return false;
-    };
-    match format {
-        ConfigFormat::Toml => toml::from_str::<toml::Table>(&text)
-            .is_ok_and(|t| t.get("joint").is_some_and(toml::Value::is_array)),
-        ConfigFormat::Json => serde_json::from_str::<serde_json::Value>(&text)
-            .is_ok_and(|v| v.get("joint").is_some_and(serde_json::Value::is_array)),
-    }
+    std::fs::metadata(path).is_ok_and(|m| m.is_file())
+        && parse_file::<Joints>(path).is_ok_and(|j| j.joint.is_some())
 }
 
 /// Reads and validates a robot's estimator config (`docs/robot-runtime.md`).

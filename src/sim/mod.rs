@@ -222,6 +222,32 @@ pub fn plan(
 }
 
 impl Plan {
+    /// The terminal's line for `run`, written to `output`: samples, duration and rate,
+    /// protocol, seed, the correlated noise switched on, and the peak true angle.
+    pub fn summary(&self, run: &Run, output: &std::path::Path) -> String {
+        let sc = &self.scenario;
+        let peak_deg = run
+            .true_angle_deg
+            .iter()
+            .fold(0.0f64, |m, a| m.max(a.abs()));
+        let correlated = match (sc.adc.correlated.enabled, sc.tracker.correlated.enabled) {
+            (true, true) => ", correlated ADC and tracker noise",
+            (true, false) => ", correlated ADC noise",
+            (false, true) => ", correlated tracker noise",
+            (false, false) => "",
+        };
+        format!(
+            "wrote {}: {} samples ({} s at {} Hz), {} protocol, seed {}{correlated}, peak angle {:.2}°\n",
+            output.display(),
+            self.samples,
+            sc.duration_s.unwrap_or(0.0),
+            sc.sample_hz,
+            sc.protocol.map_or("?", ProtocolKind::name),
+            sc.seed,
+            peak_deg
+        )
+    }
+
     /// Generates every sample in memory.
     ///
     /// # Errors

@@ -107,6 +107,22 @@ pub unsafe extern "C" fn dlw_estimator_from_toml(
     error: *mut c_char,
     error_len: usize,
 ) -> *mut DlwEstimator {
+    from_toml(config_toml, error, error_len, build)
+}
+
+/// What every `*_from_toml` shares: `build` run on the config's text, never unwinding into C; a
+/// new heap object, or NULL with the reason in `error` (NULL config, not UTF-8, refused, or a
+/// panic).
+///
+/// # Safety
+/// As the callers': `config_toml` is NULL or a NUL-terminated string; `error` is NULL or points
+/// to `error_len` writable bytes.
+pub(crate) unsafe fn from_toml<T>(
+    config_toml: *const c_char,
+    error: *mut c_char,
+    error_len: usize,
+    build: fn(&str) -> Result<T, String>,
+) -> *mut T {
     let result = catch_unwind(AssertUnwindSafe(|| {
         if config_toml.is_null() {
             return Err("config_toml is NULL".to_string());

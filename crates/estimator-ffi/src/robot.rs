@@ -1,11 +1,11 @@
 //! The robot estimator and its kinematics from C: `dlw_robot_estimator_*`.
 
-use std::ffi::{c_char, c_int, CStr};
+use std::ffi::{c_char, c_int};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use runtime::{RobotEstimator, RobotEstimatorConfig, MAX_JOINTS, MAX_SENSORS};
 
-use crate::{write_error, DLW_ERR_NULL, DLW_ERR_PANIC, DLW_OK};
+use crate::{DLW_ERR_NULL, DLW_ERR_PANIC, DLW_OK};
 
 /// A count argument (`n_volts`, `n_joints`) is not the robot's: nothing was done.
 pub const DLW_ERR_LENGTH: c_int = -3;
@@ -51,30 +51,7 @@ pub unsafe extern "C" fn dlw_robot_estimator_from_toml(
     error: *mut c_char,
     error_len: usize,
 ) -> *mut DlwRobotEstimator {
-    let result = catch_unwind(AssertUnwindSafe(|| {
-        if config_toml.is_null() {
-            return Err("config_toml is NULL".to_string());
-        }
-        let text = CStr::from_ptr(config_toml)
-            .to_str()
-            .map_err(|e| format!("config_toml is not UTF-8: {e}"))?;
-        build(text).map(Box::new)
-    }));
-    match result {
-        Ok(Ok(estimator)) => Box::into_raw(estimator),
-        Ok(Err(message)) => {
-            write_error(error, error_len, &message);
-            std::ptr::null_mut()
-        }
-        Err(_) => {
-            write_error(
-                error,
-                error_len,
-                "internal error (panic) while reading the config",
-            );
-            std::ptr::null_mut()
-        }
-    }
+    crate::from_toml(config_toml, error, error_len, build)
 }
 
 /// Joints `N` of the robot (0 for NULL).
@@ -288,6 +265,7 @@ pub unsafe extern "C" fn dlw_robot_estimator_free(e: *mut DlwRobotEstimator) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::ffi::CStr;
     use runtime::{nominal_divider, JointConfig, RobotJointConfig, RobotSensorConfig};
 
     /// Joint B (UAN) at rotation 0 and a second Joint B at 90°, one sensor each; sensor 1's
