@@ -145,7 +145,8 @@ impl ChannelModel {
     }
 }
 
-/// The columns one term adds to a design, built from `driver` (a gain drift from `input`).
+/// The columns one term adds to a design, built from `driver` (a linear gain drift from
+/// `input`).
 fn term_columns(
     t: &Term,
     driver: &[f64],
@@ -248,8 +249,11 @@ fn term_columns(
             }
         }
         Term::GainWander { intervals } => {
+            // On the smoothed input, as the other candidates: times the tracker's noisy strain,
+            // its seven columns fitted the tracker noise of the training blocks (the third
+            // generator's cycling gain at ×0.5: −6.8 nats held out, its wandering baseline 33).
             for b in wander(data, *intervals) {
-                columns.push(input.iter().zip(&b).map(|(x, b)| x * b).collect());
+                columns.push(driver.iter().zip(&b).map(|(x, b)| x * b).collect());
                 labels.push("gain_wander");
             }
         }

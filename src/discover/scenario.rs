@@ -13,7 +13,7 @@ use super::{ChannelReport, Known, Outcome};
 use crate::fit::{fit_sensor, FitOptions, ModelKind, PlayOrder};
 use crate::sensor::Sensor;
 use crate::signal::Prefilter;
-use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams};
+use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams, MAX_FADE_PER_HOUR};
 
 /// The named effect's parameters in the scenario's units, from the fitted coefficients.
 pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
@@ -128,6 +128,18 @@ fn walk_per_sqrt_s(coef: &[f64], duration_s: f64) -> f64 {
     } else {
         0.0
     }
+}
+
+/// The change of a cubic B-spline from its start to its end, from its coefficients after the
+/// left-out first (0): a uniform cubic B-spline is `(c₀ + 4c₁ + c₂)/6` at its start and
+/// `(cₘ₋₃ + 4cₘ₋₂ + cₘ₋₁)/6` at its end.
+fn spline_change(coef: &[f64]) -> f64 {
+    let c: Vec<f64> = std::iter::once(0.0).chain(coef.iter().copied()).collect();
+    let m = c.len();
+    if m < 4 {
+        return 0.0;
+    }
+    (c[m - 3] + 4.0 * c[m - 2] + c[m - 1] - c[0] - 4.0 * c[1] - c[2]) / 6.0
 }
 
 /// The effects a (resolved) base scenario already switches on, as terms of the base models.
@@ -330,13 +342,17 @@ fn write_sensor(
                 sensor.gain_drift.fade_per_hour = -f.get("gain_drift").unwrap_or(0.0) / b * 3600.0;
             }
             // The simulator's sensitivity only fades: a wandering one is carried as its trend
-            // from the first control point to the last.
+            // from the spline's start to its end, within the simulator's range.
             Term::GainWander { .. } => {
-                let coef = f.all("gain_wander");
-                let last = coef.last().copied().unwrap_or(0.0);
+                let change = spline_change(&f.all("gain_wander"));
+                let fade = if duration_s > 0.0 {
+                    -change / b / duration_s * 3600.0
+                } else {
+                    0.0
+                };
                 sensor.gain_drift.enabled = true;
-                sensor.gain_drift.fade_per_hour = if duration_s > 0.0 {
-                    -last / b / duration_s * 3600.0
+                sensor.gain_drift.fade_per_hour = if fade.is_finite() {
+                    fade.clamp(-MAX_FADE_PER_HOUR, MAX_FADE_PER_HOUR)
                 } else {
                     0.0
                 };
