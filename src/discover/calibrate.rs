@@ -50,8 +50,8 @@ use serde::Serialize;
 use super::data::Data;
 use super::model::{correlation_time_white, fit, Channel, ChannelModel};
 use super::search::ChannelSearch;
-use super::terms::{time_splines, Effect, Term};
-use super::unexplained::{MIN_TIME_INTERVALS, TIME_KNOT_S};
+use super::terms::{Effect, Term};
+use super::unexplained::{time_splines, MIN_TIME_INTERVALS, TIME_KNOT_S};
 
 /// Copies of the bootstrap: at least 20, as the issue asks.
 pub const COPIES: usize = 20;

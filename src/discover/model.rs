@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::data::Data;
 use super::noise::ArNoise;
-use super::terms::{hats, low_pass, play, rate, time_splines, Term, LOG_REFERENCE_RATE};
+use super::terms::{hats, low_pass, play, rate, Term, LOG_REFERENCE_RATE};
 use crate::sensor::Sensor;
 
 /// Which channel.
@@ -145,8 +145,7 @@ impl ChannelModel {
     }
 }
 
-/// The columns one term adds to a design, built from `driver` (a linear gain drift from
-/// `input`).
+/// The columns one term adds to a design, built from `driver` (a gain drift from `input`).
 fn term_columns(
     t: &Term,
     driver: &[f64],
@@ -242,44 +241,8 @@ fn term_columns(
             );
             labels.push("gain_drift");
         }
-        Term::Wander { intervals } => {
-            for b in wander(data, *intervals) {
-                columns.push(b);
-                labels.push("wander");
-            }
-        }
-        Term::GainWander { intervals } => {
-            // On the smoothed input, as the other candidates: times the tracker's noisy strain,
-            // its seven columns fitted the tracker noise of the training blocks (the third
-            // generator's cycling gain at ×0.5: −6.8 nats held out, its wandering baseline 33).
-            for b in wander(data, *intervals) {
-                columns.push(driver.iter().zip(&b).map(|(x, b)| x * b).collect());
-                labels.push("gain_wander");
-            }
-        }
         Term::Backlash { .. } | Term::Saturation { .. } => {}
     }
-}
-
-/// The cubic B-splines in time of a wandering term over the motion of `data`, the first left
-/// out: the splines sum to one, so with the offset (or the line's slope) free the first adds
-/// nothing. They span the rest's end to the last training sample ([`Data::split`]) and are held
-/// flat beyond it: the last held-out block follows the last training one, and a spline run on
-/// into it is an extrapolation its last coefficient (barely seen by the training samples)
-/// swings freely (on the third generator's Joint A, a held-out loss of over 1000 nats).
-fn wander(data: &Data, intervals: usize) -> Vec<Vec<f64>> {
-    if data.time_s.is_empty() {
-        return Vec::new();
-    }
-    let lo = data.time_s[data.rest.min(data.len() - 1)];
-    let last_train = data
-        .split()
-        .ok()
-        .and_then(|(train, _)| train.iter().rposition(|t| *t));
-    let hi = last_train.map_or(data.time_s[data.len() - 1], |i| data.time_s[i]);
-    let mut b = time_splines(&data.time_s, lo, hi, intervals);
-    b.remove(0);
-    b
 }
 
 /// A model fitted on one recording's training samples.

@@ -13,7 +13,7 @@ use super::{ChannelReport, Known, Outcome};
 use crate::fit::{fit_sensor, FitOptions, ModelKind, PlayOrder};
 use crate::sensor::Sensor;
 use crate::signal::Prefilter;
-use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams, MAX_FADE_PER_HOUR};
+use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams};
 
 /// The named effect's parameters in the scenario's units, from the fitted coefficients.
 pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
@@ -55,17 +55,6 @@ pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
                 -fitted.get("gain_drift").unwrap_or(0.0) / gain * 3600.0,
             );
         }
-        Term::GainWander { intervals } => {
-            p.insert("intervals".into(), *intervals as f64);
-            p.insert(
-                "excursion_fraction".into(),
-                excursion(&fitted.all("gain_wander")) / gain.abs(),
-            );
-        }
-        Term::Wander { intervals } => {
-            p.insert("intervals".into(), *intervals as f64);
-            p.insert("excursion_ohm".into(), excursion(&fitted.all("wander")));
-        }
         Term::Rate { signed, tau_s } => {
             let c = fitted.get("rate").unwrap_or(0.0);
             if *signed {
@@ -102,44 +91,6 @@ pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
         }
     }
     p
-}
-
-/// The spread of a wandering term's control points, the left-out first one (0) included: about
-/// the largest change of the spline over the run.
-fn excursion(coef: &[f64]) -> f64 {
-    let (lo, hi) = coef
-        .iter()
-        .fold((0.0_f64, 0.0_f64), |(lo, hi), c| (lo.min(*c), hi.max(*c)));
-    hi - lo
-}
-
-/// A wandering term's control points as a random walk's intensity over a run of `duration_s`:
-/// adjacent points are `duration_s/intervals` apart, and a walk's squared steps over a run
-/// add up to `q²·duration_s` (the left-out first point is 0).
-fn walk_per_sqrt_s(coef: &[f64], duration_s: f64) -> f64 {
-    let mut previous = 0.0;
-    let mut sum = 0.0;
-    for c in coef {
-        sum += (c - previous).powi(2);
-        previous = *c;
-    }
-    if duration_s > 0.0 {
-        (sum / duration_s).sqrt()
-    } else {
-        0.0
-    }
-}
-
-/// The change of a cubic B-spline from its start to its end, from its coefficients after the
-/// left-out first (0): a uniform cubic B-spline is `(c₀ + 4c₁ + c₂)/6` at its start and
-/// `(cₘ₋₃ + 4cₘ₋₂ + cₘ₋₁)/6` at its end.
-fn spline_change(coef: &[f64]) -> f64 {
-    let c: Vec<f64> = std::iter::once(0.0).chain(coef.iter().copied()).collect();
-    let m = c.len();
-    if m < 4 {
-        return 0.0;
-    }
-    (c[m - 3] + 4.0 * c[m - 2] + c[m - 1] - c[0] - 4.0 * c[1] - c[2]) / 6.0
 }
 
 /// The effects a (resolved) base scenario already switches on, as terms of the base models.
@@ -228,11 +179,6 @@ pub fn scenario(
     outcome: &Outcome,
 ) -> Result<Scenario, String> {
     let rig = &recording.rig;
-    let times = &recording.samples.time_s;
-    let duration_s = match (times.first(), times.last()) {
-        (Some(a), Some(b)) => b - a,
-        _ => 0.0,
-    };
     let mut s = base.clone();
     s.sample_hz = rig.sample_hz;
     s.supply_v = rig.supply_v;
@@ -268,7 +214,7 @@ pub fn scenario(
                     Sensor::Two => s.sensor2.get_or_insert_with(SensorParams::default),
                 };
                 sensor.divider_ohm = rig.divider_ohm.get(which.index()).copied();
-                write_sensor(sensor, ch, duration_s)?;
+                write_sensor(sensor, ch)?;
                 if sensor.model == SensorModelKind::Pi {
                     sensor.pi = Some(fit_pi(recording, joint, which)?);
                     // The PI model's tanh input curve carries the saturation.
@@ -280,11 +226,7 @@ pub fn scenario(
     Ok(s)
 }
 
-fn write_sensor(
-    sensor: &mut SensorParams,
-    ch: &ChannelReport,
-    duration_s: f64,
-) -> Result<(), String> {
+fn write_sensor(sensor: &mut SensorParams, ch: &ChannelReport) -> Result<(), String> {
     let f = &ch.fitted;
     let (r0, b) = (f.get("offset").unwrap_or(f64::NAN), f.gain());
     sensor.model = SensorModelKind::Linear;
@@ -340,31 +282,6 @@ fn write_sensor(
             Term::GainDrift => {
                 sensor.gain_drift.enabled = true;
                 sensor.gain_drift.fade_per_hour = -f.get("gain_drift").unwrap_or(0.0) / b * 3600.0;
-            }
-            // The simulator's sensitivity only fades: a wandering one is carried as its trend
-            // from the spline's start to its end, within the simulator's range.
-            Term::GainWander { .. } => {
-                let change = spline_change(&f.all("gain_wander"));
-                let fade = if duration_s > 0.0 {
-                    -change / b / duration_s * 3600.0
-                } else {
-                    0.0
-                };
-                sensor.gain_drift.enabled = true;
-                sensor.gain_drift.fade_per_hour = if fade.is_finite() {
-                    fade.clamp(-MAX_FADE_PER_HOUR, MAX_FADE_PER_HOUR)
-                } else {
-                    0.0
-                };
-            }
-            // A wandering baseline is simulated as a random walk of the same intensity (the
-            // simulator draws its own path).
-            Term::Wander { .. } => {
-                sensor.drift.enabled = true;
-                sensor.drift.rate_ohm_per_s = 0.0;
-                sensor.drift.settle_ohm = 0.0;
-                sensor.drift.random_walk_ohm_per_sqrt_s =
-                    Some(walk_per_sqrt_s(&f.all("wander"), duration_s));
             }
             Term::Backlash { .. } | Term::Relaxation { .. } => {}
         }

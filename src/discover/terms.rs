@@ -9,10 +9,7 @@
 //!   (`±ε(θ)`, Eq. 3), or `ε_s·tanh(ε/ε_s)` with `saturation`; `hysteresis` adds plays
 //!   `play_ρ(x)` (a Prandtl-Ishlinskii model); `rate` adds `LP_τ(ẋ)` (signed) or
 //!   `x·log₁₀(1 + LP_τ(|ẋ|)/ṙ₀)` (log); `creep` adds `LP_τ(x)`, or `LP_τ(x)` and `LP_τf(x)` (a
-//!   material creeping with a slow and a fast time constant); `drift` adds `t`, `1 − e^(−t/τ)`,
-//!   or a wander `Σ cₖ·Bₖ(t)` (cubic B-splines in time, [`WANDER_INTERVALS`]: a random walk,
-//!   a step, any slow course); `gain_drift` adds `x·t` or `x·Σ cₖ·Bₖ(t)` (a sensitivity that
-//!   fades, walks or cycles).
+//!   material creeping with a slow and a fast time constant); `drift` adds `t` or `1 − e^(−t/τ)`.
 
 use serde::Serialize;
 
@@ -97,22 +94,6 @@ pub const CREEP_TAUS_S: [f64; 5] = [5.0, 10.0, 20.0, 40.0, 80.0];
 /// Settling time constants (s) of a settling `drift` (the linear drift has none).
 pub const DRIFT_SETTLE_TAUS_S: [f64; 3] = [60.0, 150.0, 400.0];
 
-/// Intervals of the wandering `drift` ([`Term::Wander`]): cubic B-splines in time over this
-/// many equal intervals of the motion. Half the interleaved
-/// blocks ([`super::data::BLOCKS`]), so that every interval holds a training block and a
-/// held-out one: a finer spline would have coefficients that only held-out samples see (and
-/// the training fit leaves at zero). On a 300 s recording the knots are 58 s apart, the
-/// `unexplained` time kind's spacing ([`super::unexplained::TIME_KNOT_S`]).
-pub const WANDER_INTERVALS: usize = super::data::BLOCKS / 2;
-/// Intervals of the wandering `gain_drift` ([`Term::GainWander`]): one, a cubic in time times
-/// the input. Its columns carry the motion, so each one fits the coloured noise of the
-/// training blocks more than a baseline's: measured on the third generator's Joint A (held-out
-/// evidence before the correlation time, a sketch of the search in Python), five intervals
-/// gave a cycling gain at ×0.5 −5 nats where one gave 236, and a clean recording −27 where one
-/// gave −14; the random-walk gains at ×1 and ×2, 47 and 143 nats with one interval against −33
-/// and 98 with five.
-pub const GAIN_WANDER_INTERVALS: usize = 1;
-
 /// Slow time constants (s) of a two-term creep: at least six times its fast ones, so that the
 /// two columns are not one lag twice.
 pub const CREEP_SLOW_TAUS_S: [f64; 3] = [20.0, 40.0, 80.0];
@@ -186,20 +167,6 @@ pub enum Term {
     },
     /// `x·(t − t₀)`: the sensitivity changing linearly over the run.
     GainDrift,
-    /// `x·Σ cₖ·Bₖ(t)`: the sensitivity wandering over the run (a random walk, a cycle of a
-    /// period near the run's length), cubic B-splines in time over `intervals` equal
-    /// intervals of the motion (the first left out: the line's slope is their sum).
-    GainWander {
-        /// Intervals of the spline ([`GAIN_WANDER_INTERVALS`]).
-        intervals: usize,
-    },
-    /// `Σ cₖ·Bₖ(t)`: the baseline wandering over the run in any smooth way (a random walk, a
-    /// step, a warm-up), cubic B-splines in time as [`Term::GainWander`]'s (the first left
-    /// out: the offset is their sum).
-    Wander {
-        /// Intervals of the spline ([`WANDER_INTERVALS`]).
-        intervals: usize,
-    },
     /// `t − t₀` (linear), or `1 − e^(−(t − t₀)/τ)` (settling).
     Drift {
         /// `None`: linear in time; `Some(τ)`: settling with time constant `τ` (s).
@@ -217,8 +184,8 @@ impl Term {
             Term::Saturation { .. } => Effect::Saturation,
             Term::Rate { .. } => Effect::Rate,
             Term::Creep { .. } => Effect::Creep,
-            Term::Drift { .. } | Term::Wander { .. } => Effect::Drift,
-            Term::GainDrift | Term::GainWander { .. } => Effect::GainDrift,
+            Term::Drift { .. } => Effect::Drift,
+            Term::GainDrift => Effect::GainDrift,
         }
     }
 
@@ -283,18 +250,10 @@ impl Term {
                     fast_tau_s: None,
                 })
                 .collect(),
-            Effect::GainDrift => vec![
-                Term::GainDrift,
-                Term::GainWander {
-                    intervals: GAIN_WANDER_INTERVALS,
-                },
-            ],
+            Effect::GainDrift => vec![Term::GainDrift],
             Effect::Drift => std::iter::once(None)
                 .chain(DRIFT_SETTLE_TAUS_S.iter().copied().map(Some))
                 .map(|settle_tau_s| Term::Drift { settle_tau_s })
-                .chain(std::iter::once(Term::Wander {
-                    intervals: WANDER_INTERVALS,
-                }))
                 .collect(),
         }
     }
@@ -348,10 +307,7 @@ impl Term {
             }
             Term::Saturation { strain } => Some(strain),
             Term::Drift { settle_tau_s } => settle_tau_s,
-            Term::Hysteresis { .. }
-            | Term::GainDrift
-            | Term::GainWander { .. }
-            | Term::Wander { .. } => None,
+            Term::Hysteresis { .. } | Term::GainDrift => None,
         }
     }
 
@@ -367,11 +323,7 @@ impl Term {
             Term::Drift {
                 settle_tau_s: Some(v),
             } => *v = value,
-            Term::Drift { settle_tau_s: None }
-            | Term::Hysteresis { .. }
-            | Term::GainDrift
-            | Term::GainWander { .. }
-            | Term::Wander { .. } => {}
+            Term::Drift { settle_tau_s: None } | Term::Hysteresis { .. } | Term::GainDrift => {}
         }
         t
     }
@@ -438,40 +390,11 @@ impl Term {
             } => format!("τ = {tau_s} s and {f} s"),
             Term::Drift { settle_tau_s: None } => "linear in time".to_owned(),
             Term::GainDrift => "sensitivity linear in time".to_owned(),
-            Term::GainWander { intervals } => {
-                format!("sensitivity wandering in time (a spline of {intervals} intervals)")
-            }
-            Term::Wander { intervals } => {
-                format!("wandering in time (a spline of {intervals} intervals)")
-            }
             Term::Drift {
                 settle_tau_s: Some(tau),
             } => format!("settling, τ = {tau} s"),
         }
     }
-}
-
-/// Cubic B-splines over `t` with `intervals` equal intervals on `[lo, hi]` (`t` clamped to it):
-/// `intervals + 3` columns.
-pub fn time_splines(t: &[f64], lo: f64, hi: f64, intervals: usize) -> Vec<Vec<f64>> {
-    let width = ((hi - lo) / intervals as f64).max(f64::MIN_POSITIVE);
-    let mut cols = vec![vec![0.0; t.len()]; intervals + 3];
-    for (i, &ti) in t.iter().enumerate() {
-        let u = ((ti.clamp(lo, hi) - lo) / width).min(intervals as f64 - 1e-12);
-        let k = u.floor() as usize;
-        let f = u - k as f64;
-        // The four cubic B-splines non-zero on interval k, at fraction f.
-        let b = [
-            (1.0 - f).powi(3) / 6.0,
-            (3.0 * f.powi(3) - 6.0 * f * f + 4.0) / 6.0,
-            (-3.0 * f.powi(3) + 3.0 * f * f + 3.0 * f + 1.0) / 6.0,
-            f.powi(3) / 6.0,
-        ];
-        for (j, v) in b.iter().enumerate() {
-            cols[k + j][i] = *v;
-        }
-    }
-    cols
 }
 
 /// A first-order low-pass with time constant `tau_s`, started at the first value.

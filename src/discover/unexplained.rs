@@ -39,7 +39,7 @@ use super::calibrate::{Calibration, CopyNoise, COPIES, MORE_COPIES};
 use super::data::Data;
 use super::model::{correlation_time_white, Channel, Design};
 use super::noise::ArNoise;
-use super::terms::{hats, low_pass, play, time_splines, Term};
+use super::terms::{hats, low_pass, play, Term};
 
 /// Evidence (nats) the generic regressors need before a channel is tested by its calibration
 /// (or, with `--fast`, flagged): the same bar as naming an effect ([`super::THRESHOLD_NATS`]).
@@ -121,6 +121,29 @@ pub struct Unexplained {
 
 fn channel_name<S: serde::Serializer>(c: &Channel, s: S) -> Result<S::Ok, S::Error> {
     s.serialize_str(&c.name())
+}
+
+/// Cubic B-splines over `t` with `intervals` equal intervals on `[lo, hi]` (`t` clamped to it):
+/// `intervals + 3` columns.
+pub fn time_splines(t: &[f64], lo: f64, hi: f64, intervals: usize) -> Vec<Vec<f64>> {
+    let width = ((hi - lo) / intervals as f64).max(f64::MIN_POSITIVE);
+    let mut cols = vec![vec![0.0; t.len()]; intervals + 3];
+    for (i, &ti) in t.iter().enumerate() {
+        let u = ((ti.clamp(lo, hi) - lo) / width).min(intervals as f64 - 1e-12);
+        let k = u.floor() as usize;
+        let f = u - k as f64;
+        // The four cubic B-splines non-zero on interval k, at fraction f.
+        let b = [
+            (1.0 - f).powi(3) / 6.0,
+            (3.0 * f.powi(3) - 6.0 * f * f + 4.0) / 6.0,
+            (-3.0 * f.powi(3) + 3.0 * f * f + 3.0 * f + 1.0) / 6.0,
+            f.powi(3) / 6.0,
+        ];
+        for (j, v) in b.iter().enumerate() {
+            cols[k + j][i] = *v;
+        }
+    }
+    cols
 }
 
 /// The second-difference penalty `DᵀD` of `m` spline coefficients.
