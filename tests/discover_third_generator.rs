@@ -186,6 +186,24 @@ fn discover_meets_the_detection_figures_on_the_third_generator() {
     );
 }
 
+/// A random-walk drift at ×0.5 (Joint A, seed 1, the seed of the detection measurement in
+/// docs/discovery.md) must not be named `gain_drift`. It is, on this code: `gain_drift` 24.7
+/// nats, `drift` 17.7, under the screen and so never simulated as the rival that could
+/// produce what was seen. Found 2026-11-27; not in the CI cases.
+#[test]
+#[ignore = "known defect (issue 31): a random-walk drift ×0.5, seed 1, is named gain_drift"]
+fn a_random_walk_drift_is_never_named_gain_drift() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = Case {
+        design: "joint-a.toml",
+        effect: Some((Effect::Drift, Size(0.5), 1)),
+        seed: 1,
+    };
+    let json = run(dir.path(), &case);
+    let j = judge(&json, &case.truth());
+    assert!(j.wrong.is_empty(), "{}: {:?}", case.name(), j.wrong);
+}
+
 fn run_cases() -> Summary {
     let full = std::env::var("DLW_DISCOVER_FULL").is_ok();
     let mut cases: Vec<Case> = Vec::new();
