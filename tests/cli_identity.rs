@@ -114,7 +114,12 @@ fn daq_info_prints_what_it_did_before() {
         let name = Path::new(f).file_name().unwrap().to_str().unwrap();
         std::fs::copy(real.join(f), dir.path().join(name)).unwrap();
         run(dir.path(), 2 * i + 1, &["daq-info", name], &mut lines);
-        run(dir.path(), 2 * i + 2, &["daq-info", name, "--json"], &mut lines);
+        run(
+            dir.path(),
+            2 * i + 2,
+            &["daq-info", name, "--json"],
+            &mut lines,
+        );
     }
     insta::assert_snapshot!("daq_info_identity", lines.join("\n"));
 }

@@ -23,7 +23,7 @@ pub enum BuildError {
     Rules(#[from] RulesError),
     /// The robot file, or a robot rule.
     #[error(transparent)]
-    Robot(#[from] RobotError),
+    Robot(Box<RobotError>),
     /// The process sets.
     #[error(transparent)]
     Process(#[from] ProcessError),
@@ -67,7 +67,7 @@ pub enum BuildError {
         path: String,
         /// Why.
         #[source]
-        source: RobotError,
+        source: Box<RobotError>,
     },
     /// The laser job could not be planned.
     #[error("planning the laser job for {name:?}")]
@@ -107,6 +107,12 @@ pub enum BuildError {
         /// Its joints.
         joints: usize,
     },
+}
+
+impl From<RobotError> for BuildError {
+    fn from(e: RobotError) -> Self {
+        Self::Robot(Box::new(e))
+    }
 }
 
 impl BuildError {

@@ -127,7 +127,7 @@ pub fn read_robot_drawing(
     let drawing = check_robot_drawing(robot, &read.imported, &read.file_name, &read.bytes)
         .map_err(|source| BuildError::RobotDrawing {
             path: path.display().to_string(),
-            source,
+            source: Box::new(source),
         })?;
     Ok((read, drawing))
 }

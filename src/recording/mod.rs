@@ -79,7 +79,7 @@ pub enum RecordingError {
         limit: &'static str,
     },
     /// The header line is not the one the rig implies.
-    #[error("{path} line 1: header is {found:?}, expected {expected:?} ({channels} sensor(s) in rig.toml's divider_ohm)")]
+    #[error("{path} line 1: header is {found:?}, expected {expected:?} ({sensors} sensor(s) in rig.toml's divider_ohm)")]
     Header {
         /// The data file.
         path: PathBuf,
@@ -88,7 +88,7 @@ pub enum RecordingError {
         /// The header expected.
         expected: String,
         /// Sensors listed in the rig.
-        channels: usize,
+        sensors: usize,
     },
     /// A row has missing or extra fields.
     #[error("{path} line {line}: has {found} fields, expected {expected} ({header})")]
@@ -294,13 +294,13 @@ pub struct Samples {
 }
 
 impl Samples {
-    /// Empty columns for `channels` sensors with room for `rows`.
-    pub fn with_capacity(channels: usize, rows: usize) -> Self {
+    /// Empty columns for `sensors` sensors (one voltage column each) with room for `rows`.
+    pub fn with_capacity(sensors: usize, rows: usize) -> Self {
         Self {
             time_s: Vec::with_capacity(rows),
             stroke_mm: Vec::with_capacity(rows),
             angle_deg: Vec::with_capacity(rows),
-            volts: (0..channels).map(|_| Vec::with_capacity(rows)).collect(),
+            volts: (0..sensors).map(|_| Vec::with_capacity(rows)).collect(),
             tracker_valid: Vec::new(),
         }
     }
@@ -351,10 +351,10 @@ pub struct Recording {
 /// What the optional `tracker_valid` column adds to the header.
 pub const VALID_COLUMN_SUFFIX: &str = ",tracker_valid";
 
-/// The header line for `channels` sensors.
-pub fn header(channels: usize) -> String {
+/// The header line for `sensors` sensors.
+pub fn header(sensors: usize) -> String {
     let mut h = String::from("time_s,stroke_mm,angle_deg");
-    for c in 1..=channels {
+    for c in 1..=sensors {
         h.push_str(&format!(",v{c}_V"));
     }
     h
@@ -506,13 +506,13 @@ impl Recording {
         let data = Path::new(DATA_FILE);
         self.rig.check(Path::new(RIG_FILE))?;
         let s = &self.samples;
-        let channels = self.rig.divider_ohm.len();
-        if s.volts.len() != channels {
+        let sensors = self.rig.divider_ohm.len();
+        if s.volts.len() != sensors {
             return Err(RecordingError::Header {
                 path: data.to_path_buf(),
                 found: header(s.volts.len()),
-                expected: header(channels),
-                channels,
+                expected: header(sensors),
+                sensors,
             });
         }
         if s.is_empty() {
@@ -595,9 +595,9 @@ impl Recording {
     /// have no tracker angle.
     pub fn csv_bytes(&self) -> Vec<u8> {
         let s = &self.samples;
-        let channels = s.volts.len();
-        let mut out = Vec::with_capacity(s.len() * (40 + 10 * channels) + 64);
-        out.extend_from_slice(header(channels).as_bytes());
+        let sensors = s.volts.len();
+        let mut out = Vec::with_capacity(s.len() * (40 + 10 * sensors) + 64);
+        out.extend_from_slice(header(sensors).as_bytes());
         let marked = !s.tracker_valid.is_empty();
         if marked {
             out.extend_from_slice(VALID_COLUMN_SUFFIX.as_bytes());
@@ -700,11 +700,11 @@ pub(crate) fn read_text(path: &Path, limit: u64) -> Result<String, RecordingErro
 }
 
 fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingError> {
-    let channels = rig.divider_ohm.len();
+    let sensors = rig.divider_ohm.len();
     let mut lines = text.split('\n').enumerate();
     let first = lines.next().map_or("", |(_, l)| l.trim_end_matches('\r'));
-    let header = DataHeader::read(first, channels, path)?;
-    let mut samples = Samples::with_capacity(channels, text.len() / (30 + 9 * channels));
+    let header = DataHeader::read(first, sensors, path)?;
+    let mut samples = Samples::with_capacity(sensors, text.len() / (30 + 9 * sensors));
     let mut blank = None;
     // Whether the first data row's angle_deg is empty, and its line.
     let mut angle_empty: Option<(usize, bool)> = None;
@@ -731,7 +731,7 @@ fn parse_data(text: &str, rig: &Rig, path: &Path) -> Result<Samples, RecordingEr
     Ok(samples)
 }
 
-/// `data.csv`'s header line, as the rig's channels and the file's first line make it.
+/// `data.csv`'s header line, as the rig's sensors and the file's first line make it.
 struct DataHeader {
     /// The columns' names.
     columns: Vec<String>,
@@ -739,18 +739,18 @@ struct DataHeader {
     expected: String,
     /// Whether the file has a `tracker_valid` column.
     marked: bool,
-    /// The voltage channels.
-    channels: usize,
+    /// The sensors: voltage columns.
+    sensors: usize,
 }
 
 impl DataHeader {
-    /// The header for `channels` voltage columns, with a `tracker_valid` column when the
+    /// The header for `sensors` voltage columns, with a `tracker_valid` column when the
     /// file's `first` line has one.
     ///
     /// # Errors
     /// [`RecordingError::Header`] when `first` is not the header expected.
-    fn read(first: &str, channels: usize, path: &Path) -> Result<Self, RecordingError> {
-        let expected = header(channels);
+    fn read(first: &str, sensors: usize, path: &Path) -> Result<Self, RecordingError> {
+        let expected = header(sensors);
         let mut columns: Vec<String> = expected.split(',').map(str::to_string).collect();
         let marked = first.strip_suffix(VALID_COLUMN_SUFFIX) == Some(expected.as_str());
         let expected = if marked {
@@ -766,20 +766,20 @@ impl DataHeader {
                 path: path.to_path_buf(),
                 found: crate::limits::quote(first),
                 expected,
-                channels,
+                sensors,
             });
         }
         Ok(DataHeader {
             columns,
             expected,
             marked,
-            channels,
+            sensors,
         })
     }
 
     /// The `tracker_valid` column's index.
     fn valid_at(&self) -> usize {
-        3 + self.channels
+        3 + self.sensors
     }
 
     /// A line with `found` fields where the header has more or fewer.
@@ -859,7 +859,7 @@ impl DataHeader {
                 });
             }
         }
-        for c in 0..self.channels {
+        for c in 0..self.sensors {
             let volts = row[3 + c];
             if !within_rails(volts, rig.supply_v) {
                 return Err(RecordingError::Rail {
@@ -985,11 +985,11 @@ fn check_value(v: f64, line: usize, column: &str, path: &Path) -> Result<f64, Re
 mod tests {
     use super::*;
 
-    fn rig(channels: usize) -> Rig {
+    fn rig(sensors: usize) -> Rig {
         Rig {
             sample_hz: 500.0,
             supply_v: 5.0,
-            divider_ohm: vec![99.6e3; channels],
+            divider_ohm: vec![99.6e3; sensors],
             notes: None,
             simulation: None,
             design: None,

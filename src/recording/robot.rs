@@ -287,7 +287,7 @@ fn header_error(first: &str, sensors: usize, path: &Path) -> RecordingError {
             "{}[{TIP_COLUMNS_SUFFIX}][{VALID_COLUMN_SUFFIX}]",
             robot_header(joints, sensors, false)
         ),
-        channels: sensors,
+        sensors,
     }
 }
 

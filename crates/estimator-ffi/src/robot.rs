@@ -265,8 +265,8 @@ pub unsafe extern "C" fn dlw_robot_estimator_free(e: *mut DlwRobotEstimator) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::ffi::CStr;
     use runtime::{nominal_divider, JointConfig, RobotJointConfig, RobotSensorConfig};
+    use std::ffi::CStr;
 
     /// Joint B (UAN) at rotation 0 and a second Joint B at 90°, one sensor each; sensor 1's
     /// leads cross joint 2.
