@@ -506,4 +506,30 @@ mod tests {
             crate::reproduce::BenchFile::parse(&text, std::path::Path::new("t")).unwrap();
         }
     }
+
+    /// A bench file's named parameters give back their point, and `named` gives back the
+    /// names; an unknown name or a value past its bounds is refused with the name and bounds.
+    #[test]
+    fn named_parameters_round_trip_and_bad_ones_are_refused() {
+        let space = Space::paper();
+        let u: Vec<f64> = (0..space.len()).map(|i| (i as f64 * 0.37) % 1.0).collect();
+        let named = space.named(&u);
+        let back = space.point(&named).unwrap();
+        for (a, b) in u.iter().zip(&back) {
+            approx::assert_relative_eq!(a, b, epsilon = 1e-12);
+        }
+        let partial = BTreeMap::from([("C.sensor2.noise_ppm".to_owned(), 700.0)]);
+        let at = space.point(&partial).unwrap();
+        let joints = space.joints(&at);
+        let c2 = joints[2].scenario.sensor2.as_ref().unwrap();
+        assert!(c2.noise.enabled);
+        approx::assert_relative_eq!(c2.noise.sigma_ppm, 700.0, max_relative = 1e-12);
+        assert!(!joints[2].scenario.sensor1.noise.enabled);
+        let unknown = BTreeMap::from([("tracker_correlated_deg".to_owned(), 0.5)]);
+        let err = space.point(&unknown).unwrap_err();
+        assert!(err.contains("tracker_correlated_deg"), "{err}");
+        let far = BTreeMap::from([("D.sensor1.noise_ppm".to_owned(), 2e4)]);
+        let err = space.point(&far).unwrap_err();
+        assert!(err.contains("20000") && err.contains("10000"), "{err}");
+    }
 }

@@ -1131,8 +1131,8 @@ mod tests {
                 "sensor1.noise.sigma_ppm",
             ),
             (
-                "[sensor2.noise]\nsigma_ppm = 2e5",
-                "sensor2.noise.sigma_ppm",
+                "[sensor1.noise]\nsigma_ppm = 2e5",
+                "sensor1.noise.sigma_ppm",
             ),
             ("[sensor1.noise]\ntau_s = 0.0", "sensor1.noise.tau_s"),
             ("[sensor1]\ntcr_per_k = nan", "sensor1.tcr_per_k"),
