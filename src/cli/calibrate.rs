@@ -1,5 +1,5 @@
 //! `dlw calibrate -o DIR (paper-bench.toml, calibration.json, evaluations.json) [--design-points N] [--rounds R] [--local-points K] [--full-checks C]
-//! [--seed S] [--json]`: the paper's bench as a calibrated twin.
+//! [--seed S] [--start FILE] [--json]`: the paper's bench as a calibrated twin.
 
 use super::written::Written;
 use std::time::Instant;
