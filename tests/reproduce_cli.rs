@@ -438,7 +438,8 @@ fn the_twin_at_full_size() {
         ("B", "joint-b.toml", &predictor_b),
         ("C", "joint-c.toml", &predictor),
     ] {
-        let design = dlw::design::Design::from_toml(&common::shipped_design(file)).unwrap();
+        let text = std::fs::read_to_string(common::shipped_design(file)).unwrap();
+        let design = dlw::design::Design::from_toml(&text).unwrap();
         let predicted = p.predict(&design).unwrap();
         let x = j["joints"]
             .as_array()
