@@ -153,6 +153,9 @@ pub struct Calibration {
     pub corrections: Vec<f64>,
     /// Told of every evaluation, when set.
     pub log: Option<Log>,
+    /// A point to start from ([`Calibration::with_start`]): evaluated with the design and
+    /// checked at full size first.
+    pub start: Option<Vec<f64>>,
 }
 
 /// What a calibration tells of each evaluation (`dlw calibrate` counts them on stderr).
@@ -160,6 +163,18 @@ pub type Log = std::sync::Arc<dyn Fn(&str) + Send + Sync>;
 
 fn metrics() -> Vec<Metric> {
     Metric::all()
+}
+
+/// Per metric, `full / short` (1 where either is missing).
+fn ratios(full: &Evaluation, short: &Evaluation) -> Vec<f64> {
+    full.values
+        .iter()
+        .zip(&short.values)
+        .map(|(f, s)| match (f, s) {
+            (Some(f), Some(s)) if *s > 0.0 => f / s,
+            _ => 1.0,
+        })
+        .collect()
 }
 
 /// The metrics of a run, in [`Metric::all`]'s order.
@@ -198,6 +213,7 @@ impl Calibration {
             full: Vec::new(),
             corrections: vec![1.0; n],
             log: None,
+            start: None,
         })
     }
 
@@ -283,6 +299,7 @@ impl Calibration {
             self.options.seed,
         );
         points.push(self.space.ideal());
+        points.extend(self.start.clone());
         self.evaluate(points)
     }
 
@@ -407,15 +424,35 @@ impl Calibration {
     /// [`CalibrateError::Reproduce`].
     pub fn check_full(&mut self) -> Result<Evaluation, CalibrateError> {
         let best = self.best().cloned().expect("the design was evaluated");
-        let full = self.run(&best.u, PAPER_REPEATS)?;
-        for (k, c) in self.corrections.iter_mut().enumerate() {
-            *c = match (full.values[k], best.values[k]) {
-                (Some(f), Some(s)) if s > 0.0 => f / s,
-                _ => 1.0,
-            };
-        }
+        self.check_full_at(&best)
+    }
+
+    /// `short`'s point at full size; the corrections become full/short at it.
+    ///
+    /// # Errors
+    /// [`CalibrateError::Reproduce`].
+    pub fn check_full_at(&mut self, short: &Evaluation) -> Result<Evaluation, CalibrateError> {
+        let full = self.run(&short.u, PAPER_REPEATS)?;
+        self.corrections = ratios(&full, short);
         self.full.push(full.clone());
         Ok(full)
+    }
+
+    /// The corrections at a full-size check: full over short-sized at its point (1 where a
+    /// value is missing or the point was not evaluated short-sized).
+    pub fn corrections_at(&self, full: &Evaluation) -> Vec<f64> {
+        match self.evaluations.iter().find(|e| e.u == full.u) {
+            Some(short) => ratios(full, short),
+            None => vec![1.0; full.values.len()],
+        }
+    }
+
+    /// Starts the search from `u` (a bench measured by hand, an earlier calibration's point):
+    /// it joins the design and is the first point checked at full size, so the result is never
+    /// worse at full size than the start.
+    pub fn with_start(mut self, u: Vec<f64>) -> Self {
+        self.start = Some(u);
+        self
     }
 
     /// Sets the targets (a test's known numbers instead of the paper's).
@@ -434,8 +471,17 @@ impl Calibration {
         progress("ideal bench at full size");
         self.design()?;
         progress(&format!("{} design points", self.evaluations.len()));
+        if let Some(u) = self.start.clone() {
+            let short = self
+                .evaluations
+                .iter()
+                .find(|e| e.u == u)
+                .cloned()
+                .expect("the start joined the design");
+            self.check_full_at(&short)?;
+            progress("full-size check of the start");
+        }
         let mut round = 0;
-        let mut last = None;
         for check in 0..self.options.full_checks {
             for _ in 0..self.options.rounds {
                 self.round(round)?;
@@ -443,11 +489,17 @@ impl Calibration {
                 let best = self.best().map_or(f64::NAN, |b| self.objective(b));
                 progress(&format!("round {round}: best objective {best:.3}"));
             }
-            let full = self.check_full()?;
+            self.check_full()?;
             progress(&format!("full-size check {}", check + 1));
-            last = Some(full);
         }
-        Ok(last.expect("at least one full check"))
+        Ok(self.best_full().cloned().expect("at least one full check"))
+    }
+
+    /// The full-size check with the least objective.
+    pub fn best_full(&self) -> Option<&Evaluation> {
+        self.full
+            .iter()
+            .min_by(|a, b| self.objective_full(a).total_cmp(&self.objective_full(b)))
     }
 
     /// The bench file of the best point, with its provenance.
@@ -460,13 +512,17 @@ impl Calibration {
                 self.options.design_points,
                 self.options.rounds * self.options.full_checks,
                 self.options.full_checks
-            ),
+            ) + if self.start.is_some() {
+                ", started from a given point (checked at full size first)"
+            } else {
+                ""
+            },
             evaluations: self.evaluations.len() as u64,
             objective: self.objective_full(full),
             parameters: self.space.named(&full.u),
             corrections: metrics()
                 .into_iter()
-                .zip(&self.corrections)
+                .zip(&self.corrections_at(full))
                 .filter(|(m, _)| {
                     matches!(
                         m,

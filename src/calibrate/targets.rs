@@ -166,7 +166,7 @@ impl Metric {
             Self::Table4 { joint, pi } => rmse(joint, if pi { "PI" } else { "linear" }, TENSION)?,
             Self::Table5 { sensors } => rmse('C', "linear, two-sensor config", sensors)?,
             Self::Table6 { closed } => {
-                run.control.run.metrics[usize::from(closed)].actual_vs_desired_rmse_deg
+                run.control.as_ref()?.run.metrics[usize::from(closed)].actual_vs_desired_rmse_deg
             }
             Self::Table3 {
                 joint: letter,

@@ -1,5 +1,5 @@
 //! `dlw calibrate -o DIR (paper-bench.toml, calibration.json, evaluations.json) [--design-points N] [--rounds R] [--local-points K] [--full-checks C]
-//! [--seed S] [--json]`: the paper's bench as a calibrated twin.
+//! [--seed S] [--start FILE] [--json]`: the paper's bench as a calibrated twin.
 
 use super::written::Written;
 use std::time::Instant;
@@ -27,6 +27,11 @@ pub struct Args {
     /// Seed of the design (the simulations use the reproduction's seeds).
     #[arg(long, default_value_t = Options::default().seed)]
     seed: u64,
+    /// Start from a bench file's `[calibration.parameters]` (parameters it does not name keep
+    /// the ideal bench's values): the point joins the design and is checked at full size first,
+    /// so the result is never worse at full size.
+    #[arg(long)]
+    start: Option<std::path::PathBuf>,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -38,7 +43,27 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         seed: args.seed,
         ..Options::default()
     };
-    let mut calibration = Calibration::new(Space::paper(), options)?;
+    let space = Space::paper();
+    let start = match &args.start {
+        Some(path) => {
+            let file = dlw::reproduce::BenchFile::load(path)?;
+            let named = file.calibration.map(|c| c.parameters).ok_or_else(|| {
+                anyhow::anyhow!(
+                    "--start {}: the bench file has no [calibration.parameters]",
+                    path.display()
+                )
+            })?;
+            let u = space
+                .point(&named)
+                .map_err(|e| anyhow::anyhow!("--start {}: {e}", path.display()))?;
+            Some(u)
+        }
+        None => None,
+    };
+    let mut calibration = Calibration::new(space, options)?;
+    if let Some(u) = start {
+        calibration = calibration.with_start(u);
+    }
     let start = Instant::now();
     let count = std::sync::atomic::AtomicUsize::new(0);
     calibration.log = Some(std::sync::Arc::new(move |_: &str| {
@@ -47,7 +72,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("{:7.1} s  {n} evaluations", start.elapsed().as_secs_f64());
         }
     }));
-    args.out.claim_folder([&args.out.output; 0])?;
+    args.out.claim_folder(args.start.iter())?;
     let progress = |msg: &str| eprintln!("{:7.1} s  {msg}", start.elapsed().as_secs_f64());
     let full = calibration.run_all(&progress)?;
     let result = CalibrationResult::new(&calibration, &full, start.elapsed().as_secs_f64());

@@ -21,11 +21,11 @@ pub struct Args {
     /// A short run for CI: every timing a tenth of the paper's.
     #[arg(long)]
     short: bool,
-    /// Run the clean simulated joints (the default; docs/experiments.md says why the twin is
-    /// not the default yet).
+    /// Run the clean simulated joints instead of the calibrated twin.
     #[arg(long, conflicts_with_all = ["bench", "twin"])]
     ideal: bool,
-    /// Run the calibrated twin of the paper's bench (designs/scenarios/paper-bench.toml).
+    /// Run the calibrated twin of the paper's bench (designs/scenarios/paper-bench.toml): the
+    /// default.
     #[arg(long, conflicts_with = "bench")]
     twin: bool,
     /// A bench file of one scenario per joint (`dlw calibrate` writes one) instead of the
@@ -36,10 +36,10 @@ pub struct Args {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let start = Instant::now();
-    let bench = match (&args.bench, args.twin) {
+    let bench = match (&args.bench, args.ideal) {
         (Some(path), _) => Bench::Twin(BenchFile::load(path)?.into()),
-        (None, true) => Bench::paper()?,
-        (None, false) => Bench::Ideal,
+        (None, true) => Bench::Ideal,
+        (None, false) => Bench::paper()?,
     };
     let settings = Settings::new(
         if args.short {

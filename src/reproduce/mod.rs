@@ -274,13 +274,13 @@ pub struct JointTables {
 
 /// What Tables III-VI need and nothing else: each joint's characterization (the linear and PI
 /// fits only) and estimation, and Joint D's control. A calibration's evaluation
-/// ([`tables`]).
+/// ([`tables`], [`tables_of`]).
 #[derive(Debug, Clone)]
 pub struct TablesRun {
-    /// Joints A-C.
+    /// Joints A-C (those that ran).
     pub joints: Vec<JointTables>,
-    /// Joint D.
-    pub control: ControlResult,
+    /// Joint D, when it ran.
+    pub control: Option<ControlResult>,
 }
 
 /// Runs only what Tables III-VI need (no rate or relaxation run, no continuous PI fit), the
@@ -290,6 +290,16 @@ pub struct TablesRun {
 /// # Errors
 /// [`ReproduceError`] naming the joint and experiment.
 pub fn tables(settings: &Settings) -> Result<TablesRun, ReproduceError> {
+    tables_of(settings, &LETTERS)
+}
+
+/// [`tables`] for the joints `letters` only (`D`: the closed loop): the metrics are nearly
+/// separable by joint, so a calibration of one joint's parameters runs that joint alone. Each
+/// joint's numbers are the ones [`tables`] gives (its own seeds, its own scenario).
+///
+/// # Errors
+/// [`ReproduceError`] naming the joint and experiment.
+pub fn tables_of(settings: &Settings, letters: &[char]) -> Result<TablesRun, ReproduceError> {
     use rayon::prelude::*;
     let scale = settings.duration_scale;
     if !(scale > 0.0 && scale <= 1.0) {
@@ -306,7 +316,12 @@ pub fn tables(settings: &Settings) -> Result<TablesRun, ReproduceError> {
         models: &[ModelKind::Linear, ModelKind::Pi],
     };
     let quiet = |_: &str| {};
-    let all = settings.bench.joints();
+    let all: Vec<SimJoint> = settings
+        .bench
+        .joints()
+        .into_iter()
+        .filter(|j| letters.contains(&j.letter))
+        .collect();
     let (joints, control) = rayon::join(
         || {
             all.par_iter()
@@ -323,11 +338,10 @@ pub fn tables(settings: &Settings) -> Result<TablesRun, ReproduceError> {
                 .collect::<Result<Vec<_>, ReproduceError>>()
         },
         || {
-            let d = all
-                .iter()
+            all.iter()
                 .find(|j| j.letter == 'D')
-                .expect("Joint D is simulated");
-            run_control(d, run, &quiet)
+                .map(|d| run_control(d, run, &quiet))
+                .transpose()
         },
     );
     Ok(TablesRun {
@@ -404,7 +418,7 @@ impl Reproduction {
                     estimation: j.estimation.clone(),
                 })
                 .collect(),
-            control: self.control.clone(),
+            control: Some(self.control.clone()),
         }
     }
 }

@@ -64,9 +64,9 @@ pub(super) fn add_sections(page: &mut Page, r: &Reproduction, at: Placement<'_>)
         }
         super::Bench::Twin(file) => format!(
             "Joints A-D of Table I on the calibrated twin of the paper's bench \
-             ({}: one scenario per joint{}): the sensors' hysteresis shares, the tracker's and \
-             the ADC's noise, each sensor's gain drift, a thermal wander of R₀ and the plants' \
-             relaxation and backlash were moved until the reproduction's Tables IV-VI landed on \
+             ({}: one scenario per joint{}): the sensors' hysteresis shares and their own slow \
+             resistance noise, the tracker's and the ADC's noise, a thermal wander of R₀ and \
+             Joint D's relaxation and backlash were moved until the reproduction's Tables IV-VI landed on \
              the paper's (docs/experiments.md); --ideal runs the clean bench",
             super::PAPER_BENCH_PATH,
             file.calibration

@@ -33,6 +33,9 @@ struct JointNumbers<'a> {
     joint: char,
     gauge_factor: f64,
     r0_ohm: f64,
+    /// r² of each sensor's line on the characterization, sensor 1 first (the paper's Table V
+    /// gives Joint C's: 0.888 and 0.892).
+    line_r2: Vec<f64>,
     characteristic: Option<Characteristic>,
     gf_rise_correlation: f64,
     r0_std_ohm: f64,
@@ -59,6 +62,7 @@ impl Serialize for Reproduction {
                         joint: j.letter,
                         gauge_factor: l.gauge_factor,
                         r0_ohm: l.r0_ohm,
+                        line_r2: j.loops.sensors.iter().map(|s| s.summary.r2).collect(),
                         characteristic: l.characteristic,
                         gf_rise_correlation: j.rate.sensors[0].gf_rise_correlation,
                         r0_std_ohm: j.rate.sensors[0].r0_std_ohm,

@@ -63,8 +63,9 @@ impl Bench {
             .map(|(i, p)| {
                 let i = i as u64;
                 let drift = Stream::new(sc.seed, streams::DRIFT + i);
+                let noise = Stream::new(sc.seed, streams::SENSOR_NOISE + i);
                 Ok(Channel {
-                    sensor: Sensor::new(p, i as usize + 1, dt_s, drift)?,
+                    sensor: Sensor::new(p, i as usize + 1, dt_s, drift, noise)?,
                     tcr_per_k: p.tcr_per_k,
                     divider: Divider {
                         fixed_ohm: p.divider_ohm.unwrap_or(f64::NAN),

@@ -83,8 +83,8 @@ pub use rng::{streams, Stream};
 pub use scenario::{
     AdcCorrelated, AdcParams, Backlash, Creep, Drift, NotchLimit, Overrides, PlantParams,
     RateDependence, RateForm, Relaxation, Saturation, Scenario, ScenarioError, SensorModelKind,
-    SensorParams, Temperature, TrackerCorrelated, TrackerParams, DEFAULT_TCR_PER_K, MAX_TCR_PER_K,
-    SIGNED_RATE_LEAD_S,
+    SensorNoise, SensorParams, Temperature, TrackerCorrelated, TrackerParams, DEFAULT_TCR_PER_K,
+    MAX_SENSOR_NOISE_PPM, MAX_TCR_PER_K, SIGNED_RATE_LEAD_S,
 };
 /// Strain → resistance with saturation, drift, rate dependence and creep.
 pub use sensor::Sensor;

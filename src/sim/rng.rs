@@ -26,6 +26,8 @@ pub mod streams {
     pub const TRACKER_CORRELATED: u64 = 8;
     /// The bench's temperature wander, shared by the sensors.
     pub const TEMPERATURE: u64 = 9;
+    /// Sensor 1's own resistance noise (`[sensor1.noise]`); sensor 2 uses the next number.
+    pub const SENSOR_NOISE: u64 = 10;
 }
 
 /// One seeded random stream.

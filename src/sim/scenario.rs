@@ -287,6 +287,7 @@ pub enum SensorModelKind {
 /// | `rate` | off, `log`, 0.1 per decade, 1e-3 /s, 1 s; `signed`: 0.05 s·R0·GF | same | illustrative (the paper found no correlation) |
 /// | `creep` | off, 0.03, 30 s; second term 0, 3 s | same | illustrative (Section IV-A3: the resistance barely changed during holds) |
 /// | `gain_drift` | off, `fade_per_hour = 0.2` | same | illustrative: fatigue, the durability the paper's conclusion leaves open |
+/// | `noise` | off, `sigma_ppm = 1000`, `tau_s = 2` | same | illustrative: the trace's own slow resistance noise (1/f noise of a carbon film, its silver-epoxy contacts) |
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SensorParams {
@@ -314,6 +315,8 @@ pub struct SensorParams {
     pub creep: Creep,
     /// The sensitivity fading over the run (fatigue).
     pub gain_drift: GainDrift,
+    /// The trace's own slow resistance noise.
+    pub noise: SensorNoise,
     /// Temperature coefficient of the resistance (1/K): under the bench's `[temperature]`
     /// wander `T(t)` the resistance is `R·(1 + tcr_per_k·T)`.
     pub tcr_per_k: f64,
@@ -333,6 +336,7 @@ impl Default for SensorParams {
             rate: RateDependence::default(),
             creep: Creep::default(),
             gain_drift: GainDrift::default(),
+            noise: SensorNoise::default(),
             tcr_per_k: DEFAULT_TCR_PER_K,
         }
     }
@@ -428,6 +432,45 @@ impl Default for Saturation {
         }
     }
 }
+
+/// A sensor's own resistance noise (`[sensorN.noise]`): the resistance is `R·(1 + n(t))`, `n`
+/// a first-order autoregressive (sampled Ornstein-Uhlenbeck) process with stationary RMS
+/// `sigma_ppm`·10⁻⁶ and correlation time `tau_s`, from the sensor's own random stream. The
+/// noise of the trace itself (a carbon film's 1/f noise, the silver-epoxy contacts), relative to
+/// its resistance as such noise is (Hooge's law), so it costs a sensor of small gauge factor more
+/// strain: `sigma_ppm·10⁻⁶/GF`. Unlike the ADC's voltage noise it belongs to the sensor, so the
+/// two sensors of a BSN joint may differ; unlike `[temperature]` the two sensors' noises are
+/// independent, so Eq. 7's difference does not cancel them.
+///
+/// | key | default | why |
+/// |---|---|---|
+/// | `enabled` | false (the table absent); true when present | old recordings keep their draws |
+/// | `sigma_ppm` | 1000 | 0.1 % of `R`: of the order of the paper's Joint C residual (r² 0.888 on a 1.9 % range) |
+/// | `tau_s` | 2 | seconds: it survives the paper's 1-2 s averages, as the paper's errors did |
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SensorNoise {
+    /// Switch: `true` once the table is present, unless it says `enabled = false`.
+    #[serde(default = "present")]
+    pub enabled: bool,
+    /// Stationary RMS of the relative resistance noise (parts per million of `R`).
+    pub sigma_ppm: f64,
+    /// Correlation time (s).
+    pub tau_s: f64,
+}
+
+impl Default for SensorNoise {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            sigma_ppm: 1000.0,
+            tau_s: 2.0,
+        }
+    }
+}
+
+/// The largest `sensorN.noise.sigma_ppm`: 10 % of the resistance, far beyond a working sensor.
+pub const MAX_SENSOR_NOISE_PPM: f64 = 1e5;
 
 /// The largest `|gain_drift.fade_per_hour|`: the sensitivity gone in 6 minutes.
 pub const MAX_FADE_PER_HOUR: f64 = 10.0;
@@ -853,6 +896,14 @@ impl Scenario {
             c.positive(&k("creep.tau_s"), s.creep.tau_s);
             c.finite(&k("creep.fast_fraction"), s.creep.fast_fraction);
             c.positive(&k("creep.fast_tau_s"), s.creep.fast_tau_s);
+            c.non_negative(&k("noise.sigma_ppm"), s.noise.sigma_ppm);
+            c.at_most(
+                &k("noise.sigma_ppm"),
+                s.noise.sigma_ppm,
+                MAX_SENSOR_NOISE_PPM,
+                "at most 1e5 ppm (10 % of the resistance)",
+            );
+            c.positive(&k("noise.tau_s"), s.noise.tau_s);
             c.finite(&k("tcr_per_k"), s.tcr_per_k);
             c.at_most(
                 &k("tcr_per_k"),
@@ -1075,6 +1126,15 @@ mod tests {
             ("[temperature]\nsigma_k = 50.0", "temperature.sigma_k"),
             ("[temperature]\ntau_s = 0.0", "temperature.tau_s"),
             ("[sensor1]\ntcr_per_k = 0.5", "sensor1.tcr_per_k"),
+            (
+                "[sensor1.noise]\nsigma_ppm = -1.0",
+                "sensor1.noise.sigma_ppm",
+            ),
+            (
+                "[sensor1.noise]\nsigma_ppm = 2e5",
+                "sensor1.noise.sigma_ppm",
+            ),
+            ("[sensor1.noise]\ntau_s = 0.0", "sensor1.noise.tau_s"),
             ("[sensor1]\ntcr_per_k = nan", "sensor1.tcr_per_k"),
         ];
         for (text, key) in table {
@@ -1092,7 +1152,7 @@ mod tests {
     #[test]
     fn a_present_effect_table_is_on_unless_it_says_off() {
         type Switch = fn(&Scenario) -> bool;
-        let tables: [(&str, bool, Switch); 15] = [
+        let tables: [(&str, bool, Switch); 17] = [
             ("[plant.backlash]", false, |s| s.plant.backlash.enabled),
             ("[plant.relaxation]\nfraction = 0.1", false, |s| {
                 s.plant.relaxation.enabled
@@ -1127,6 +1187,12 @@ mod tests {
             }),
             ("[temperature]\nsigma_k = 1.0", false, |s| {
                 s.temperature.enabled
+            }),
+            ("[sensor1.noise]\nsigma_ppm = 10.0", false, |s| {
+                s.sensor1.noise.enabled
+            }),
+            ("[sensor2.noise]", false, |s| {
+                s.sensor2.as_ref().is_some_and(|p| p.noise.enabled)
             }),
         ];
         let bsn = test_design(NotchStyle::Bsn);

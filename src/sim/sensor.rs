@@ -21,9 +21,12 @@
 //! 6. **Baseline drift** (switchable): `rate·t + settle·(1 − e^(−t/τ)) + W(t)` is added, `W` a
 //!    Gaussian random walk with
 //!    `W(t + Δt) = W(t) + σ·√Δt·N(0, 1)`.
+//! 7. **Noise** (switchable): the resistance is scaled by `1 + n`, `n` the sensor's own
+//!    first-order autoregressive noise (`[sensorN.noise]`, [`super::correlated::Ar1`]).
 
 use dlw_estimator::{ContinuousPi, GeneralizedPi};
 
+use super::correlated::Ar1;
 use super::rng::Stream;
 use super::scenario::{RateForm, ScenarioError, SensorModelKind, SensorParams};
 
@@ -39,6 +42,8 @@ pub struct Sensor {
     drift: Option<Drift>,
     /// Sensitivity lost per sample (fraction), and the samples so far.
     gain_fade: Option<(f64, u64)>,
+    /// The relative resistance noise.
+    noise: Option<Ar1>,
 }
 
 #[derive(Debug, Clone)]
@@ -80,7 +85,7 @@ struct Drift {
 
 impl Sensor {
     /// Sensor `index` (1 or 2) from resolved parameters, sampled every `dt_s` seconds; `rng`
-    /// feeds its drift. Sensor 2 reads `−ε`.
+    /// feeds its drift and `noise_rng` its noise. Sensor 2 reads `−ε`.
     ///
     /// Parameters are taken as validated by [`super::Scenario::resolve`], which fills every
     /// `None` this reads.
@@ -93,6 +98,7 @@ impl Sensor {
         index: usize,
         dt_s: f64,
         rng: Stream,
+        noise_rng: Stream,
     ) -> Result<Self, ScenarioError> {
         let missing = |model| ScenarioError::MissingModel {
             sensor: index,
@@ -166,6 +172,14 @@ impl Sensor {
                 linear_ohm: 0.0,
                 rng,
             }),
+            noise: params.noise.enabled.then(|| {
+                Ar1::new(
+                    params.noise.sigma_ppm * 1e-6,
+                    params.noise.tau_s,
+                    dt_s,
+                    noise_rng,
+                )
+            }),
         })
     }
 
@@ -210,6 +224,9 @@ impl Sensor {
             d.linear_ohm += d.rate_ohm_per_sample;
             d.walk_ohm += d.step_ohm * d.rng.normal();
         }
+        if let Some(n) = &mut self.noise {
+            ohm *= 1.0 + n.next_value();
+        }
         ohm
     }
 }
@@ -250,7 +267,7 @@ mod tests {
     }
 
     fn sensor(p: &SensorParams, index: usize) -> Sensor {
-        Sensor::new(p, index, DT, Stream::new(1, 4)).unwrap()
+        Sensor::new(p, index, DT, Stream::new(1, 4), Stream::new(1, 10)).unwrap()
     }
 
     #[test]
@@ -424,7 +441,7 @@ mod tests {
         let n = 50_000;
         let ends: Vec<f64> = (0..runs)
             .map(|k| {
-                let mut s = Sensor::new(&a, 1, DT, Stream::new(k, 4)).unwrap();
+                let mut s = Sensor::new(&a, 1, DT, Stream::new(k, 4), Stream::new(k, 10)).unwrap();
                 (0..=n).map(|_| s.step(0.0)).last().unwrap() - 215e3
             })
             .collect();
@@ -433,5 +450,24 @@ mod tests {
         // Standard errors with 200 runs: 14 Ω on the mean, 10 Ω on the spread.
         assert!((mean - 100.0).abs() < 50.0, "{mean}");
         assert!((sd - 200.0).abs() < 40.0, "{sd}");
+    }
+
+    /// `[sensorN.noise]`: the resistance at a held strain wanders by `sigma_ppm` of itself with
+    /// the configured correlation, from its own stream (the drift's draws are unchanged).
+    #[test]
+    fn noise_is_relative_with_its_spread_and_correlation() {
+        let (a, _) = params(NotchStyle::Uan, |p| {
+            p.noise.enabled = true;
+            p.noise.sigma_ppm = 2000.0;
+            p.noise.tau_s = 0.1;
+        });
+        let mut s = sensor(&a, 1);
+        let rel: Vec<f64> = (0..400_000).map(|_| s.step(0.0) / 215e3 - 1.0).collect();
+        let (sd, r1) = crate::sim::correlated::sd_and_autocorrelation(&rel, 1);
+        // τ = 50 samples over 400 000: 8000 correlation times, relative standard error ≈ 1.6 %.
+        assert_relative_eq!(sd, 2e-3, max_relative = 0.06);
+        assert!((r1 - (-DT / 0.1f64).exp()).abs() < 2e-3, "{r1}");
+        let (off, _) = params(NotchStyle::Uan, |_| {});
+        assert_eq!(sensor(&off, 1).step(0.0), 215e3);
     }
 }
