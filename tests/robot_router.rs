@@ -49,6 +49,14 @@ fn segments_meet(a: (f64, f64), b: (f64, f64), c: (f64, f64), d: (f64, f64)) -> 
     };
     let (d1, d2) = (cross(c, d, a), cross(c, d, b));
     let (d3, d4) = (cross(a, b, c), cross(a, b, d));
+    if [d1, d2, d3, d4].iter().all(|v| *v == 0.0) {
+        // On one line: they meet only where their extents overlap (a lead along the seam and a
+        // notch piece's seam edge far from it do not).
+        let overlap = |i: fn(&(f64, f64)) -> f64| {
+            i(&a).min(i(&b)) <= i(&c).max(i(&d)) && i(&c).min(i(&d)) <= i(&a).max(i(&b))
+        };
+        return overlap(|p| p.0) && overlap(|p| p.1);
+    }
     d1 * d2 <= 0.0 && d3 * d4 <= 0.0
 }
 

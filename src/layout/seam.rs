@@ -131,11 +131,29 @@ pub(crate) fn wrap_polyline(
             }],
         ));
     }
-    pieces
+    let all: Vec<LineString<f64>> = pieces
         .into_iter()
         .map(|(_, pts)| LineString::new(pts))
-        .collect()
+        .collect();
+    // A polyline that ends on an edge to within rounding leaves a piece of no length on the
+    // far side (a point written twice, a laser-on move to where it is): drop it, the pieces
+    // still join across the seam.
+    let long: Vec<LineString<f64>> = all
+        .iter()
+        .filter(|l| {
+            l.0.len() < 2 || l.lines().map(|e| e.dx().hypot(e.dy())).sum::<f64>() > DEGENERATE_MM
+        })
+        .cloned()
+        .collect();
+    if long.is_empty() {
+        all
+    } else {
+        long
+    }
 }
+
+/// A piece of a wrapped polyline shorter than this is rounding, not a line (mm).
+const DEGENERATE_MM: f64 = 1e-9;
 
 /// Moves an axis-aligned rectangle `[x0, x1] × [s0, s1]` (unwrapped, `s1 − s0 < C`) into the
 /// window, split into two closed rectangles if it crosses the seam. Overhangs below `tol_mm`
@@ -229,6 +247,22 @@ mod tests {
         // One spanning more than a turn splits twice.
         let long = [Coord { x: 0.0, y: -1.0 }, Coord { x: 0.0, y: 12.0 }];
         assert_eq!(wrap_polyline(&long, 0.0, C).len(), 3);
+    }
+
+    /// A polyline that starts on the window's edge to within rounding (a robot's pad spiral
+    /// at the seam, found by tests/robot_router.rs) gives no piece of no length on the far
+    /// side: every piece written is a line.
+    #[test]
+    fn a_polyline_on_the_edge_leaves_no_empty_piece() {
+        let edge = C * (1.0 - f64::EPSILON);
+        let pts = [
+            Coord { x: 0.0, y: edge },
+            Coord { x: 0.0, y: C + 1e-15 },
+            Coord { x: 0.5, y: C + 1.0 },
+        ];
+        let pieces = wrap_polyline(&pts, 0.0, C);
+        assert_eq!(pieces.len(), 1, "{pieces:?}");
+        assert!(pieces[0].0.len() >= 2);
     }
 
     #[test]
