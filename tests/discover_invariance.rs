@@ -8,7 +8,7 @@
 //! effect the plant model lacked showed on a sensor as a lag or a loop.
 
 use dlw::design::Design;
-use dlw::discover::model::Channel;
+use dlw::discover::model::Stage;
 use dlw::discover::terms::Term;
 use dlw::discover::{discover, Known, Outcome};
 use dlw::sim::{plan, ProtocolKind, Recording, Scenario};
@@ -41,7 +41,7 @@ fn recording(design: &Design, duration_s: f64, seed: u64) -> Recording {
 /// (effect, shape, round, evidence, memory), names (evidence, parameters, calibration, rivals),
 /// ambiguity, what was declined, what is unexplained, and the gaps.
 fn sensors_part(o: &Outcome) -> String {
-    let sensor = |c: &Channel| *c != Channel::Plant;
+    let sensor = |c: &Stage| *c != Stage::Plant;
     let bits = |v: f64| format!("{:016x}", v.to_bits());
     let mut out = String::new();
     for c in o.candidates.iter().filter(|c| sensor(&c.channel)) {
@@ -99,7 +99,7 @@ fn sensors_part(o: &Outcome) -> String {
 
 /// The plant's base model forced to `terms`.
 fn forced(terms: &[Term]) -> Known {
-    terms.iter().map(|t| (Channel::Plant, t.clone())).collect()
+    terms.iter().map(|t| (Stage::Plant, t.clone())).collect()
 }
 
 fn run(design: &Design, rec: &Recording, known: &Known) -> String {

@@ -48,8 +48,8 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::data::Data;
-use super::model::{correlation_time_white, fit, Channel, ChannelModel};
-use super::search::ChannelSearch;
+use super::model::{correlation_time_white, fit, Stage, StageModel};
+use super::search::StageSearch;
 use super::terms::{Effect, Term};
 use super::unexplained::{time_splines, MIN_TIME_INTERVALS, TIME_KNOT_S};
 
@@ -345,7 +345,7 @@ pub(super) struct Scored {
     tau: f64,
 }
 
-impl ChannelSearch<'_, '_> {
+impl StageSearch<'_, '_> {
     /// The training rows.
     fn rows(&self) -> &[usize] {
         &self.search.train_rows
@@ -353,7 +353,7 @@ impl ChannelSearch<'_, '_> {
 
     /// `m`'s design, whitened, with the pseudo-inverse of its training rows (as
     /// [`super::model::fit`] solves it).
-    pub(super) fn prepare(&self, m: &ChannelModel) -> Option<Prepared> {
+    pub(super) fn prepare(&self, m: &StageModel) -> Option<Prepared> {
         let s = self.search;
         let noise = &s.noises[&self.channel];
         let design = m.design(&s.data, &s.inputs.0);
@@ -456,7 +456,7 @@ impl ChannelSearch<'_, '_> {
     /// the group on the training samples, scored on the held-out ones): `[target][group]`.
     pub(super) fn evidences(
         &self,
-        from: &ChannelModel,
+        from: &StageModel,
         groups: &[Vec<Term>],
         targets: &[Target],
     ) -> Option<Vec<Vec<f64>>> {
@@ -516,8 +516,8 @@ impl ChannelSearch<'_, '_> {
     /// names the test, so that every run draws the same copies.
     pub(super) fn copies(
         &self,
-        world: &ChannelModel,
-        fuller: &ChannelModel,
+        world: &StageModel,
+        fuller: &StageModel,
         seed: u64,
         first: usize,
         count: usize,
@@ -559,8 +559,8 @@ impl ChannelSearch<'_, '_> {
     /// more copies when the first leave it close.
     pub(super) fn bootstrap(
         &self,
-        world: &ChannelModel,
-        fuller: &ChannelModel,
+        world: &StageModel,
+        fuller: &StageModel,
         groups: &[Vec<Term>],
         observed: f64,
         screen: f64,
@@ -638,10 +638,10 @@ pub fn without_slow_baseline(residual: &[f64], data: &Data, moving: &[bool]) -> 
 }
 
 /// Seeds of the channels' copies, so that no two channels draw alike.
-fn channel_seed(ch: Channel) -> u64 {
+fn channel_seed(ch: Stage) -> u64 {
     match ch {
-        Channel::Plant => 0x9E37_79B9_7F4A_7C15,
-        Channel::Sensor(s) => 0xC2B2_AE3D_27D4_EB4F ^ (s.index() as u64 + 1),
+        Stage::Plant => 0x9E37_79B9_7F4A_7C15,
+        Stage::Sensor(s) => 0xC2B2_AE3D_27D4_EB4F ^ (s.index() as u64 + 1),
     }
 }
 

@@ -1,10 +1,10 @@
-//! The calibrated rule of a round ([`ChannelSearch::pick_calibrated`]): which candidate is
+//! The calibrated rule of a round ([`StageSearch::pick_calibrated`]): which candidate is
 //! named, from the bootstrap of [`super::calibrate`], instead of the fixed margins (the
 //! threshold's lead of [`super::CLEAR_RATIO`] over the runner-up, and nested evidence against a
 //! 20-nat bar) that `--fast` keeps.
 //!
 //! 1. **Screen**: the best candidate must reach [`SCREEN_NATS`] (the old threshold).
-//! 2. **Null**: the current model is simulated ([`ChannelSearch::bootstrap`]); on each copy every
+//! 2. **Null**: the current model is simulated ([`StageSearch::bootstrap`]); on each copy every
 //!    candidate is scored, and the largest evidence kept. A candidate is *credible* when its
 //!    evidence beats that null by the rule; the best must be, or nothing is named (the
 //!    calibration is kept for the report).
@@ -22,7 +22,7 @@
 use super::calibrate::{
     separating_data, Calibration, Rivalry, Verdict, RIVAL_SCREEN_NATS, SCREEN_NATS,
 };
-use super::search::{ChannelSearch, Pick};
+use super::search::{Pick, StageSearch};
 use super::terms::{Effect, Term};
 use super::{prefer_simpler, Ambiguity, Candidate};
 
@@ -44,7 +44,7 @@ pub(super) struct Calibrated {
     pub(super) rivals: Vec<Rivalry>,
 }
 
-/// What [`ChannelSearch::settle`] judges a candidate with: the round's scored candidates, the
+/// What [`StageSearch::settle`] judges a candidate with: the round's scored candidates, the
 /// credible ones, their evidence on the observed data and the null's calibration.
 struct Settle<'a> {
     scored: &'a [Candidate],
@@ -54,7 +54,7 @@ struct Settle<'a> {
     round: usize,
 }
 
-impl ChannelSearch<'_, '_> {
+impl StageSearch<'_, '_> {
     /// The round's verdict by the calibrated rule (module docs).
     pub(super) fn pick_calibrated(&self, mut scored: Vec<Candidate>, round: usize) -> Pick {
         prefer_simpler(&mut scored);
@@ -268,7 +268,7 @@ impl ChannelSearch<'_, '_> {
 
     /// The channel's model with each named effect that has a richer form ([`Term::flexible`])
     /// in that form; `None` when none has.
-    fn flexible_model(&self) -> Option<super::model::ChannelModel> {
+    fn flexible_model(&self) -> Option<super::model::StageModel> {
         let span = self.search.span_of(self.channel);
         let base = &self.search.base_models[&self.channel];
         let named: Vec<&Term> = self
@@ -303,7 +303,7 @@ impl ChannelSearch<'_, '_> {
         let with_a = self.model.with(a.term.clone());
         let both = with_b.with(a.term.clone());
         let observed = self.observed_target();
-        let beyond = |from: &super::model::ChannelModel, shapes: &[Term]| -> Option<f64> {
+        let beyond = |from: &super::model::StageModel, shapes: &[Term]| -> Option<f64> {
             self.evidences(from, &[shapes.to_vec()], std::slice::from_ref(&observed))
                 .and_then(|rows| rows.first().map(|r| r[0]))
         };

@@ -36,10 +36,10 @@ use serde::Serialize;
 use crate::recording::Recording;
 use calibrate::{Calibration, Rivalry};
 use locate::Place;
-use model::{Channel, ChannelModel, Fitted};
+use model::{Fitted, Stage, StageModel};
 use noise::ArNoise;
 use rayon::prelude::*;
-use search::{ChannelSearch, Pick, Search};
+use search::{Pick, Search, StageSearch};
 use terms::{Effect, Term};
 use unexplained::Unexplained;
 
@@ -165,7 +165,7 @@ pub enum DiscoverError {
     /// The base model could not be fitted.
     #[error("the {channel} channel's base model cannot be fitted (the joint barely moves?)")]
     Base {
-        /// Channel.
+        /// Stage.
         channel: String,
     },
 }
@@ -176,7 +176,7 @@ pub struct Candidate {
     /// The effect.
     pub effect: Effect,
     /// The channel.
-    pub channel: Channel,
+    pub channel: Stage,
     /// Held-out whitened log-likelihood gain over the current model (nats).
     pub evidence: f64,
     /// Round (0: against the base model).
@@ -197,7 +197,7 @@ pub struct Discovery {
     /// The effect.
     pub effect: Effect,
     /// The channel.
-    pub channel: Channel,
+    pub channel: Stage,
     /// Its evidence when named (nats).
     pub evidence: f64,
     /// The runner-up on the channel and its evidence.
@@ -227,7 +227,7 @@ pub struct Declined {
     /// The effect.
     pub effect: Effect,
     /// The channel.
-    pub channel: Channel,
+    pub channel: Stage,
     /// The round.
     pub round: usize,
     /// Its calibration.
@@ -248,7 +248,7 @@ pub struct FormFit {
 #[derive(Debug, Clone, Serialize)]
 pub struct Ambiguity {
     /// The channel.
-    pub channel: Channel,
+    pub channel: Stage,
     /// The contenders and their evidence.
     pub contenders: Vec<(Effect, f64)>,
     /// What data would tell each pair apart (the calibrated rule).
@@ -263,7 +263,7 @@ pub struct Ambiguity {
 #[derive(Debug, Clone, Serialize)]
 pub struct Gap {
     /// The channel.
-    pub channel: Channel,
+    pub channel: Stage,
     /// `deg` or `ohm`.
     pub unit: &'static str,
     /// RMSE of the calibrated base model.
@@ -286,9 +286,9 @@ pub struct Gap {
 
 /// A channel's state for the report: noise, the fitted models, where it disagreed.
 #[derive(Debug, Clone)]
-pub struct ChannelReport {
+pub struct StageReport {
     /// The channel.
-    pub channel: Channel,
+    pub channel: Stage,
     /// Its noise model.
     pub noise: ArNoise,
     /// Calibrated base parameters (`offset`, `gain`).
@@ -328,7 +328,7 @@ pub struct Outcome {
     /// ([`unexplained`]); a channel left ambiguous is not tested again.
     pub unexplained: Vec<Unexplained>,
     /// Per channel, for the report.
-    pub channels: Vec<ChannelReport>,
+    pub channels: Vec<StageReport>,
     /// Samples (decimated) and rate used.
     pub samples: usize,
     /// Decimated sample spacing (s).
@@ -338,7 +338,7 @@ pub struct Outcome {
 }
 
 /// Effects already in the base scenario, per channel (they are part of the base model).
-pub type Known = Vec<(Channel, Term)>;
+pub type Known = Vec<(Stage, Term)>;
 
 /// How discovery names.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -388,7 +388,7 @@ pub fn discover_with(
     search.calibrate()?;
     progress("searching each channel");
     // Each channel on its own, in parallel: no channel reads another's model.
-    let runs: Vec<ChannelRun> = search
+    let runs: Vec<StageRun> = search
         .channels
         .par_iter()
         .map(|&ch| search.channel(ch).run(options))
@@ -397,7 +397,7 @@ pub fn discover_with(
     let mut candidates = Vec::new();
     let mut ambiguous = Vec::new();
     let mut declined = Vec::new();
-    let mut steps: BTreeMap<Channel, Vec<(Effect, f64)>> = BTreeMap::new();
+    let mut steps: BTreeMap<Stage, Vec<(Effect, f64)>> = BTreeMap::new();
     let mut models = BTreeMap::new();
     for (ch, run) in search.channels.iter().zip(runs) {
         discovered.extend(run.named);
@@ -431,7 +431,7 @@ pub fn discover_with(
 }
 
 /// What the search of one channel found.
-struct ChannelRun {
+struct StageRun {
     /// Named effects with the round each was named in.
     named: Vec<(usize, Discovery)>,
     /// Every candidate of every round.
@@ -443,14 +443,14 @@ struct ChannelRun {
     /// The held-out RMSE after each named effect.
     steps: Vec<(Effect, f64)>,
     /// The final model.
-    model: ChannelModel,
+    model: StageModel,
 }
 
-impl ChannelSearch<'_, '_> {
+impl StageSearch<'_, '_> {
     /// The channel's rounds: score, pick, refine and add, until nothing more is named, the
     /// channel is left ambiguous, or [`MAX_EFFECTS`] are named.
-    fn run(mut self, options: Options) -> ChannelRun {
-        let mut run = ChannelRun {
+    fn run(mut self, options: Options) -> StageRun {
+        let mut run = StageRun {
             named: Vec::new(),
             candidates: Vec::new(),
             ambiguous: None,
@@ -526,10 +526,10 @@ fn prefer_simpler(scored: &mut Vec<Candidate>) {
 /// is folded into the hysteresis (its strain becomes a parameter, the evidences add), at the
 /// place of the first of the two.
 fn merge_saturating_hysteresis(discovered: &mut Vec<Discovery>) {
-    let find = |d: &[Discovery], e: Effect, ch: Channel| {
+    let find = |d: &[Discovery], e: Effect, ch: Stage| {
         d.iter().position(|x| x.effect == e && x.channel == ch)
     };
-    let channels: Vec<Channel> = discovered.iter().map(|d| d.channel).collect();
+    let channels: Vec<Stage> = discovered.iter().map(|d| d.channel).collect();
     for ch in channels {
         let (Some(h), Some(s)) = (
             find(discovered, Effect::Hysteresis, ch),

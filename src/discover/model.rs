@@ -9,34 +9,38 @@ use super::noise::ArNoise;
 use super::terms::{hats, low_pass, play, rate, Term, LOG_REFERENCE_RATE};
 use crate::sensor::Sensor;
 
-/// Which channel.
+/// Which stage of the bench's chain a model explains: the plant (stroke → angle) or a sensor
+/// (angle → resistance). What users see calls it a **channel** (the JSON's `channel` and
+/// `channels`, the report's tables, the messages), which the outputs fix; in the code a
+/// channel is a DAQ's (`import`), so the type has its own name (`docs/architecture.md`,
+/// "Names").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Channel {
+pub enum Stage {
     /// Stroke → tracker angle.
     Plant,
     /// Tracker angle → resistance of sensor 1 or 2.
     Sensor(Sensor),
 }
 
-impl Channel {
+impl Stage {
     /// `plant`, `sensor1`, `sensor2`.
     pub fn name(self) -> String {
         match self {
-            Channel::Plant => "plant".to_owned(),
-            Channel::Sensor(sensor) => sensor.key().to_owned(),
+            Stage::Plant => "plant".to_owned(),
+            Stage::Sensor(sensor) => sensor.key().to_owned(),
         }
     }
 
     /// The channel's unit.
     pub fn unit(self) -> &'static str {
         match self {
-            Channel::Plant => "deg",
-            Channel::Sensor(_) => "ohm",
+            Stage::Plant => "deg",
+            Stage::Sensor(_) => "ohm",
         }
     }
 }
 
-impl Serialize for Channel {
+impl Serialize for Stage {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.serialize_str(&self.name())
     }
@@ -44,9 +48,9 @@ impl Serialize for Channel {
 
 /// A channel's model: the base line and the terms.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ChannelModel {
+pub struct StageModel {
     /// The channel.
-    pub channel: Channel,
+    pub channel: Stage,
     /// Terms in the order they were added.
     pub terms: Vec<Term>,
 }
@@ -62,9 +66,9 @@ pub struct Design {
     pub labels: Vec<&'static str>,
 }
 
-impl ChannelModel {
+impl StageModel {
     /// The base model of `channel`.
-    pub fn base(channel: Channel) -> Self {
+    pub fn base(channel: Stage) -> Self {
         Self {
             channel,
             terms: Vec::new(),
@@ -81,7 +85,7 @@ impl ChannelModel {
 
     /// The felt strain of a sensor channel (sensor 2 of a BSN joint reads `−ε`).
     pub fn felt(&self, data: &Data) -> Vec<f64> {
-        let sign = if self.channel == Channel::Sensor(Sensor::Two) {
+        let sign = if self.channel == Stage::Sensor(Sensor::Two) {
             -1.0
         } else {
             1.0
@@ -102,7 +106,7 @@ impl ChannelModel {
         }
         columns.insert(1, input);
         labels.insert(1, "gain");
-        if let Channel::Sensor(_) = self.channel {
+        if let Stage::Sensor(_) = self.channel {
             // The proxy beside the tracker strain: the base may already weigh the noise-free
             // input against the noisy one, so no candidate gains by denoising the input.
             columns.insert(2, driver.clone());
@@ -119,7 +123,7 @@ impl ChannelModel {
     /// (after a backlash or a saturation already named).
     fn inputs(&self, data: &Data, proxy: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
         match self.channel {
-            Channel::Plant => {
+            Stage::Plant => {
                 let mut u = data.stroke_mm.clone();
                 for t in &self.terms {
                     if let Term::Backlash { half_mm } = t {
@@ -128,7 +132,7 @@ impl ChannelModel {
                 }
                 (data.angle_deg.clone(), u.clone(), u)
             }
-            Channel::Sensor(sensor) => {
+            Stage::Sensor(sensor) => {
                 let sign = sensor.plane().sign();
                 let mut x = self.felt(data);
                 let mut xp: Vec<f64> = proxy.iter().map(|e| sign * e).collect();

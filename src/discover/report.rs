@@ -7,7 +7,7 @@ use crate::analysis::Placement;
 use crate::report::{Chart, Page, Series, SeriesStyle, Table, PALETTE};
 
 use super::calibrate::{Calibration, Rivalry, COPIES, FALSE_NAME_RATE, MORE_COPIES, SCREEN_NATS};
-use super::model::Channel;
+use super::model::Stage;
 use super::{Discovery, Outcome, CLEAR_RATIO, THRESHOLD_NATS};
 
 /// Adds the discovery's sections to `page`, placed by `at`.
@@ -328,17 +328,17 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     );
 }
 
-fn channel_section(page: &mut Page, c: &super::ChannelReport, at: Placement<'_>) {
+fn channel_section(page: &mut Page, c: &super::StageReport, at: Placement<'_>) {
     let name = c.channel.name();
     let unit = match c.channel {
-        Channel::Plant => "angle (°)",
-        Channel::Sensor(_) => "resistance (kΩ)",
+        Stage::Plant => "angle (°)",
+        Stage::Sensor(_) => "resistance (kΩ)",
     };
     let scale = match c.channel {
-        Channel::Plant => 1.0,
-        Channel::Sensor(_) => 1e-3,
+        Stage::Plant => 1.0,
+        Stage::Sensor(_) => 1e-3,
     };
-    page.heading(at.titled(&format!("Channel {name}")));
+    page.heading(at.titled(&format!("Stage {name}")));
     let mut places = Table::new([
         "situation",
         "share of held-out samples",

@@ -7,9 +7,9 @@ use std::collections::BTreeMap;
 use dlw_estimator::{ModelConfig, PiConfig};
 use dlw_geometry::Joint;
 
-use super::model::{Channel, Fitted};
+use super::model::{Fitted, Stage};
 use super::terms::{Effect, Term, LOG_REFERENCE_RATE};
-use super::{ChannelReport, Known, Outcome};
+use super::{Known, Outcome, StageReport};
 use crate::fit::{fit_sensor, FitOptions, ModelKind, PlayOrder};
 use crate::sensor::Sensor;
 use crate::signal::Prefilter;
@@ -99,7 +99,7 @@ pub fn known(scenario: &Scenario) -> Known {
     let plant = &scenario.plant;
     if plant.backlash.enabled {
         k.push((
-            Channel::Plant,
+            Stage::Plant,
             Term::Backlash {
                 half_mm: plant.backlash.width_mm / 2.0,
             },
@@ -107,14 +107,14 @@ pub fn known(scenario: &Scenario) -> Known {
     }
     if plant.relaxation.enabled {
         k.push((
-            Channel::Plant,
+            Stage::Plant,
             Term::Relaxation {
                 tau_s: plant.relaxation.tau_s,
             },
         ));
     }
     for (s, &sensor) in scenario.sensors().zip(&Sensor::ALL) {
-        let ch = Channel::Sensor(sensor);
+        let ch = Stage::Sensor(sensor);
         if s.model != SensorModelKind::Linear {
             k.push((
                 ch,
@@ -187,7 +187,7 @@ pub fn scenario(
     s.duration_s = None;
     for ch in &outcome.channels {
         match ch.channel {
-            Channel::Plant => {
+            Stage::Plant => {
                 let gain = ch.fitted.gain();
                 if gain.is_finite() && gain > 0.0 {
                     s.plant.gain_deg_per_mm = gain;
@@ -208,7 +208,7 @@ pub fn scenario(
                     }
                 }
             }
-            Channel::Sensor(which) => {
+            Stage::Sensor(which) => {
                 let sensor = match which {
                     Sensor::One => &mut s.sensor1,
                     Sensor::Two => s.sensor2.get_or_insert_with(SensorParams::default),
@@ -226,7 +226,7 @@ pub fn scenario(
     Ok(s)
 }
 
-fn write_sensor(sensor: &mut SensorParams, ch: &ChannelReport) -> Result<(), String> {
+fn write_sensor(sensor: &mut SensorParams, ch: &StageReport) -> Result<(), String> {
     let f = &ch.fitted;
     let (r0, b) = (f.get("offset").unwrap_or(f64::NAN), f.gain());
     sensor.model = SensorModelKind::Linear;

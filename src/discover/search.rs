@@ -3,10 +3,10 @@
 //! 2. [`Search::calibrate`] smooths the tracker angle into the sensors' input ([`Smoother`]:
 //!    from the measured angle alone, never the plant model), fits each channel's base model and
 //!    freezes its noise from the rest;
-//! 3. each channel is then searched on its own ([`Search::channel`], a [`ChannelSearch`]): each
-//!    round, [`ChannelSearch::score`] scores every candidate and [`ChannelSearch::pick`] names
-//!    its clear winner, leaves it ambiguous, or finds nothing; [`ChannelSearch::refine`] refines
-//!    the winner's shape and [`ChannelSearch::add`] puts it in the channel's model. No channel
+//! 3. each channel is then searched on its own ([`Search::channel`], a [`StageSearch`]): each
+//!    round, [`StageSearch::score`] scores every candidate and [`StageSearch::pick`] names
+//!    its clear winner, leaves it ambiguous, or finds nothing; [`StageSearch::refine`] refines
+//!    the winner's shape and [`StageSearch::add`] puts it in the channel's model. No channel
 //!    reads another's model, so a sensor's candidates, evidence and verdict are the same
 //!    whatever the plant model holds;
 //! 4. [`Search::measure`] measures the held-out gaps and tests what is left on each channel.
@@ -19,14 +19,14 @@ use super::calibrate::Calibration;
 use super::data::Data;
 use super::decide::Calibrated;
 use super::locate::locate;
-use super::model::{correlation_time, fit, score, Channel, ChannelModel, Fitted};
+use super::model::{correlation_time, fit, score, Fitted, Stage, StageModel};
 use super::noise::ArNoise;
 use super::smooth::Smoother;
 use super::terms::{Effect, Term};
 use super::unexplained::{Residuals, Unexplained};
 use super::{
-    evidence, prefer_simpler, refine, same_rig, Ambiguity, Candidate, ChannelReport, DiscoverError,
-    FormFit, Gap, Known, CLEAR_RATIO, CORRELATION_WINDOW_S, THRESHOLD_NATS,
+    evidence, prefer_simpler, refine, same_rig, Ambiguity, Candidate, DiscoverError, FormFit, Gap,
+    Known, StageReport, CLEAR_RATIO, CORRELATION_WINDOW_S, THRESHOLD_NATS,
 };
 use crate::recording::Recording;
 use crate::sensor::Sensor;
@@ -45,14 +45,14 @@ pub(super) enum Pick {
 }
 
 /// Per channel: the held-out gaps, what is left unexplained, and the report's view.
-type Measured = (Vec<Gap>, Vec<Unexplained>, Vec<ChannelReport>);
+type Measured = (Vec<Gap>, Vec<Unexplained>, Vec<StageReport>);
 
 /// A model's held-out fit: the fitted coefficients, the whitened held-out sum of squares, the
 /// held-out RMSE (channel unit) and the held-out sample count.
 type Evaluation = (Fitted, f64, f64, usize);
 
 /// The state of one discovery: the data, the sensors' input, and per channel its base model,
-/// noise and base fit. Shared, read-only, by the channels' searches ([`ChannelSearch`]).
+/// noise and base fit. Shared, read-only, by the channels' searches ([`StageSearch`]).
 pub(super) struct Search<'a> {
     joint: &'a Joint,
     known: &'a Known,
@@ -69,10 +69,10 @@ pub(super) struct Search<'a> {
     /// `holdout` or `held-out blocks`.
     on: &'static str,
     /// The plant, then each sensor.
-    pub(super) channels: Vec<Channel>,
-    pub(super) base_models: BTreeMap<Channel, ChannelModel>,
-    pub(super) noises: BTreeMap<Channel, ArNoise>,
-    bases: BTreeMap<Channel, Fitted>,
+    pub(super) channels: Vec<Stage>,
+    pub(super) base_models: BTreeMap<Stage, StageModel>,
+    pub(super) noises: BTreeMap<Stage, ArNoise>,
+    bases: BTreeMap<Stage, Fitted>,
     /// The sensors' candidate input on `data` and on `test_data`: the strain of the smoothed
     /// tracker angle ([`Smoother`]), from the measured angle alone.
     pub(super) inputs: (Vec<f64>, Vec<f64>),
@@ -84,10 +84,10 @@ pub(super) struct Search<'a> {
 
 /// One channel's search: the shared data and this channel's model, which grows by the effects
 /// named on it. It reads no other channel's model.
-pub(super) struct ChannelSearch<'s, 'a> {
+pub(super) struct StageSearch<'s, 'a> {
     pub(super) search: &'s Search<'a>,
-    pub(super) channel: Channel,
-    pub(super) model: ChannelModel,
+    pub(super) channel: Stage,
+    pub(super) model: StageModel,
 }
 
 impl<'a> Search<'a> {
@@ -147,8 +147,8 @@ impl<'a> Search<'a> {
             } else {
                 "held-out blocks"
             },
-            channels: std::iter::once(Channel::Plant)
-                .chain(Sensor::ALL[..sensors].iter().map(|&s| Channel::Sensor(s)))
+            channels: std::iter::once(Stage::Plant)
+                .chain(Sensor::ALL[..sensors].iter().map(|&s| Stage::Sensor(s)))
                 .collect(),
             base_models: BTreeMap::new(),
             noises: BTreeMap::new(),
@@ -171,19 +171,19 @@ impl<'a> Search<'a> {
 
     /// The span of a channel's input: the stroke's range for the plant, the largest strain
     /// for a sensor.
-    pub(super) fn span_of(&self, ch: Channel) -> f64 {
+    pub(super) fn span_of(&self, ch: Stage) -> f64 {
         match ch {
-            Channel::Plant => {
+            Stage::Plant => {
                 let (lo, hi) = min_max(&self.data.stroke_mm);
                 hi - lo
             }
-            Channel::Sensor(_) => self.data.strain.iter().fold(0.0_f64, |a, e| a.max(e.abs())),
+            Stage::Sensor(_) => self.data.strain.iter().fold(0.0_f64, |a, e| a.max(e.abs())),
         }
     }
 
     /// A channel's base model: calibration terms plus the effects the scenario already has.
-    fn base_model(&self, ch: Channel) -> ChannelModel {
-        let mut m = ChannelModel::base(ch);
+    fn base_model(&self, ch: Stage) -> StageModel {
+        let mut m = StageModel::base(ch);
         for (c, t) in self.known {
             if *c == ch {
                 let t = match t {
@@ -238,8 +238,8 @@ impl<'a> Search<'a> {
     }
 
     /// The search of channel `ch`, from its base model.
-    pub(super) fn channel(&self, ch: Channel) -> ChannelSearch<'_, 'a> {
-        ChannelSearch {
+    pub(super) fn channel(&self, ch: Stage) -> StageSearch<'_, 'a> {
+        StageSearch {
             search: self,
             channel: ch,
             model: self.base_models[&ch].clone(),
@@ -247,7 +247,7 @@ impl<'a> Search<'a> {
     }
 
     /// `m` fitted on the training samples and scored on the held-out ones.
-    pub(super) fn evaluate(&self, m: &ChannelModel, noise: &ArNoise) -> Option<Evaluation> {
+    pub(super) fn evaluate(&self, m: &StageModel, noise: &ArNoise) -> Option<Evaluation> {
         let fitted = fit(&m.design(&self.data, &self.inputs.0), noise, &self.train)?;
         let residual = fitted.residual(&m.design(&self.test_data, &self.inputs.1));
         let (ss, rmse, n) = score(&residual, noise, &self.test);
@@ -255,7 +255,7 @@ impl<'a> Search<'a> {
     }
 
     /// The training sum of squares of `m` with `term` added.
-    pub(super) fn train_ss(&self, m: &ChannelModel, term: &Term) -> Option<f64> {
+    pub(super) fn train_ss(&self, m: &StageModel, term: &Term) -> Option<f64> {
         let trial = m.with(term.clone());
         fit(
             &trial.design(&self.data, &self.inputs.0),
@@ -267,7 +267,7 @@ impl<'a> Search<'a> {
 
     /// A model's held-out whitened sum of squares, and the correlation time of its training
     /// residual that divides the evidence for it.
-    fn held_out_ss_and_tau(&self, with: &ChannelModel, noise: &ArNoise) -> Option<(f64, f64)> {
+    fn held_out_ss_and_tau(&self, with: &StageModel, noise: &ArNoise) -> Option<(f64, f64)> {
         let (fitted, ss, _, _) = self.evaluate(with, noise)?;
         let residual = fitted.residual(&with.design(&self.data, &self.inputs.0));
         Some((
@@ -277,7 +277,7 @@ impl<'a> Search<'a> {
     }
 
     /// The evidence for adding `term` to `from`, as the candidates are scored.
-    pub(super) fn gain(&self, from: &ChannelModel, term: &Term) -> Option<f64> {
+    pub(super) fn gain(&self, from: &StageModel, term: &Term) -> Option<f64> {
         let noise = &self.noises[&from.channel];
         let (_, from_ss, _, n) = self.evaluate(from, noise)?;
         let (ss, tau) = self.held_out_ss_and_tau(&from.with(term.clone()), noise)?;
@@ -286,15 +286,15 @@ impl<'a> Search<'a> {
     }
 
     /// The candidate effects of a channel.
-    pub(super) fn effects(ch: Channel) -> &'static [Effect] {
+    pub(super) fn effects(ch: Stage) -> &'static [Effect] {
         match ch {
-            Channel::Plant => &Effect::PLANT,
-            Channel::Sensor(_) => &Effect::SENSOR,
+            Stage::Plant => &Effect::PLANT,
+            Stage::Sensor(_) => &Effect::SENSOR,
         }
     }
 
     /// The grid point of `effect` that fits `m` best on the training samples.
-    pub(super) fn best_shape(&self, m: &ChannelModel, effect: Effect) -> Option<Term> {
+    pub(super) fn best_shape(&self, m: &StageModel, effect: Effect) -> Option<Term> {
         Term::grid(effect, self.span_of(m.channel))
             .into_iter()
             .filter_map(|term| Some((term.clone(), self.train_ss(m, &term)?)))
@@ -307,7 +307,7 @@ impl<'a> Search<'a> {
     /// saturation of another shape than tanh earns the plays nothing. `None` for other terms.
     fn memory_evidence(
         &self,
-        m: &ChannelModel,
+        m: &StageModel,
         term: &Term,
         span: f64,
         n: usize,
@@ -344,8 +344,8 @@ impl<'a> Search<'a> {
     /// [`DiscoverError::Base`] when a model cannot be fitted again.
     pub(super) fn measure(
         &self,
-        models: &BTreeMap<Channel, ChannelModel>,
-        steps: &BTreeMap<Channel, Vec<(Effect, f64)>>,
+        models: &BTreeMap<Stage, StageModel>,
+        steps: &BTreeMap<Stage, Vec<(Effect, f64)>>,
         ambiguous: &[Ambiguity],
         fast: bool,
     ) -> Result<Measured, DiscoverError> {
@@ -365,8 +365,8 @@ impl<'a> Search<'a> {
             let final_design = models[&ch].design(&self.test_data, &self.inputs.1);
             let residual = base_fit.residual(&base_design);
             let (before_deg, after_deg) = match ch {
-                Channel::Plant => (None, None),
-                Channel::Sensor(_) => {
+                Stage::Plant => (None, None),
+                Stage::Sensor(_) => {
                     let per_deg = base_fit.gain().abs() * self.joint.strain_per_deg();
                     if per_deg > 0.0 && per_deg.is_finite() {
                         (Some(before / per_deg), Some(after / per_deg))
@@ -402,7 +402,7 @@ impl<'a> Search<'a> {
                 };
                 unexplained.extend(residuals.test(ch, fast, unexplained_seed(ch)));
             }
-            reports.push(ChannelReport {
+            reports.push(StageReport {
                 channel: ch,
                 noise: noise.clone(),
                 base: self.bases[&ch].clone(),
@@ -420,7 +420,7 @@ impl<'a> Search<'a> {
     }
 }
 
-impl ChannelSearch<'_, '_> {
+impl StageSearch<'_, '_> {
     /// Every candidate effect of the channel not yet in its model, each at the grid shape that
     /// fits the training samples best, scored on the held-out ones; best first. `None` when the
     /// channel's model cannot be evaluated.
@@ -554,7 +554,7 @@ impl ChannelSearch<'_, '_> {
     /// neighbours: a coarse width or time constant leaves a residual for which another effect
     /// would be named next on a long recording (Joint C's backlash at 3000 s: then
     /// relaxation). A creep named with one time constant takes its two-term form
-    /// ([`ChannelSearch::two_term`]) when the second time constant clears [`THRESHOLD_NATS`]
+    /// ([`StageSearch::two_term`]) when the second time constant clears [`THRESHOLD_NATS`]
     /// over the first: otherwise its fast part is left for `unexplained`, or for a rate named
     /// next.
     pub(super) fn refine(&self, winner: Candidate) -> Candidate {
@@ -617,10 +617,10 @@ impl ChannelSearch<'_, '_> {
 }
 
 /// The seed of a channel's `unexplained` copies.
-fn unexplained_seed(ch: Channel) -> u64 {
+fn unexplained_seed(ch: Stage) -> u64 {
     0x0123_4567_89AB_CDEF
         ^ match ch {
-            Channel::Plant => 0,
-            Channel::Sensor(s) => s.index() as u64 + 1,
+            Stage::Plant => 0,
+            Stage::Sensor(s) => s.index() as u64 + 1,
         }
 }

@@ -37,7 +37,7 @@ use serde::Serialize;
 
 use super::calibrate::{Calibration, CopyNoise, COPIES, MORE_COPIES};
 use super::data::Data;
-use super::model::{correlation_time_white, Channel, Design};
+use super::model::{correlation_time_white, Design, Stage};
 use super::noise::ArNoise;
 use super::terms::{hats, low_pass, play, Term};
 
@@ -104,7 +104,7 @@ impl GenericKind {
 pub struct Unexplained {
     /// The channel.
     #[serde(serialize_with = "channel_name")]
-    pub channel: Channel,
+    pub channel: Stage,
     /// Held-out evidence of the generic regressors over the final model (nats).
     pub evidence: f64,
     /// The kind that alone adds the most evidence.
@@ -119,7 +119,7 @@ pub struct Unexplained {
     pub calibration: Option<Calibration>,
 }
 
-fn channel_name<S: serde::Serializer>(c: &Channel, s: S) -> Result<S::Ok, S::Error> {
+fn channel_name<S: serde::Serializer>(c: &Stage, s: S) -> Result<S::Ok, S::Error> {
     s.serialize_str(&c.name())
 }
 
@@ -379,7 +379,7 @@ impl Residuals<'_> {
 
     /// The channel's unexplained structure, if its evidence reaches [`UNEXPLAINED_NATS`] and,
     /// unless `fast`, beats its calibration; `seed` names the channel's copies.
-    pub fn test(&self, channel: Channel, fast: bool, seed: u64) -> Option<Unexplained> {
+    pub fn test(&self, channel: Stage, fast: bool, seed: u64) -> Option<Unexplained> {
         let g = self.generic()?;
         let sets = g.prepare_sets()?;
         let observed_target = Target {

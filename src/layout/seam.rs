@@ -257,7 +257,10 @@ mod tests {
         let edge = C * (1.0 - f64::EPSILON);
         let pts = [
             Coord { x: 0.0, y: edge },
-            Coord { x: 0.0, y: C + 1e-15 },
+            Coord {
+                x: 0.0,
+                y: C + 1e-15,
+            },
             Coord { x: 0.5, y: C + 1.0 },
         ];
         let pieces = wrap_polyline(&pts, 0.0, C);
