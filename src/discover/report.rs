@@ -338,7 +338,7 @@ fn channel_section(page: &mut Page, c: &super::StageReport, at: Placement<'_>) {
         Stage::Plant => 1.0,
         Stage::Sensor(_) => 1e-3,
     };
-    page.heading(at.titled(&format!("Stage {name}")));
+    page.heading(at.titled(&format!("Channel {name}")));
     let mut places = Table::new([
         "situation",
         "share of held-out samples",
