@@ -124,19 +124,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .run()
         .with_context(|| format!("simulating control of {}", design.file.name))?;
     let mut result = ControlResult::new(control, run);
-    let files = result.files().context("drawing the report")?;
-    write_folder_atomic(&args.out.output, &files)
-        .with_context(|| format!("writing {}", args.out.output.display()))?;
-    result.written_to(&args.out.output);
-    if args.out.json {
-        println!("{}", dlw::finite::to_json(&result)?);
-    } else {
-        for w in &result.warnings {
-            eprintln!("warning: {w}");
-        }
-        print!("{}", result.summary());
-    }
-    Ok(())
+    let files = result.files();
+    finish(
+        &args.out,
+        files,
+        &mut result,
+        ControlResult::written_to,
+        |r| (r.warnings.clone(), r.summary()),
+    )
 }
 
 /// `dlw control --design ROBOT --config ROBOT_CFG`: the output folder already claimed.
@@ -160,17 +155,35 @@ fn run_robot(args: Args) -> anyhow::Result<()> {
         .run()
         .with_context(|| format!("simulating control of the robot {:?}", robot.robot.name))?;
     let mut result = RobotControlResult::new(control, run);
-    let files = result.files().context("drawing the report")?;
-    write_folder_atomic(&args.out.output, &files)
-        .with_context(|| format!("writing {}", args.out.output.display()))?;
-    result.written_to(&args.out.output);
-    if args.out.json {
-        println!("{}", dlw::finite::to_json(&result)?);
+    let files = result.files();
+    finish(
+        &args.out,
+        files,
+        &mut result,
+        RobotControlResult::written_to,
+        |r| (r.warnings.clone(), r.summary()),
+    )
+}
+
+/// Writes the report folder `-o` (its `files`, drawn), tells the result where, then prints it:
+/// its JSON with `--json`, else its warnings on stderr and its summary.
+fn finish<R: serde::Serialize>(
+    out: &Written,
+    files: Result<Vec<(String, Vec<u8>)>, dlw::report::ChartError>,
+    result: &mut R,
+    written_to: fn(&mut R, &std::path::Path),
+    lines: fn(&R) -> (Vec<String>, String),
+) -> anyhow::Result<()> {
+    let files = files.context("drawing the report")?;
+    write_folder_atomic(&out.output, &files)
+        .with_context(|| format!("writing {}", out.output.display()))?;
+    written_to(result, &out.output);
+    if out.json {
+        println!("{}", dlw::finite::to_json(result)?);
     } else {
-        for w in &result.warnings {
-            eprintln!("warning: {w}");
-        }
-        print!("{}", result.summary());
+        let (warnings, summary) = lines(result);
+        super::print_warnings(&warnings);
+        print!("{summary}");
     }
     Ok(())
 }
