@@ -22,18 +22,7 @@ fn rmse(joint: &serde_json::Value, config: &str) -> f64 {
 /// With the clamp, every joint's PI estimate stays within 1.5 times its linear one.
 #[test]
 fn half_size_pi_estimates_stay_near_linear() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("half");
-    let o = common::dlw_ok(&[
-        "reproduce",
-        "--ideal",
-        "--duration-scale",
-        "0.5",
-        "-o",
-        &common::arg(&out),
-        "--json",
-    ]);
-    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let j = ideal_half_size();
     for x in j["joints"].as_array().unwrap() {
         eprintln!(
             "Joint {}: linear {:.2}°, PI {:.2}°",
@@ -209,6 +198,12 @@ fn a_bad_duration_scale_is_refused_and_nothing_written() {
     }
 }
 
+/// `dlw reproduce --ideal --duration-scale 0.5 --json`, run once for the two tests that read it.
+fn ideal_half_size() -> &'static serde_json::Value {
+    static HALF: std::sync::OnceLock<serde_json::Value> = std::sync::OnceLock::new();
+    HALF.get_or_init(|| reproduce_json("0.5", "ideal"))
+}
+
 /// `dlw reproduce --json` at `duration_scale` on `bench` (`twin` or `ideal`), parsed.
 fn reproduce_json(duration_scale: &str, bench: &str) -> serde_json::Value {
     let dir = tempfile::tempdir().unwrap();
@@ -312,7 +307,10 @@ fn the_patterns_at_short_and_half_size() {
         ("0.1", Vec::<&str>::new(), Vec::<&str>::new()),
         ("0.5", vec![], KNOWN_CANNOT_SHOW.to_vec()),
     ] {
-        let j = reproduce_json(scale, "ideal");
+        let j = match scale {
+            "0.5" => ideal_half_size().clone(),
+            _ => reproduce_json(scale, "ideal"),
+        };
         assert_eq!(
             with_verdict(&j, "NOT held"),
             failing,

@@ -528,8 +528,17 @@ impl Generic<'_> {
         };
         let per_fold: Vec<DVector<f64>> = self.folds.iter().map(|f| xty(f)).collect();
         let total = per_fold.iter().fold(DVector::zeros(p), |a, v| a + v);
-        let predict = |beta: &DVector<f64>, i: usize| -> f64 {
-            cols.iter().zip(beta.iter()).map(|(c, b)| c[i] * b).sum()
+        // The fitted values at `rows`, column by column (each row's sum in the columns' order,
+        // as a sum per row would give it, but reading each column straight through).
+        let predict = |beta: &DVector<f64>, rows: &mut dyn Iterator<Item = usize>| -> Vec<f64> {
+            let rows: Vec<usize> = rows.collect();
+            let mut fitted = vec![0.0; rows.len()];
+            for (c, b) in cols.iter().zip(beta.iter()) {
+                for (f, &i) in fitted.iter_mut().zip(&rows) {
+                    *f += c[i] * b;
+                }
+            }
+            fitted
         };
         let chosen = if set.factors.len() == 1 {
             0
@@ -544,7 +553,8 @@ impl Generic<'_> {
                         .map(|((fold, factor), c)| {
                             let beta = factor.solve(&(&total - c));
                             fold.iter()
-                                .map(|&i| (target.white[i] - predict(&beta, i)).powi(2))
+                                .zip(predict(&beta, &mut fold.iter().copied()))
+                                .map(|(&i, p)| (target.white[i] - p).powi(2))
                                 .sum::<f64>()
                         })
                         .sum();
@@ -554,8 +564,11 @@ impl Generic<'_> {
                 .map_or(0, |(w, _)| w)
         };
         let beta = set.factors[chosen].0.solve(&total);
-        let residual: Vec<f64> = (0..target.white.len())
-            .map(|i| target.white[i] - predict(&beta, i))
+        let residual: Vec<f64> = target
+            .white
+            .iter()
+            .zip(predict(&beta, &mut (0..target.white.len())))
+            .map(|(w, p)| w - p)
             .collect();
         let test_residual: Option<Vec<f64>> = target.white_test.as_ref().map(|white| {
             let mut test_cols: Vec<&Vec<f64>> = Vec::new();
