@@ -531,6 +531,25 @@ impl Calibration {
                 })
                 .map(|(m, c)| (m.name(), *c))
                 .collect(),
+            ranges: self
+                .space
+                .parameters
+                .iter()
+                .map(|p| {
+                    let range = crate::reproduce::Range {
+                        ideal: p.ideal,
+                        lo: p.lo,
+                        hi: p.hi,
+                    };
+                    (p.name(), range)
+                })
+                .collect(),
+            agreements: self
+                .agreements
+                .iter()
+                .map(|a| (a.metric.name(), a.max_relative))
+                .collect(),
+            tradeoffs: Vec::new(),
         });
         file
     }
