@@ -546,7 +546,13 @@ mod tests {
         assert_eq!(cal.ranges.len(), space.len());
         for p in &space.parameters {
             let r = cal.ranges[&p.name()];
-            assert_eq!((r.ideal, r.lo, r.hi), (p.ideal, p.lo, p.hi), "{}", p.name());
+            assert_eq!(
+                (r.ideal, r.lo, r.hi, r.log),
+                (p.ideal, p.lo, p.hi, p.log),
+                "{}",
+                p.name()
+            );
+            approx::assert_relative_eq!(r.unit(r.ideal), p.unit(p.ideal), epsilon = 1e-12);
             assert!(cal.parameters.contains_key(&p.name()), "{}", p.name());
         }
         let names: Vec<String> = super::super::Metric::table3()

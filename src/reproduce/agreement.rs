@@ -428,7 +428,7 @@ pub struct Moved {
     pub twin: f64,
     /// The bounds searched.
     pub bounds: Option<[f64; 2]>,
-    /// `(twin − ideal)/(hi − lo)`: how far it moved, as a share of its range.
+    /// How far it moved, as a share of its range (of `ln(hi/lo)` for a log-scale one).
     pub moved_share: Option<f64>,
 }
 
@@ -453,7 +453,7 @@ pub fn moved(bench: &Bench) -> Vec<Moved> {
                 bounds: range.map(|r| [r.lo, r.hi]),
                 moved_share: range
                     .filter(|r| r.hi > r.lo)
-                    .map(|r| (twin - r.ideal) / (r.hi - r.lo)),
+                    .map(|r| r.unit(twin) - r.unit(r.ideal)),
             }
         })
         .collect();
@@ -616,6 +616,7 @@ mod tests {
                     ("a".to_owned(), 0.5),
                     ("b".to_owned(), 2.0),
                     ("c".to_owned(), 0.3),
+                    ("d".to_owned(), 20.0),
                 ]),
                 corrections: BTreeMap::new(),
                 ranges: BTreeMap::from([
@@ -625,6 +626,7 @@ mod tests {
                             ideal: 0.3,
                             lo: 0.0,
                             hi: 1.0,
+                            log: false,
                         },
                     ),
                     (
@@ -633,6 +635,16 @@ mod tests {
                             ideal: 0.0,
                             lo: 0.0,
                             hi: 4.0,
+                            log: false,
+                        },
+                    ),
+                    (
+                        "d".to_owned(),
+                        Range {
+                            ideal: 2.0,
+                            lo: 0.5,
+                            hi: 100.0,
+                            log: true,
                         },
                     ),
                     (
@@ -641,6 +653,7 @@ mod tests {
                             ideal: 0.3,
                             lo: 0.0,
                             hi: 1.0,
+                            log: false,
                         },
                     ),
                 ]),
@@ -652,15 +665,15 @@ mod tests {
         let m = moved(&Bench::Twin(file.into()));
         assert_eq!(
             m.iter().map(|x| x.name.as_str()).collect::<Vec<_>>(),
-            ["b", "a", "c"]
+            ["b", "d", "a", "c"]
         );
         let t = moved_text(&m);
         assert!(
-            t.starts_with("The calibration moved 2 of 3 parameters"),
+            t.starts_with("The calibration moved 3 of 4 parameters"),
             "{t}"
         );
         assert!(
-            t.contains("b 0 → 2 (+50 % of its range); a 0.3 → 0.5 (+20 % of its range)"),
+            t.contains("b 0 → 2 (+50 % of its range); d 2 → 20 (+43 % of its range); a 0.3 → 0.5 (+20 % of its range)"),
             "{t}"
         );
         assert!(t.contains("At the ideal bench's value: c."), "{t}");

@@ -114,6 +114,21 @@ pub struct Range {
     pub lo: f64,
     /// Upper bound.
     pub hi: f64,
+    /// Whether the search moved it on a log scale (a correlation time): its move is then a
+    /// share of `ln(hi/lo)`.
+    #[serde(default)]
+    pub log: bool,
+}
+
+impl Range {
+    /// `value`'s place in the range, 0 at `lo` and 1 at `hi` (on a log scale when `log`).
+    pub fn unit(&self, value: f64) -> f64 {
+        if self.log && self.lo > 0.0 && value > 0.0 {
+            (value / self.lo).ln() / (self.hi / self.lo).ln()
+        } else {
+            (value - self.lo) / (self.hi - self.lo)
+        }
+    }
 }
 
 /// One parameter of a bench moved through `values` with every other at the shipped point, and
