@@ -146,9 +146,10 @@ const NOT_IDENTIFIED: [&str; 1] = ["tracker_white_deg"];
 
 /// `dlw calibrate --start`: the start point joins the design, is the first point checked at
 /// full size, and the result is the best full-size check, so never worse at full size than the
-/// start. On a space of two parameters at a fiftieth of the paper's timings (seconds in CI);
-/// code that ignores the start fails the first two asserts, code that returns the last check
-/// instead of the best fails the third whenever they differ.
+/// start. On a space of two parameters at a fiftieth of the paper's timings (9 s in the
+/// test profile on two loaded cores); code that ignores the start fails the first two
+/// asserts, code that returns the last check instead of the best fails the third whenever
+/// they differ.
 #[test]
 fn a_start_point_is_evaluated_checked_first_and_the_result_is_the_best_full_check() {
     let space = Space {

@@ -468,30 +468,37 @@ pub fn moved(bench: &Bench) -> Vec<Moved> {
 /// written with the calibration's rounding stays put).
 const MOVED_SHARE: f64 = 1e-6;
 
+/// `x` with at most four decimals and no trailing zeros.
+pub fn show_value(x: f64) -> String {
+    let s = format!("{x:.4}");
+    s.trim_end_matches('0').trim_end_matches('.').to_owned()
+}
+
+/// The parameters that moved and those that stayed at the ideal bench's value.
+pub fn split_moved(moved: &[Moved]) -> (Vec<&Moved>, Vec<&Moved>) {
+    moved
+        .iter()
+        .partition(|m| m.moved_share.is_none_or(|s| s.abs() >= MOVED_SHARE))
+}
+
 /// The sentence on [`moved`]: how many moved, each with ideal → calibrated and the share of
 /// its range, and which stayed.
 pub fn moved_text(moved: &[Moved]) -> String {
-    let show = |x: f64| {
-        let s = format!("{x:.4}");
-        s.trim_end_matches('0').trim_end_matches('.').to_owned()
-    };
-    let (went, stayed): (Vec<&Moved>, Vec<&Moved>) = moved
-        .iter()
-        .partition(|m| m.moved_share.is_none_or(|s| s.abs() >= MOVED_SHARE));
+    let (went, stayed) = split_moved(moved);
     let went: Vec<String> = went
         .iter()
         .map(|m| match (m.ideal, m.moved_share) {
             (Some(ideal), Some(share)) => format!(
                 "{} {} → {} ({:+.0} % of its range)",
                 m.name,
-                show(ideal),
-                show(m.twin),
+                show_value(ideal),
+                show_value(m.twin),
                 100.0 * share
             ),
             _ => format!(
                 "{} = {} (its ideal value is not recorded)",
                 m.name,
-                show(m.twin)
+                show_value(m.twin)
             ),
         })
         .collect();

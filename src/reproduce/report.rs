@@ -87,9 +87,46 @@ fn agreement_section(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
     };
     page.text(format!("{limits}{short} {}", r.finding()));
     let moved = super::moved(&r.settings.bench);
-    if !moved.is_empty() {
-        page.text(super::moved_text(&moved));
+    if moved.is_empty() {
+        return;
     }
+    page.heading(at.titled("What the calibration moved"));
+    let mut t = Table::new(["parameter", "ideal bench", "this bench", "bounds", "moved"]);
+    let show = super::agreement::show_value;
+    for m in &moved {
+        t.row([
+            m.name.clone(),
+            m.ideal.map_or("–".into(), show),
+            show(m.twin),
+            m.bounds.map_or("–".into(), |[lo, hi]| {
+                format!("{} to {}", show(lo), show(hi))
+            }),
+            m.moved_share.map_or("–".into(), |x| {
+                format!("{:+.0} % of its range", 100.0 * x)
+            }),
+        ]);
+    }
+    page.table(t);
+    let (went, stayed) = super::agreement::split_moved(&moved);
+    page.text(format!(
+        "The calibration moved {} of {} parameters from the ideal bench, the largest move \
+         first (a correlation time's move is a share of its range on a log scale, as the search \
+         moved it){}.",
+        went.len(),
+        moved.len(),
+        if stayed.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; at the ideal bench's value: {}",
+                stayed
+                    .iter()
+                    .map(|m| m.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }
+    ));
 }
 
 /// The report of a reproduction on a page of its own.
