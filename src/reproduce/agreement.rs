@@ -89,7 +89,7 @@ impl Check {
             dlw,
             relative,
             limit,
-            outside: relative.is_none_or(|r| r.abs() > limit),
+            outside: !relative.is_some_and(|r| r.abs() <= limit),
         }
     }
 
@@ -478,7 +478,7 @@ pub fn show_value(x: f64) -> String {
 pub fn split_moved(moved: &[Moved]) -> (Vec<&Moved>, Vec<&Moved>) {
     moved
         .iter()
-        .partition(|m| m.moved_share.is_none_or(|s| s.abs() >= MOVED_SHARE))
+        .partition(|m| !m.moved_share.is_some_and(|s| s.abs() < MOVED_SHARE))
 }
 
 /// The sentence on [`moved`]: how many moved, each with ideal → calibrated and the share of
