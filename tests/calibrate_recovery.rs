@@ -23,7 +23,7 @@
 //!
 //! Objective 4.8 against 2729 at the ideal bench's point (truth 1), 137 against 6435 (truth 2:
 //! the search did not fit truth 2's numbers as closely, about 3.7 tolerances of 5 % per
-//! target). About 90 s in release on two loaded cores (2 × 30 short evaluations at a fifth of
+//! target). 90-113 s in release on two loaded cores (2 × 30 short evaluations at a fifth of
 //! the paper's timings), too long for CI: it runs with `DLW_CALIBRATE_RECOVERY=1` (`cargo test
 //! --release --test calibrate_recovery`).
 
@@ -57,7 +57,7 @@ fn space() -> Space {
 #[test]
 fn the_calibration_recovers_the_parameters_of_a_known_bench() {
     if std::env::var_os("DLW_CALIBRATE_RECOVERY").is_none() {
-        eprintln!("skipped: set DLW_CALIBRATE_RECOVERY=1 (about 90 s in release)");
+        eprintln!("skipped: set DLW_CALIBRATE_RECOVERY=1 (90-113 s in release)");
         return;
     }
     for truth in &TRUTHS {
