@@ -259,122 +259,131 @@ fn one_finding(c: &Check, checks: &[Check], tradeoffs: &[Tradeoff]) -> String {
     let (Some(v), Some(rel)) = (c.dlw, c.relative) else {
         return format!("{}: the run gave no value.", capitalized(&c.what));
     };
-    let mut text = format!(
-        "{} is {}, {:.1} % {} the paper's {}; its limit is {:.1} % ({}), so it is {:.1} \
-         points outside.",
-        capitalized(&c.what),
-        c.show(v),
-        100.0 * rel.abs(),
-        if rel > 0.0 { "above" } else { "below" },
-        c.show(c.paper),
-        100.0 * c.limit,
-        c.band(),
-        100.0 * (rel.abs() - c.limit)
-    );
+    let mut reading = Reading {
+        text: format!(
+            "{} is {}, {:.1} % {} the paper's {}; its limit is {:.1} % ({}), so it is {:.1} \
+             points outside.",
+            capitalized(&c.what),
+            c.show(v),
+            100.0 * rel.abs(),
+            if rel > 0.0 { "above" } else { "below" },
+            c.show(c.paper),
+            100.0 * c.limit,
+            c.band(),
+            100.0 * (rel.abs() - c.limit)
+        ),
+        blocked_everywhere: true,
+        blockers: Vec::new(),
+    };
     let relevant: Vec<&Tradeoff> = tradeoffs
         .iter()
         .filter(|t| t.metrics.contains_key(&c.name))
         .collect();
     if relevant.is_empty() {
-        text += " No trade-off the bench file records moves it, so this run cannot say why.";
-        return text;
+        reading.text +=
+            " No trade-off the bench file records moves it, so this run cannot say why.";
+        return reading.text;
     }
-    let mut blocked_everywhere = true;
-    // Per partner that blocked a point: the partner's values there.
-    let mut blockers: Vec<(&Check, Vec<f64>)> = Vec::new();
     for t in relevant {
-        let partners: Vec<(&Check, &Vec<f64>)> = t
+        reading.read(c, t, checks);
+    }
+    if reading.blocked_everywhere {
+        reading.text += &reading.conclusion(c, rel);
+    }
+    reading.text
+}
+
+/// What the trade-offs say of one number outside its limit, read one trade-off at a time.
+struct Reading<'a> {
+    /// The sentences so far.
+    text: String,
+    /// Whether every measured point that brings the number within its limit put another
+    /// checked number outside its own.
+    blocked_everywhere: bool,
+    /// Each number that blocked a point, with its values at those points.
+    blockers: Vec<(&'a Check, Vec<f64>)>,
+}
+
+impl<'a> Reading<'a> {
+    /// The trade-off `t`'s series, and what happens where it brings `c` within its limit.
+    fn read(&mut self, c: &Check, t: &Tradeoff, checks: &'a [Check]) {
+        let partners: Vec<(&'a Check, &Vec<f64>)> = t
             .metrics
             .iter()
             .filter(|(name, _)| **name != c.name)
             .filter_map(|(name, vs)| Some((checks.iter().find(|x| x.name == *name)?, vs)))
             .collect();
         let mine = &t.metrics[&c.name];
-        let series: Vec<String> = std::iter::once(format!(
-            "{} {}",
-            c.name,
-            mine.iter()
-                .map(|x| c.show(*x))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ))
-        .chain(partners.iter().map(|(p, vs)| {
-            format!(
-                "{} {}",
-                p.name,
-                vs.iter().map(|x| p.show(*x)).collect::<Vec<_>>().join(", ")
-            )
-        }))
-        .collect();
-        text += &format!(
+        let series = |x: &Check, vs: &[f64]| {
+            let shown: Vec<String> = vs.iter().map(|v| x.show(*v)).collect();
+            format!("{} {}", x.name, shown.join(", "))
+        };
+        let all: Vec<String> = std::iter::once(series(c, mine))
+            .chain(partners.iter().map(|(p, vs)| series(p, vs)))
+            .collect();
+        let values: Vec<String> = t.values.iter().map(|x| format!("{x}")).collect();
+        self.text += &format!(
             " Measured with {} at {} ({}): {}.",
             t.parameter,
-            t.values
-                .iter()
-                .map(|x| format!("{x}"))
-                .collect::<Vec<_>>()
-                .join(", "),
+            values.join(", "),
             t.measured,
-            series.join("; ")
+            all.join("; ")
         );
         let within: Vec<usize> = (0..mine.len()).filter(|&k| c.within(mine[k])).collect();
         if within.is_empty() {
+            let distance = |k: usize| (mine[k] / c.paper).ln().abs();
             let nearest = (0..mine.len())
-                .min_by(|&a, &b| {
-                    (mine[a] / c.paper)
-                        .ln()
-                        .abs()
-                        .total_cmp(&(mine[b] / c.paper).ln().abs())
-                })
+                .min_by(|&a, &b| distance(a).total_cmp(&distance(b)))
                 .map(|k| format!(" (nearest: {} at {})", c.show(mine[k]), t.values[k]));
-            text += &format!(
+            self.text += &format!(
                 " No value of {} brings {} within its limit{}.",
                 t.parameter,
                 c.name,
                 nearest.unwrap_or_default()
             );
-            continue;
+            return;
         }
         for k in within {
-            let out: Vec<(&Check, f64)> = partners
+            let out: Vec<(&'a Check, f64)> = partners
                 .iter()
                 .filter_map(|(p, vs)| vs.get(k).filter(|x| !p.within(**x)).map(|x| (*p, *x)))
                 .collect();
             if out.is_empty() {
-                blocked_everywhere = false;
-                text += &format!(
+                self.blocked_everywhere = false;
+                self.text += &format!(
                     " At {} = {} {} is within its limit and every other measured number within \
                      its own: the bench could be moved there.",
                     t.parameter, t.values[k], c.name
                 );
-            } else {
-                text += &format!(
-                    " At {} = {}, where {} is within its limit ({}), {}.",
-                    t.parameter,
-                    t.values[k],
-                    c.name,
-                    c.show(mine[k]),
-                    out.iter()
-                        .map(|(p, x)| format!(
-                            "{} is {}, outside its {}",
-                            p.name,
-                            p.show(*x),
-                            p.band()
-                        ))
-                        .collect::<Vec<_>>()
-                        .join(" and ")
-                );
-                for (p, x) in out {
-                    match blockers.iter_mut().find(|(b, _)| b.name == p.name) {
-                        Some((_, xs)) => xs.push(x),
-                        None => blockers.push((p, vec![x])),
-                    }
+                continue;
+            }
+            let outside: Vec<String> = out
+                .iter()
+                .map(|(p, x)| format!("{} is {}, outside its {}", p.name, p.show(*x), p.band()))
+                .collect();
+            self.text += &format!(
+                " At {} = {}, where {} is within its limit ({}), {}.",
+                t.parameter,
+                t.values[k],
+                c.name,
+                c.show(mine[k]),
+                outside.join(" and ")
+            );
+            for (p, x) in out {
+                match self.blockers.iter_mut().find(|(b, _)| b.name == p.name) {
+                    Some((_, xs)) => xs.push(x),
+                    None => self.blockers.push((p, vec![x])),
                 }
             }
         }
     }
-    if blocked_everywhere {
-        let must: Vec<String> = blockers
+
+    /// What the paper's bench must have had, when no measured point keeps every number: an
+    /// error that moves each blocking number the way it missed, without moving `c` the way it
+    /// is off (`rel`).
+    fn conclusion(&self, c: &Check, rel: f64) -> String {
+        let must: Vec<String> = self
+            .blockers
             .iter()
             .map(|(p, xs)| {
                 let verb = if xs.iter().all(|x| *x < p.paper) {
@@ -387,27 +396,23 @@ fn one_finding(c: &Check, checks: &[Check], tradeoffs: &[Tradeoff]) -> String {
                 format!("{verb} {} to the paper's {}", p.what, p.show(p.paper))
             })
             .collect();
-        let moving = if rel > 0.0 { "raising" } else { "lowering" };
-        text += &if must.is_empty() {
-            format!(
+        if must.is_empty() {
+            return format!(
                 " So no measured value brings {} within its limit: the paper's bench must have \
                  had an error this bench does not model, one that does not {} it.",
                 c.what,
                 if rel > 0.0 { "raise" } else { "lower" }
-            )
-        } else {
-            format!(
-                " So this bench cannot bring {} within its limit without moving another number \
-                 out of its own: the paper's bench must have had an error that {} without {} \
-                 {}.",
-                c.what,
-                must.join(" and "),
-                moving,
-                c.what
-            )
-        };
+            );
+        }
+        format!(
+            " So this bench cannot bring {} within its limit without moving another number out \
+             of its own: the paper's bench must have had an error that {} without {} {}.",
+            c.what,
+            must.join(" and "),
+            if rel > 0.0 { "raising" } else { "lowering" },
+            c.what
+        )
     }
-    text
 }
 
 fn capitalized(s: &str) -> String {
