@@ -53,6 +53,7 @@ fn short_reproduction_writes_all_four_tables_and_the_figures() {
     let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
     // The default bench is the calibrated twin (`--ideal` for the clean one).
     assert_eq!(j["bench"], "twin");
+    assert_agreement_is_computed(&j);
     // Every number the command prints is finite (JSON has no NaN: serde writes null).
     fn walk(v: &serde_json::Value, path: &str) {
         match v {
@@ -177,6 +178,49 @@ fn short_reproduction_writes_all_four_tables_and_the_figures() {
     ] {
         assert!(figures.contains(&want), "{want} missing");
     }
+}
+
+/// The run's agreement with the paper (`"agreement"`): the ten headline numbers and the
+/// twin's 21 Table III numbers, each outside exactly when its distance passes its limit, the
+/// outside ones listed and each named in the finding with its distance; and what the
+/// calibration moved, each parameter with its ideal value.
+fn assert_agreement_is_computed(j: &serde_json::Value) {
+    let checks = j["agreement"]["checks"].as_array().unwrap();
+    assert_eq!(checks.len(), 10 + 21);
+    let mut outside = Vec::new();
+    for c in checks {
+        let paper = c["paper"].as_f64().unwrap();
+        let dlw = c["dlw"].as_f64().unwrap();
+        let limit = c["limit"].as_f64().unwrap();
+        let off = (dlw / paper - 1.0).abs() > limit;
+        assert_eq!(c["outside"].as_bool().unwrap(), off, "{c}");
+        if off {
+            outside.push(c["name"].as_str().unwrap());
+        }
+    }
+    let listed: Vec<&str> = j["agreement"]["outside"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_str().unwrap())
+        .collect();
+    assert_eq!(listed, outside);
+    let finding = j["agreement"]["finding"].as_str().unwrap();
+    assert!(
+        finding.starts_with(&format!(
+            "{} of 31 checked numbers are outside",
+            outside.len()
+        )) || (outside.is_empty() && finding.starts_with("All 31")),
+        "{finding}"
+    );
+    for c in checks.iter().filter(|c| c["outside"] == true) {
+        let what = c["what"].as_str().unwrap();
+        assert!(finding.contains(&what[1..]), "{what} not in: {finding}");
+        assert!(finding.contains("points outside"), "{finding}");
+    }
+    let moved = j["moved"].as_array().unwrap();
+    assert_eq!(moved.len(), 21);
+    assert!(moved.iter().all(|m| m["ideal"].is_number()), "{moved:?}");
 }
 
 #[test]
@@ -453,6 +497,58 @@ fn the_twin_at_full_size() {
                 (pred / full - 1.0).abs() <= 0.30,
                 "Joint {joint} {model}: predicted {pred:.2}°, full simulation {full:.2}°"
             );
+        }
+    }
+}
+
+/// The trade-offs the shipped twin records (`[[calibration.tradeoffs]]`, which the report's
+/// finding reads) are what the simulator measures: each value of each parameter set on the
+/// shipped bench, Joint A run at full size with seed 0 (`reproduce::tables_of`, the same
+/// numbers `dlw reproduce` prints), every recorded metric within 1e-6 of the recorded value.
+/// Six full-size runs of Joint A, about a minute in release: with `DLW_TWIN_TRADEOFF=1`.
+#[test]
+fn the_twins_recorded_tradeoffs_are_measured() {
+    use dlw::reproduce::{tables_of, Bench, Settings};
+    if std::env::var_os("DLW_TWIN_TRADEOFF").is_none() {
+        eprintln!("skipped: set DLW_TWIN_TRADEOFF=1 (the twin's trade-offs re-measured)");
+        return;
+    }
+    let Bench::Twin(file) = Bench::paper().unwrap() else {
+        panic!("the shipped bench is not a twin")
+    };
+    let tradeoffs = file.calibration.as_ref().unwrap().tradeoffs.clone();
+    assert!(!tradeoffs.is_empty());
+    for t in &tradeoffs {
+        for (k, &v) in t.values.iter().enumerate() {
+            let mut f = file.clone();
+            let a = f.joint.get_mut("A").unwrap();
+            match t.parameter.as_str() {
+                "A.sensor1.noise_ppm" => {
+                    a.sensor1.noise.enabled = v > 0.0;
+                    if v > 0.0 {
+                        a.sensor1.noise.sigma_ppm = v;
+                    }
+                }
+                "A.sensor1.noise_tau_s" => a.sensor1.noise.tau_s = v,
+                other => panic!("the test does not set {other}"),
+            }
+            let run = tables_of(&Settings::new(1.0, Bench::Twin(f)), &['A']).unwrap();
+            let all = dlw::calibrate::Metric::all();
+            let values = dlw::calibrate::measure(&run);
+            for (name, recorded) in &t.metrics {
+                let i = all.iter().position(|m| m.name() == *name).unwrap();
+                let measured = values[i].unwrap();
+                eprintln!(
+                    "{} = {v}: {name} {measured} (recorded {})",
+                    t.parameter, recorded[k]
+                );
+                assert!(
+                    (measured / recorded[k] - 1.0).abs() < 1e-6,
+                    "{} = {v}: {name} measured {measured}, recorded {}",
+                    t.parameter,
+                    recorded[k]
+                );
+            }
         }
     }
 }

@@ -244,12 +244,14 @@ impl Calibration {
         })
     }
 
-    /// Step 1: the ideal bench at full size; its Table III sets the agreements.
+    /// Step 1: the ideal bench at full size (five repetitions at the calibration's timings);
+    /// its Table III sets the agreements.
     ///
     /// # Errors
     /// [`CalibrateError::Reproduce`].
     pub fn baseline(&mut self) -> Result<(), CalibrateError> {
-        let settings = Settings::new(1.0, Bench::Ideal);
+        // At the calibration's own timings: the paper's (1) unless a test shrinks them.
+        let settings = Settings::new(self.options.duration_scale, Bench::Ideal);
         let values = measure(&tables(&settings)?);
         self.agreements = metrics()
             .into_iter()
@@ -531,6 +533,26 @@ impl Calibration {
                 })
                 .map(|(m, c)| (m.name(), *c))
                 .collect(),
+            ranges: self
+                .space
+                .parameters
+                .iter()
+                .map(|p| {
+                    let range = crate::reproduce::Range {
+                        ideal: p.ideal,
+                        lo: p.lo,
+                        hi: p.hi,
+                        log: p.log,
+                    };
+                    (p.name(), range)
+                })
+                .collect(),
+            agreements: self
+                .agreements
+                .iter()
+                .map(|a| (a.metric.name(), a.max_relative))
+                .collect(),
+            tradeoffs: Vec::new(),
         });
         file
     }

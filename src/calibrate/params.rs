@@ -532,4 +532,37 @@ mod tests {
         let err = space.point(&far).unwrap_err();
         assert!(err.contains("20000") && err.contains("10000"), "{err}");
     }
+
+    /// The shipped twin records, for every parameter of the space, the ideal value and bounds
+    /// the space has, and a Table III agreement for every Table III metric: what the
+    /// reproduction's report measures moves and agreement against.
+    #[test]
+    fn the_shipped_twin_records_the_spaces_ranges_and_table_iii_agreements() {
+        let crate::reproduce::Bench::Twin(file) = crate::reproduce::Bench::paper().unwrap() else {
+            panic!("not a twin")
+        };
+        let cal = file.calibration.unwrap();
+        let space = Space::paper();
+        assert_eq!(cal.ranges.len(), space.len());
+        for p in &space.parameters {
+            let r = cal.ranges[&p.name()];
+            assert_eq!(
+                (r.ideal, r.lo, r.hi, r.log),
+                (p.ideal, p.lo, p.hi, p.log),
+                "{}",
+                p.name()
+            );
+            approx::assert_relative_eq!(r.unit(r.ideal), p.unit(p.ideal), epsilon = 1e-12);
+            assert!(cal.parameters.contains_key(&p.name()), "{}", p.name());
+        }
+        let names: Vec<String> = super::super::Metric::table3()
+            .into_iter()
+            .map(|m| m.name())
+            .collect();
+        assert_eq!(cal.agreements.keys().cloned().collect::<Vec<_>>(), {
+            let mut n = names;
+            n.sort();
+            n
+        });
+    }
 }

@@ -1,4 +1,5 @@
-//! `dlw reproduce -o DIR [--duration-scale F | --short] [--ideal | --twin | --bench FILE] [--json]`.
+//! `dlw reproduce -o DIR [--duration-scale F | --short] [--ideal | --twin | --bench FILE] [--seed N]
+//! [--json]`.
 
 use super::written::Written;
 use std::io::IsTerminal;
@@ -32,6 +33,10 @@ pub struct Args {
     /// shipped twin.
     #[arg(long)]
     bench: Option<PathBuf>,
+    /// Draw every simulation's noise from another seed (0, the default, is the one every
+    /// shipped number was measured with): a second run of the same bench.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -41,14 +46,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, true) => Bench::Ideal,
         (None, false) => Bench::paper()?,
     };
-    let settings = Settings::new(
-        if args.short {
-            SHORT_SCALE
-        } else {
-            args.duration_scale.unwrap_or(1.0)
-        },
-        bench,
-    );
+    let settings = Settings {
+        seed: args.seed,
+        ..Settings::new(
+            if args.short {
+                SHORT_SCALE
+            } else {
+                args.duration_scale.unwrap_or(1.0)
+            },
+            bench,
+        )
+    };
     let inputs: Vec<&PathBuf> = args.bench.iter().collect();
     args.out.claim_folder(inputs)?;
     let bar = if std::io::stderr().is_terminal() {

@@ -41,6 +41,94 @@ fn patterns_section(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
     page.table(t);
 }
 
+/// The run's numbers against the paper's, each with its limit, the finding on those outside,
+/// and what the calibration moved.
+fn agreement_section(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
+    let checks = r.checks();
+    page.heading(at.titled("Agreement with the paper's numbers"));
+    let mut t = Table::new(["number", "paper", "dlw", "off", "limit", "within"]);
+    for c in &checks {
+        t.row([
+            c.what.clone(),
+            c.show(c.paper),
+            c.dlw.map_or("–".into(), |v| c.show(v)),
+            c.relative
+                .map_or("–".into(), |x| format!("{:+.1} %", 100.0 * x)),
+            format!("±{:.1} %", 100.0 * c.limit),
+            if c.outside { "NO" } else { "yes" }.to_owned(),
+        ]);
+    }
+    page.table(t);
+    let limits = match &r.settings.bench {
+        super::Bench::Twin(f)
+            if f.calibration
+                .as_ref()
+                .is_some_and(|c| !c.agreements.is_empty()) =>
+        {
+            format!(
+                "Tables IV-VI must lie within {:.0} % of the paper's (the issue's acceptance); \
+                 each Table III number within the distance from the paper the bench file's \
+                 calibration allowed (the ideal bench's at full size and a slack).",
+                100.0 * super::HEADLINE_TOLERANCE
+            )
+        }
+        _ => {
+            format!(
+                "Tables IV-VI must lie within {:.0} % of the paper's (the issue's acceptance); \
+                 this bench records no Table III agreements, so Table III is not checked here.",
+                100.0 * super::HEADLINE_TOLERANCE
+            )
+        }
+    };
+    let short = if r.settings.duration_scale < 1.0 {
+        " This run is shortened: the limits are for full-size numbers."
+    } else {
+        ""
+    };
+    page.text(format!("{limits}{short} {}", r.finding()));
+    let moved = super::moved(&r.settings.bench);
+    if moved.is_empty() {
+        return;
+    }
+    page.heading(at.titled("What the calibration moved"));
+    let mut t = Table::new(["parameter", "ideal bench", "this bench", "bounds", "moved"]);
+    let show = super::agreement::show_value;
+    for m in &moved {
+        t.row([
+            m.name.clone(),
+            m.ideal.map_or("–".into(), show),
+            show(m.twin),
+            m.bounds.map_or("–".into(), |[lo, hi]| {
+                format!("{} to {}", show(lo), show(hi))
+            }),
+            m.moved_share.map_or("–".into(), |x| {
+                format!("{:+.0} % of its range", 100.0 * x)
+            }),
+        ]);
+    }
+    page.table(t);
+    let (went, stayed) = super::agreement::split_moved(&moved);
+    page.text(format!(
+        "The calibration moved {} of {} parameters from the ideal bench, the largest move \
+         first (a correlation time's move is a share of its range on a log scale, as the search \
+         moved it){}.",
+        went.len(),
+        moved.len(),
+        if stayed.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; at the ideal bench's value: {}",
+                stayed
+                    .iter()
+                    .map(|m| m.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }
+    ));
+}
+
 /// The report of a reproduction on a page of its own.
 pub fn page(r: &Reproduction) -> Page {
     let mut page = Page::new("The paper's Section IV reproduced on the simulator (dlw reproduce)");
@@ -77,11 +165,19 @@ pub(super) fn add_sections(page: &mut Page, r: &Reproduction, at: Placement<'_>)
     page.text(format!(
         "Every experiment of Section IV runs here on dlw's bench simulator instead of the bench: \
          {bench}. The protocols are the paper's, {} repetitions each, with every timing times \
-         {scale} ({} s characterization, {} s of each other protocol). Each table says where and \
-         why the two differ.",
+         {scale} ({} s characterization, {} s of each other protocol){}. Each table says where \
+         and why the two differ.",
         r.settings.repeats,
         (10.0 + 200.0 * f64::from(r.settings.repeats)) * scale,
-        (10.0 + 600.0 * f64::from(r.settings.repeats)) * scale
+        (10.0 + 600.0 * f64::from(r.settings.repeats)) * scale,
+        if r.settings.seed == 0 {
+            String::new()
+        } else {
+            format!(
+                ", with the noise of seed {} (--seed; the shipped numbers are seed 0's)",
+                r.settings.seed
+            )
+        }
     ));
     if scale < 1.0 {
         page.text(format!(
@@ -91,6 +187,7 @@ pub(super) fn add_sections(page: &mut Page, r: &Reproduction, at: Placement<'_>)
         ));
     }
     patterns_section(page, r, at);
+    agreement_section(page, r, at);
     table_iii(page, r, at);
     rate(page, r, at);
     relaxation(page, r, at);

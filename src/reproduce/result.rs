@@ -6,7 +6,7 @@ use std::path::Path;
 
 use serde::{Serialize, Serializer};
 
-use super::{patterns, report, Reproduction};
+use super::{agreement, patterns, report, Reproduction};
 use crate::analysis::{Analysis, Placement};
 use crate::characterize::EstimationRun;
 use crate::control::SchemeMetrics;
@@ -18,13 +18,50 @@ use crate::report::{Page, PAGE_FILE};
 struct Json<'a> {
     duration_scale: f64,
     bench: &'static str,
+    seed: u64,
     patterns: Vec<patterns::Pattern>,
+    agreement: AgreementJson,
+    /// The calibration's parameters, each with its move from the ideal bench (empty for the
+    /// ideal bench).
+    moved: Vec<agreement::Moved>,
     seconds: f64,
     joints: Vec<JointNumbers<'a>>,
     control_open_loop: SchemeMetrics,
     control_closed_loop: SchemeMetrics,
     #[serde(skip_serializing_if = "Option::is_none")]
     report: Option<&'a Path>,
+}
+
+/// Every checked number against the paper's, the names of those outside, and the finding.
+#[derive(Serialize)]
+struct AgreementJson {
+    checks: Vec<agreement::Check>,
+    outside: Vec<String>,
+    finding: String,
+}
+
+impl Reproduction {
+    /// The run's numbers against the paper's, each with its limit ([`agreement::checks`]).
+    pub fn checks(&self) -> Vec<agreement::Check> {
+        agreement::checks(self)
+    }
+
+    /// The sentence on the numbers outside their agreement ([`agreement::finding`]), with the
+    /// bench file's measured trade-offs.
+    pub fn finding(&self) -> String {
+        agreement::finding(&self.checks(), self.tradeoffs())
+    }
+
+    /// The trade-offs the bench file records (none for the ideal bench).
+    pub fn tradeoffs(&self) -> &[super::Tradeoff] {
+        match &self.settings.bench {
+            super::Bench::Twin(file) => file
+                .calibration
+                .as_ref()
+                .map_or(&[], |c| c.tradeoffs.as_slice()),
+            super::Bench::Ideal => &[],
+        }
+    }
 }
 
 /// One of Joints A-C: its sensor 1's fit, rate and relaxation numbers, and every estimation run.
@@ -48,10 +85,22 @@ impl Serialize for Reproduction {
     /// The tables' numbers, not every trace.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let [open, closed] = self.control.run.metrics;
+        let checks = self.checks();
         Json {
             duration_scale: self.settings.duration_scale,
             bench: self.settings.bench.name(),
+            seed: self.settings.seed,
             patterns: patterns::patterns(self),
+            agreement: AgreementJson {
+                outside: checks
+                    .iter()
+                    .filter(|c| c.outside)
+                    .map(|c| c.name.clone())
+                    .collect(),
+                finding: self.finding(),
+                checks,
+            },
+            moved: agreement::moved(&self.settings.bench),
             seconds: self.seconds,
             joints: self
                 .joints
@@ -135,6 +184,11 @@ impl Analysis for Reproduction {
             }
         }
         let _ = writeln!(out, "{}", patterns::tally(&list));
+        let _ = writeln!(out, "{}", self.finding());
+        let moved = agreement::moved(&self.settings.bench);
+        if !moved.is_empty() {
+            let _ = writeln!(out, "{}", agreement::moved_text(&moved));
+        }
         match &self.report {
             Some(report) => {
                 let _ = writeln!(out, "report {} ({:.1} s)", report.display(), self.seconds);

@@ -88,6 +88,62 @@ pub struct Provenance {
     /// (`dlw explore`'s predicted accuracy).
     #[serde(default)]
     pub corrections: BTreeMap<String, f64>,
+    /// Per calibrated parameter, the ideal bench's value and the bounds the search kept to:
+    /// what the report measures each parameter's move against.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub ranges: BTreeMap<String, Range>,
+    /// Per Table III number (`table3.A.m_c`), the largest relative distance from the paper the
+    /// calibration allowed: the ideal bench's at full size plus a slack (its "current
+    /// agreement"). The report checks the run's Table III against them.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub agreements: BTreeMap<String, f64>,
+    /// Trade-offs measured at the shipped point: one parameter moved, every other held, each
+    /// value's full-size numbers. The report reads the reason a number stays outside its
+    /// agreement from them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tradeoffs: Vec<Tradeoff>,
+}
+
+/// A calibrated parameter's ideal value and bounds.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Range {
+    /// The ideal bench's value.
+    pub ideal: f64,
+    /// Lower bound.
+    pub lo: f64,
+    /// Upper bound.
+    pub hi: f64,
+    /// Whether the search moved it on a log scale (a correlation time): its move is then a
+    /// share of `ln(hi/lo)`.
+    #[serde(default)]
+    pub log: bool,
+}
+
+impl Range {
+    /// `value`'s place in the range, 0 at `lo` and 1 at `hi` (on a log scale when `log`).
+    pub fn unit(&self, value: f64) -> f64 {
+        if self.log && self.lo > 0.0 && value > 0.0 {
+            (value / self.lo).ln() / (self.hi / self.lo).ln()
+        } else {
+            (value - self.lo) / (self.hi - self.lo)
+        }
+    }
+}
+
+/// One parameter of a bench moved through `values` with every other at the shipped point, and
+/// what full-size runs measured at each (`metrics`, by name: `table3.A.m_c`, `table4.A.pi`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tradeoff {
+    /// The parameter, by its calibration name (`A.sensor1.noise_tau_s`).
+    pub parameter: String,
+    /// How the numbers were measured (the command, the size, the seed).
+    pub measured: String,
+    /// The parameter's values.
+    pub values: Vec<f64>,
+    /// Per metric, its value at each of `values`.
+    pub metrics: BTreeMap<String, Vec<f64>>,
 }
 
 /// A bench file: one scenario per joint.
