@@ -320,6 +320,117 @@ impl CopyNoise {
 /// Samples drawn and dropped before a copy's noise starts.
 pub const BURN_IN: usize = 2000;
 
+/// The slow wander of the copies (issue 31): a surrogate of the recording's own slow residual,
+/// with its amplitude spectrum and random phases (Theiler et al. 1992, "Testing for
+/// nonlinearity in time series: the method of surrogate data"). The AR model of [`CopyNoise`]
+/// has a window of seconds ([`super::CORRELATION_WINDOW_S`]) and cannot carry wander over
+/// minutes; without it the copies of a recording whose baseline wanders (the third generator's
+/// random-walk drift, its near-1/f noise) never show what a wander does to the candidates (a
+/// wander is fitted, by chance, by a line in time or a sensitivity changing in time: Granger &
+/// Newbold's spurious regression), and a name was given for the wander (`gain_drift` for a
+/// random-walk drift, `creep` for a gain cycling in time).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Wander {
+    /// The time of the first moving sample (s).
+    start_s: f64,
+    /// The length the spectrum was taken over (s).
+    period_s: f64,
+    /// The amplitude of the `k`-th harmonic of `period_s`, `k` from 1.
+    amplitudes: Vec<f64>,
+}
+
+/// Spacing (s) of the grid the slow residual's spectrum is taken on.
+const WANDER_GRID_S: f64 = 1.0;
+
+impl Wander {
+    /// The spectrum of `slow` (the smooth baseline in time of the fuller model's residual,
+    /// [`without_slow_baseline`]'s fit) over the `moving` samples, on a grid of
+    /// [`WANDER_GRID_S`], less the line joining its ends (a line in time is a drift the library
+    /// names, and the surrogate wraps around), at periods down to half [`TIME_KNOT_S`] (the
+    /// spline has nothing faster).
+    pub fn fit(slow: &[f64], data: &Data, moving: &[bool]) -> Self {
+        let rows: Vec<usize> = (0..slow.len()).filter(|&i| moving[i]).collect();
+        let (Some(&first), Some(&last)) = (rows.first(), rows.last()) else {
+            return Self::none();
+        };
+        let (lo, hi) = (data.time_s[first], data.time_s[last]);
+        let n = ((hi - lo) / WANDER_GRID_S).floor() as usize;
+        if n < 8 {
+            return Self::none();
+        }
+        let at = |t: f64| -> f64 {
+            let k = rows
+                .partition_point(|&i| data.time_s[i] < t)
+                .min(rows.len() - 1);
+            slow[rows[k]]
+        };
+        let grid: Vec<f64> = (0..n).map(|j| at(lo + j as f64 * WANDER_GRID_S)).collect();
+        let (y0, y1) = (grid[0], grid[n - 1]);
+        let y: Vec<f64> = grid
+            .iter()
+            .enumerate()
+            .map(|(j, v)| v - (y0 + (y1 - y0) * j as f64 / (n - 1) as f64))
+            .collect();
+        let period_s = n as f64 * WANDER_GRID_S;
+        let harmonics = ((period_s / (0.5 * TIME_KNOT_S)).floor() as usize).clamp(1, n / 2);
+        let amplitudes = (1..=harmonics)
+            .map(|k| {
+                let (mut re, mut im) = (0.0, 0.0);
+                for (j, v) in y.iter().enumerate() {
+                    let phase = std::f64::consts::TAU * (k * j) as f64 / n as f64;
+                    re += v * phase.cos();
+                    im -= v * phase.sin();
+                }
+                let a = 2.0 * (re * re + im * im).sqrt() / n as f64;
+                if a.is_finite() {
+                    a
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        Self {
+            start_s: lo,
+            period_s,
+            amplitudes,
+        }
+    }
+
+    /// No wander.
+    fn none() -> Self {
+        Self {
+            start_s: 0.0,
+            period_s: 1.0,
+            amplitudes: Vec::new(),
+        }
+    }
+
+    /// A surrogate over `data`'s samples: the harmonics with random phases.
+    pub fn simulate(&self, data: &Data, rng: &mut ChaCha8Rng) -> Vec<f64> {
+        let phases: Vec<f64> = self
+            .amplitudes
+            .iter()
+            .map(|_| {
+                // Uniform on [0, 2π): the top 53 bits of a draw.
+                std::f64::consts::TAU * (rand_core::RngCore::next_u64(rng) >> 11) as f64
+                    / (1u64 << 53) as f64
+            })
+            .collect();
+        data.time_s
+            .iter()
+            .map(|t| {
+                let u = std::f64::consts::TAU * (t - self.start_s) / self.period_s;
+                self.amplitudes
+                    .iter()
+                    .zip(&phases)
+                    .enumerate()
+                    .map(|(k, (a, p))| a * ((k + 1) as f64 * u + p).cos())
+                    .sum::<f64>()
+            })
+            .collect()
+    }
+}
+
 /// A target of the channel's regressions, whitened by the channel's frozen noise model: over
 /// the training recording and, with a holdout, over the holdout.
 #[derive(Debug, Clone)]
@@ -533,8 +644,13 @@ impl StageSearch<'_, '_> {
         let full_design = fuller.design(&s.data, &s.inputs.0);
         let full = fit(&full_design, noise, &s.train)?;
         let moving = s.data.moving();
-        let residual = without_slow_baseline(&full.residual(&full_design), &s.data, &moving);
+        let raw = full.residual(&full_design);
+        let residual = without_slow_baseline(&raw, &s.data, &moving);
         let copy_noise = CopyNoise::fit(&residual, &moving, s.lags);
+        // The slow wander the fuller model leaves: taken out of the AR fit (whose window is
+        // seconds), and put back into every copy as a random walk of the same diffusion.
+        let slow: Vec<f64> = raw.iter().zip(&residual).map(|(r, f)| r - f).collect();
+        let wander = Wander::fit(&slow, &s.data, &moving);
         let seed = seed ^ channel_seed(self.channel);
         Some(
             (first..first + count)
@@ -542,12 +658,20 @@ impl StageSearch<'_, '_> {
                 .map(|k| {
                     let mut rng = ChaCha8Rng::seed_from_u64(seed);
                     rng.set_stream(k as u64);
-                    let mut draw = |mean: &[f64]| -> Vec<f64> {
+                    let mut draw = |mean: &[f64], data: &Data| -> Vec<f64> {
                         let e = copy_noise.simulate(mean.len(), &mut rng);
-                        noise.whiten(&mean.iter().zip(&e).map(|(m, e)| m + e).collect::<Vec<_>>())
+                        let w = wander.simulate(data, &mut rng);
+                        noise.whiten(
+                            &mean
+                                .iter()
+                                .zip(&e)
+                                .zip(&w)
+                                .map(|((m, e), w)| m + e + w)
+                                .collect::<Vec<_>>(),
+                        )
                     };
-                    let white = draw(&predicted);
-                    let white_test = predicted_test.as_deref().map(&mut draw);
+                    let white = draw(&predicted, &s.data);
+                    let white_test = predicted_test.as_deref().map(|p| draw(p, &s.test_data));
                     Target { white, white_test }
                 })
                 .collect(),
