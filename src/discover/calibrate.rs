@@ -907,6 +907,67 @@ mod tests {
         assert!(!Calibration::of(SCREEN_NATS - 1.0, tiny, SCREEN_NATS).passed);
     }
 
+    /// A 300 s recording's time base at 25 Hz, moving after a 10 s rest.
+    fn wander_data(n: usize) -> (Data, Vec<bool>) {
+        let dt = 0.04;
+        let data = Data {
+            time_s: (0..n).map(|i| i as f64 * dt).collect(),
+            stroke_mm: vec![0.0; n],
+            angle_deg: vec![0.0; n],
+            strain: vec![0.0; n],
+            ohm: vec![],
+            rest: 250,
+            measured: vec![true; n],
+            dt_s: dt,
+        };
+        let moving = data.moving();
+        (data, moving)
+    }
+
+    /// The copies' wander: a line in time (a drift the library names) gives none; a slow
+    /// sinusoid gives surrogates of the same amplitude at random phases.
+    #[test]
+    fn wander_keeps_the_slow_residuals_spectrum_and_leaves_lines_alone() {
+        let (data, moving) = wander_data(7500);
+        let line: Vec<f64> = data.time_s.iter().map(|t| 3.0 + 0.2 * t).collect();
+        let w = Wander::fit(&line, &data, &moving);
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let sim = w.simulate(&data, &mut rng);
+        assert!(sim.iter().all(|v| v.abs() < 1e-6), "a line wanders: {w:?}");
+        let lo = data.time_s[data.rest];
+        let hi = data.time_s[data.len() - 1];
+        // Two whole periods over the motion: the ends meet, so the line between them is flat.
+        let cycle: Vec<f64> = data
+            .time_s
+            .iter()
+            .map(|t| 5.0 * (std::f64::consts::TAU * 2.0 * (t - lo) / (hi - lo)).sin())
+            .collect();
+        let w = Wander::fit(&cycle, &data, &moving);
+        let rms = |v: &[f64]| {
+            let m: Vec<f64> = (data.rest..v.len()).map(|i| v[i]).collect();
+            (m.iter().map(|x| x * x).sum::<f64>() / m.len() as f64).sqrt()
+        };
+        let a = rng_copy(&w, &data, 2);
+        let b = rng_copy(&w, &data, 3);
+        let want = 5.0 / 2f64.sqrt();
+        for copy in [&a, &b] {
+            assert!(
+                (rms(copy) / want - 1.0).abs() < 0.1,
+                "rms {} against {want}",
+                rms(copy)
+            );
+        }
+        assert!(
+            a.iter().zip(&b).any(|(x, y)| (x - y).abs() > 1.0),
+            "the phases are random"
+        );
+    }
+
+    fn rng_copy(w: &Wander, data: &Data, seed: u64) -> Vec<f64> {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        w.simulate(data, &mut rng)
+    }
+
     /// An AR(1) residual is recovered by the copies' noise model, and its simulation has the
     /// same lag-one correlation and spread.
     #[test]

@@ -140,7 +140,8 @@ impl StageSearch<'_, '_> {
             match self.settle(a, &settle, &excluded) {
                 Some(pick) => match self.against_time_all(pick, &scored, round) {
                     Ok(pick) => return pick,
-                    Err((c, t)) => {
+                    Err(refusal) => {
+                        let (c, t) = *refusal;
                         excluded.push(a.effect);
                         excluded.push(c.effect);
                         refused.get_or_insert((c, t));
@@ -168,7 +169,8 @@ impl StageSearch<'_, '_> {
         });
         match self.against_time_all(ambiguity, &scored, round) {
             Ok(pick) => pick,
-            Err((c, t)) => {
+            Err(refusal) => {
+                let (c, t) = *refusal;
                 let calibration =
                     Calibration::of(observed_of(c.effect), null.null.clone(), SCREEN_NATS);
                 Pick::Declined(c, calibration, Some(t))
@@ -179,16 +181,16 @@ impl StageSearch<'_, '_> {
     /// A verdict's names against a smooth change in time ([`super::time_rival`]): a name
     /// about to be given keeps its test, or is refused; an ambiguity whose every contender a
     /// change in time imitates, and refuses, is refused. `Err` holds the first refused
-    /// candidate and its test.
+    /// candidate and its test (boxed: it is large).
     fn against_time_all(
         &self,
         pick: Pick,
         scored: &[Candidate],
         round: usize,
-    ) -> Result<Pick, (Candidate, TimeRivalry)> {
+    ) -> Result<Pick, Box<(Candidate, TimeRivalry)>> {
         match pick {
             Pick::Clear(c, runner, Some(mut calibrated)) => match self.against_time(&c, round) {
-                Some(t) if t.refuses() => Err((c, t)),
+                Some(t) if t.refuses() => Err(Box::new((c, t))),
                 t => {
                     calibrated.time = t;
                     Ok(Pick::Clear(c, runner, Some(calibrated)))
@@ -210,7 +212,7 @@ impl StageSearch<'_, '_> {
                         _ => return Ok(Pick::Ambiguous(a)),
                     }
                 }
-                first.map_or(Ok(Pick::Ambiguous(a.clone())), Err)
+                first.map_or(Ok(Pick::Ambiguous(a.clone())), |f| Err(Box::new(f)))
             }
             pick => Ok(pick),
         }
