@@ -51,6 +51,7 @@ use super::data::Data;
 use super::model::{correlation_time_white, fit, Stage, StageModel};
 use super::search::StageSearch;
 use super::terms::{Effect, Term};
+use super::time_rival::TIME_RIVALS;
 use super::unexplained::{time_splines, MIN_TIME_INTERVALS, TIME_KNOT_S};
 
 /// Copies of the bootstrap: at least 20, as the issue asks.
@@ -407,25 +408,31 @@ impl Wander {
 
     /// A surrogate over `data`'s samples: the harmonics with random phases.
     pub fn simulate(&self, data: &Data, rng: &mut ChaCha8Rng) -> Vec<f64> {
-        let phases: Vec<f64> = self
+        // Each harmonic as a complex coefficient `a·e^(iφ)`, φ uniform on [0, 2π) (the top 53
+        // bits of a draw).
+        let coefficients: Vec<(f64, f64)> = self
             .amplitudes
             .iter()
-            .map(|_| {
-                // Uniform on [0, 2π): the top 53 bits of a draw.
-                std::f64::consts::TAU * (rand_core::RngCore::next_u64(rng) >> 11) as f64
-                    / (1u64 << 53) as f64
+            .map(|a| {
+                let phase = std::f64::consts::TAU
+                    * (rand_core::RngCore::next_u64(rng) >> 11) as f64
+                    / (1u64 << 53) as f64;
+                (a * phase.cos(), a * phase.sin())
             })
             .collect();
         data.time_s
             .iter()
             .map(|t| {
+                // Σ_k c_k·z^k with z = e^(iu), by Horner's rule: one sine and cosine per sample.
                 let u = std::f64::consts::TAU * (t - self.start_s) / self.period_s;
-                self.amplitudes
-                    .iter()
-                    .zip(&phases)
-                    .enumerate()
-                    .map(|(k, (a, p))| a * ((k + 1) as f64 * u + p).cos())
-                    .sum::<f64>()
+                let (zr, zi) = (u.cos(), u.sin());
+                let (mut re, mut im) = (0.0, 0.0);
+                for (cr, ci) in coefficients.iter().rev() {
+                    let (r, i) = (re + cr, im + ci);
+                    re = r * zr - i * zi;
+                    im = r * zi + i * zr;
+                }
+                re
             })
             .collect()
     }
@@ -648,9 +655,21 @@ impl StageSearch<'_, '_> {
         let residual = without_slow_baseline(&raw, &s.data, &moving);
         let copy_noise = CopyNoise::fit(&residual, &moving, s.lags);
         // The slow wander the fuller model leaves: taken out of the AR fit (whose window is
-        // seconds), and put back into every copy as a random walk of the same diffusion.
-        let slow: Vec<f64> = raw.iter().zip(&residual).map(|(r, f)| r - f).collect();
-        let wander = Wander::fit(&slow, &s.data, &moving);
+        // seconds), and put back into every copy as a surrogate, when the effect tested is
+        // one a wander imitates (a name outside that family gains nothing from a wander, but
+        // the copies' largest evidence, over every candidate, would: the wander's, by
+        // `drift` or `gain_drift`, and the name would be held to it).
+        let tested_wanders = fuller
+            .terms
+            .iter()
+            .filter(|t| !world.terms.contains(t))
+            .any(|t| TIME_RIVALS.contains(&t.effect()));
+        let wander = if tested_wanders {
+            let slow: Vec<f64> = raw.iter().zip(&residual).map(|(r, f)| r - f).collect();
+            Wander::fit(&slow, &s.data, &moving)
+        } else {
+            Wander::none()
+        };
         let seed = seed ^ channel_seed(self.channel);
         Some(
             (first..first + count)

@@ -111,7 +111,11 @@ impl StageSearch<'_, '_> {
                 verdict: Verdict::Named,
             });
         }
-        let time_beyond = self.time_beyond(a, round)?;
+        // The spline after the name as it would be written: its shape refined, so that what
+        // the spline finds beyond it is not the grid's coarseness (a warm-up drift between
+        // the settling grid's time constants left a smooth misfit, and was refused).
+        let refined = self.refine(a.clone());
+        let time_beyond = self.time_beyond(&refined, round)?;
         let verdict = if time_beyond.passed {
             Verdict::Rival
         } else {
