@@ -94,9 +94,17 @@ impl StageSearch<'_, '_> {
                 .position(|(g, _)| *g == e)
                 .map_or(f64::NAN, |i| row[i])
         };
+        // The fuller model whose residual the copies' noise (and, for a name a wander
+        // imitates, their wander) is fitted to: with the top's shape refined when it is one a
+        // wander imitates, so that its grid's coarseness is not taken for a wander.
+        let fuller_term = if TIME_RIVALS.contains(&top.effect) {
+            self.refine(top.clone()).term
+        } else {
+            top.term.clone()
+        };
         let null = self.bootstrap(
             &self.model,
-            &self.model.with(top.term.clone()),
+            &self.model.with(fuller_term),
             &groups.iter().map(|(_, g)| g.clone()).collect::<Vec<_>>(),
             observed_of(top.effect),
             SCREEN_NATS,
