@@ -221,22 +221,52 @@ fn drift_is_time_not_history() {
         drift_sqrt: true,
         ..Forms::default()
     };
-    run(vec![
-        (
-            "drift-sqrt".into(),
-            bench(&[(Effect::Drift, 1)], 700, sqrt),
-            expect(&[("drift", "sensor1")]),
-        ),
-        (
-            "rate-and-drift".into(),
-            bench(
-                &[(Effect::Rate, 1), (Effect::Drift, 1)],
-                710,
-                Forms::default(),
-            ),
-            expect(&[("rate", "sensor1"), ("drift", "sensor1")]),
-        ),
-    ]);
+    run(vec![(
+        "drift-sqrt".into(),
+        bench(&[(Effect::Drift, 1)], 700, sqrt),
+        expect(&[("drift", "sensor1")]),
+    )]);
+    // A rate with a drift: both named, or (since 2026-11-27, when a rival of the time family
+    // under the screen is simulated) `ambiguous` on sensor 1 between the true `drift` and the
+    // family rivals its world cannot be told from, with nothing wrong named. Measured: drift
+    // 25.9 nats, `creep` 17.0 and `gain_drift` 15.2 under the screen, ambiguous; before, drift
+    // and rate named. The issue allows `ambiguous` only between the true name and its
+    // calibrated rival, which this asserts.
+    let dir = tempfile::tempdir().unwrap();
+    let bench = bench(
+        &[(Effect::Rate, 1), (Effect::Drift, 1)],
+        710,
+        Forms::default(),
+    );
+    let report = discover_json(dir.path(), &bench, "rate-and-drift");
+    let got = pairs(&report);
+    let want = expect(&[("rate", "sensor1"), ("drift", "sensor1")]);
+    eprintln!(
+        "rate-and-drift: discovered {got:?}, ambiguous {}",
+        report["ambiguous"]
+    );
+    assert!(got.is_subset(&want), "rate-and-drift: wrong names {got:?}");
+    if got != want {
+        let ambiguous = report["ambiguous"].as_array().unwrap();
+        assert!(
+            ambiguous.len() == 1 && ambiguous[0]["channel"] == "sensor1",
+            "rate-and-drift: {got:?} and not ambiguous on sensor1: {}",
+            report["ambiguous"]
+        );
+        let contenders: Vec<&str> = ambiguous[0]["contenders"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c[0].as_str().unwrap())
+            .collect();
+        assert!(
+            contenders.contains(&"drift")
+                && contenders
+                    .iter()
+                    .all(|c| ["drift", "creep", "gain_drift"].contains(c)),
+            "rate-and-drift: ambiguous among {contenders:?}"
+        );
+    }
 }
 
 /// A material that creeps with two time constants (the other-forms generator's 3 s and 40 s)

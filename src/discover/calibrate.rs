@@ -51,6 +51,7 @@ use super::data::Data;
 use super::model::{correlation_time_white, fit, Stage, StageModel};
 use super::search::StageSearch;
 use super::terms::{Effect, Term};
+use super::time_rival::TIME_RIVALS;
 use super::unexplained::{time_splines, MIN_TIME_INTERVALS, TIME_KNOT_S};
 
 /// Copies of the bootstrap: at least 20, as the issue asks.
@@ -320,6 +321,123 @@ impl CopyNoise {
 /// Samples drawn and dropped before a copy's noise starts.
 pub const BURN_IN: usize = 2000;
 
+/// The slow wander of the copies (issue 31): a surrogate of the recording's own slow residual,
+/// with its amplitude spectrum and random phases (Theiler et al. 1992, "Testing for
+/// nonlinearity in time series: the method of surrogate data"). The AR model of [`CopyNoise`]
+/// has a window of seconds ([`super::CORRELATION_WINDOW_S`]) and cannot carry wander over
+/// minutes; without it the copies of a recording whose baseline wanders (the third generator's
+/// random-walk drift, its near-1/f noise) never show what a wander does to the candidates (a
+/// wander is fitted, by chance, by a line in time or a sensitivity changing in time: Granger &
+/// Newbold's spurious regression), and a name was given for the wander (`gain_drift` for a
+/// random-walk drift, `creep` for a gain cycling in time).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Wander {
+    /// The time of the first moving sample (s).
+    start_s: f64,
+    /// The length the spectrum was taken over (s).
+    period_s: f64,
+    /// The amplitude of the `k`-th harmonic of `period_s`, `k` from 1.
+    amplitudes: Vec<f64>,
+}
+
+/// Spacing (s) of the grid the slow residual's spectrum is taken on.
+const WANDER_GRID_S: f64 = 1.0;
+
+impl Wander {
+    /// The spectrum of `slow` (the smooth baseline in time of the fuller model's residual,
+    /// [`without_slow_baseline`]'s fit) over the `moving` samples, on a grid of
+    /// [`WANDER_GRID_S`], less the line joining its ends (a line in time is a drift the library
+    /// names, and the surrogate wraps around), at periods down to half [`TIME_KNOT_S`] (the
+    /// spline has nothing faster).
+    pub fn fit(slow: &[f64], data: &Data, moving: &[bool]) -> Self {
+        let rows: Vec<usize> = (0..slow.len()).filter(|&i| moving[i]).collect();
+        let (Some(&first), Some(&last)) = (rows.first(), rows.last()) else {
+            return Self::none();
+        };
+        let (lo, hi) = (data.time_s[first], data.time_s[last]);
+        let n = ((hi - lo) / WANDER_GRID_S).floor() as usize;
+        if n < 8 {
+            return Self::none();
+        }
+        let at = |t: f64| -> f64 {
+            let k = rows
+                .partition_point(|&i| data.time_s[i] < t)
+                .min(rows.len() - 1);
+            slow[rows[k]]
+        };
+        let grid: Vec<f64> = (0..n).map(|j| at(lo + j as f64 * WANDER_GRID_S)).collect();
+        let (y0, y1) = (grid[0], grid[n - 1]);
+        let y: Vec<f64> = grid
+            .iter()
+            .enumerate()
+            .map(|(j, v)| v - (y0 + (y1 - y0) * j as f64 / (n - 1) as f64))
+            .collect();
+        let period_s = n as f64 * WANDER_GRID_S;
+        let harmonics = ((period_s / (0.5 * TIME_KNOT_S)).floor() as usize).clamp(1, n / 2);
+        let amplitudes = (1..=harmonics)
+            .map(|k| {
+                let (mut re, mut im) = (0.0, 0.0);
+                for (j, v) in y.iter().enumerate() {
+                    let phase = std::f64::consts::TAU * (k * j) as f64 / n as f64;
+                    re += v * phase.cos();
+                    im -= v * phase.sin();
+                }
+                let a = 2.0 * (re * re + im * im).sqrt() / n as f64;
+                if a.is_finite() {
+                    a
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        Self {
+            start_s: lo,
+            period_s,
+            amplitudes,
+        }
+    }
+
+    /// No wander.
+    fn none() -> Self {
+        Self {
+            start_s: 0.0,
+            period_s: 1.0,
+            amplitudes: Vec::new(),
+        }
+    }
+
+    /// A surrogate over `data`'s samples: the harmonics with random phases.
+    pub fn simulate(&self, data: &Data, rng: &mut ChaCha8Rng) -> Vec<f64> {
+        // Each harmonic as a complex coefficient `a·e^(iφ)`, φ uniform on [0, 2π) (the top 53
+        // bits of a draw).
+        let coefficients: Vec<(f64, f64)> = self
+            .amplitudes
+            .iter()
+            .map(|a| {
+                let phase = std::f64::consts::TAU
+                    * (rand_core::RngCore::next_u64(rng) >> 11) as f64
+                    / (1u64 << 53) as f64;
+                (a * phase.cos(), a * phase.sin())
+            })
+            .collect();
+        data.time_s
+            .iter()
+            .map(|t| {
+                // Σ_k c_k·z^k with z = e^(iu), by Horner's rule: one sine and cosine per sample.
+                let u = std::f64::consts::TAU * (t - self.start_s) / self.period_s;
+                let (zr, zi) = (u.cos(), u.sin());
+                let (mut re, mut im) = (0.0, 0.0);
+                for (cr, ci) in coefficients.iter().rev() {
+                    let (r, i) = (re + cr, im + ci);
+                    re = r * zr - i * zi;
+                    im = r * zi + i * zr;
+                }
+                re
+            })
+            .collect()
+    }
+}
+
 /// A target of the channel's regressions, whitened by the channel's frozen noise model: over
 /// the training recording and, with a holdout, over the holdout.
 #[derive(Debug, Clone)]
@@ -533,8 +651,25 @@ impl StageSearch<'_, '_> {
         let full_design = fuller.design(&s.data, &s.inputs.0);
         let full = fit(&full_design, noise, &s.train)?;
         let moving = s.data.moving();
-        let residual = without_slow_baseline(&full.residual(&full_design), &s.data, &moving);
+        let raw = full.residual(&full_design);
+        let residual = without_slow_baseline(&raw, &s.data, &moving);
         let copy_noise = CopyNoise::fit(&residual, &moving, s.lags);
+        // The slow wander the fuller model leaves: taken out of the AR fit (whose window is
+        // seconds), and put back into every copy as a surrogate, when the effect tested is
+        // one a wander imitates (a name outside that family gains nothing from a wander, but
+        // the copies' largest evidence, over every candidate, would: the wander's, by
+        // `drift` or `gain_drift`, and the name would be held to it).
+        let tested_wanders = fuller
+            .terms
+            .iter()
+            .filter(|t| !world.terms.contains(t))
+            .any(|t| TIME_RIVALS.contains(&t.effect()));
+        let wander = if tested_wanders {
+            let slow: Vec<f64> = raw.iter().zip(&residual).map(|(r, f)| r - f).collect();
+            Wander::fit(&slow, &s.data, &moving)
+        } else {
+            Wander::none()
+        };
         let seed = seed ^ channel_seed(self.channel);
         Some(
             (first..first + count)
@@ -542,12 +677,20 @@ impl StageSearch<'_, '_> {
                 .map(|k| {
                     let mut rng = ChaCha8Rng::seed_from_u64(seed);
                     rng.set_stream(k as u64);
-                    let mut draw = |mean: &[f64]| -> Vec<f64> {
+                    let mut draw = |mean: &[f64], data: &Data| -> Vec<f64> {
                         let e = copy_noise.simulate(mean.len(), &mut rng);
-                        noise.whiten(&mean.iter().zip(&e).map(|(m, e)| m + e).collect::<Vec<_>>())
+                        let w = wander.simulate(data, &mut rng);
+                        noise.whiten(
+                            &mean
+                                .iter()
+                                .zip(&e)
+                                .zip(&w)
+                                .map(|((m, e), w)| m + e + w)
+                                .collect::<Vec<_>>(),
+                        )
                     };
-                    let white = draw(&predicted);
-                    let white_test = predicted_test.as_deref().map(&mut draw);
+                    let white = draw(&predicted, &s.data);
+                    let white_test = predicted_test.as_deref().map(|p| draw(p, &s.test_data));
                     Target { white, white_test }
                 })
                 .collect(),
@@ -781,6 +924,67 @@ mod tests {
         // Below the screen: never named, however far beyond the copies.
         let tiny: Vec<f64> = vec![0.0; COPIES];
         assert!(!Calibration::of(SCREEN_NATS - 1.0, tiny, SCREEN_NATS).passed);
+    }
+
+    /// A 300 s recording's time base at 25 Hz, moving after a 10 s rest.
+    fn wander_data(n: usize) -> (Data, Vec<bool>) {
+        let dt = 0.04;
+        let data = Data {
+            time_s: (0..n).map(|i| i as f64 * dt).collect(),
+            stroke_mm: vec![0.0; n],
+            angle_deg: vec![0.0; n],
+            strain: vec![0.0; n],
+            ohm: vec![],
+            rest: 250,
+            measured: vec![true; n],
+            dt_s: dt,
+        };
+        let moving = data.moving();
+        (data, moving)
+    }
+
+    /// The copies' wander: a line in time (a drift the library names) gives none; a slow
+    /// sinusoid gives surrogates of the same amplitude at random phases.
+    #[test]
+    fn wander_keeps_the_slow_residuals_spectrum_and_leaves_lines_alone() {
+        let (data, moving) = wander_data(7500);
+        let line: Vec<f64> = data.time_s.iter().map(|t| 3.0 + 0.2 * t).collect();
+        let w = Wander::fit(&line, &data, &moving);
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let sim = w.simulate(&data, &mut rng);
+        assert!(sim.iter().all(|v| v.abs() < 1e-6), "a line wanders: {w:?}");
+        let lo = data.time_s[data.rest];
+        let hi = data.time_s[data.len() - 1];
+        // Two whole periods over the motion: the ends meet, so the line between them is flat.
+        let cycle: Vec<f64> = data
+            .time_s
+            .iter()
+            .map(|t| 5.0 * (std::f64::consts::TAU * 2.0 * (t - lo) / (hi - lo)).sin())
+            .collect();
+        let w = Wander::fit(&cycle, &data, &moving);
+        let rms = |v: &[f64]| {
+            let m: Vec<f64> = (data.rest..v.len()).map(|i| v[i]).collect();
+            (m.iter().map(|x| x * x).sum::<f64>() / m.len() as f64).sqrt()
+        };
+        let a = rng_copy(&w, &data, 2);
+        let b = rng_copy(&w, &data, 3);
+        let want = 5.0 / 2f64.sqrt();
+        for copy in [&a, &b] {
+            assert!(
+                (rms(copy) / want - 1.0).abs() < 0.1,
+                "rms {} against {want}",
+                rms(copy)
+            );
+        }
+        assert!(
+            a.iter().zip(&b).any(|(x, y)| (x - y).abs() > 1.0),
+            "the phases are random"
+        );
+    }
+
+    fn rng_copy(w: &Wander, data: &Data, seed: u64) -> Vec<f64> {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        w.simulate(data, &mut rng)
     }
 
     /// An AR(1) residual is recovered by the copies' noise model, and its simulation has the

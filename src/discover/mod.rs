@@ -21,6 +21,7 @@ mod search;
 pub mod smooth;
 mod summary;
 pub mod terms;
+pub mod time_rival;
 pub mod unexplained;
 
 /// The discovery's result as an [`crate::analysis::Analysis`].
@@ -41,6 +42,7 @@ use noise::ArNoise;
 use rayon::prelude::*;
 use search::{Pick, Search, StageSearch};
 use terms::{Effect, Term};
+use time_rival::TimeRivalry;
 use unexplained::Unexplained;
 
 /// Evidence (nats of held-out whitened likelihood) a candidate needs to be named. Calibrated on
@@ -216,12 +218,18 @@ pub struct Discovery {
     /// The rival names it was told from.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rivals: Vec<Rivalry>,
+    /// For a name a smooth change in time imitates (`drift`, `gain_drift`, `creep`): the test
+    /// against it ([`TimeRivalry`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time: Option<TimeRivalry>,
     /// The shape.
     #[serde(skip)]
     pub term: Term,
 }
 
-/// A candidate that cleared the screen but not its calibration: nothing was named for it.
+/// A candidate that cleared the screen but not its calibration, or whose name a smooth change
+/// in time can produce when it cannot produce the change ([`TimeRivalry`]): nothing was named
+/// for it.
 #[derive(Debug, Clone, Serialize)]
 pub struct Declined {
     /// The effect.
@@ -232,6 +240,9 @@ pub struct Declined {
     pub round: usize,
     /// Its calibration.
     pub calibration: Calibration,
+    /// The test against a change in time that refused it, when that is why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time: Option<TimeRivalry>,
 }
 
 /// The held-out RMSE (channel unit) of a channel's model with a named effect in the library's
@@ -474,19 +485,21 @@ impl StageSearch<'_, '_> {
                     run.ambiguous = Some(a);
                     break;
                 }
-                Pick::Declined(top, calibration) => {
+                Pick::Declined(top, calibration, time) => {
                     run.declined.push(Declined {
                         effect: top.effect,
                         channel: top.channel,
                         round,
                         calibration,
+                        time,
                     });
                     break;
                 }
                 Pick::Clear(top, runner, calibrated) => (top, runner, calibrated),
             };
-            let (calibration, rivals) =
-                calibrated.map_or((None, Vec::new()), |c| (Some(c.calibration), c.rivals));
+            let (calibration, rivals, time) = calibrated.map_or((None, Vec::new(), None), |c| {
+                (Some(c.calibration), c.rivals, c.time)
+            });
             let winner = self.refine(winner);
             let form = self.form_fit(&winner);
             let Some((fitted, rmse)) = self.add(&winner) else {
@@ -504,6 +517,7 @@ impl StageSearch<'_, '_> {
                     form,
                     calibration,
                     rivals,
+                    time,
                     term: winner.term,
                 },
             ));

@@ -8,6 +8,7 @@ use crate::report::{Chart, Page, Series, SeriesStyle, Table, PALETTE};
 
 use super::calibrate::{Calibration, Rivalry, COPIES, FALSE_NAME_RATE, MORE_COPIES, SCREEN_NATS};
 use super::model::Stage;
+use super::time_rival::TimeRivalry;
 use super::{Discovery, Outcome, CLEAR_RATIO, THRESHOLD_NATS};
 
 /// Adds the discovery's sections to `page`, placed by `at`.
@@ -209,17 +210,24 @@ fn candidates_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
 /// Each name's calibration (and each declined candidate's): the evidence observed against the
 /// copies simulated without it, the rival tests, and a figure of both.
 fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
-    let tests: Vec<(String, &Calibration)> = outcome
+    // Each test, its calibration, and whether a name was given (a candidate a change in time
+    // refused beat its copies and is still not named).
+    let tests: Vec<(String, &Calibration, bool)> = outcome
         .discovered
         .iter()
         .filter_map(|d| {
             let c = d.calibration.as_ref()?;
-            Some((format!("{} on {}", d.effect.name(), d.channel.name()), c))
+            Some((
+                format!("{} on {}", d.effect.name(), d.channel.name()),
+                c,
+                true,
+            ))
         })
         .chain(outcome.declined.iter().map(|d| {
             (
                 format!("{} on {} (not named)", d.effect.name(), d.channel.name()),
                 &d.calibration,
+                false,
             )
         }))
         .collect();
@@ -248,7 +256,7 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         "p",
         "verdict",
     ]);
-    for (name, c) in &tests {
+    for (name, c, named) in &tests {
         table.row([
             name.clone(),
             format!("{:.1}", c.observed),
@@ -260,7 +268,7 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
             c.null_max.map_or("–".to_owned(), |v| format!("{v:.1}")),
             c.bound.map_or("–".to_owned(), |v| format!("{v:.1}")),
             format!("{:.3}", c.p_value),
-            if c.passed { "named" } else { "not named" }.to_owned(),
+            if *named { "named" } else { "not named" }.to_owned(),
         ]);
     }
     page.table(table);
@@ -269,7 +277,23 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         .iter()
         .flat_map(|d| d.rivals.iter().map(move |r| (d, r)))
         .collect();
-    if !rivals.is_empty() {
+    // The tests against a change in time, of names and of candidates it refused.
+    let in_time: Vec<(String, &TimeRivalry)> = outcome
+        .discovered
+        .iter()
+        .filter_map(|d| {
+            let t = d.time.as_ref()?;
+            Some((format!("{} on {}", d.effect.name(), d.channel.name()), t))
+        })
+        .chain(outcome.declined.iter().filter_map(|d| {
+            let t = d.time.as_ref()?;
+            Some((
+                format!("{} on {} (not named)", d.effect.name(), d.channel.name()),
+                t,
+            ))
+        }))
+        .collect();
+    if !rivals.is_empty() || !in_time.is_empty() {
         let mut table = Table::new(["named", "rival", "what the two worlds produce"]);
         for (d, r) in &rivals {
             table.row([
@@ -277,6 +301,9 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
                 r.rival.name().to_owned(),
                 r.sentence(),
             ]);
+        }
+        for (name, t) in &in_time {
+            table.row([name.clone(), "a change in time".to_owned(), t.sentence()]);
         }
         page.table(table);
     }
@@ -291,7 +318,7 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     let mut copies = Vec::new();
     let mut observed = Vec::new();
     let mut bounds = Vec::new();
-    for (i, (_, c)) in tests.iter().enumerate() {
+    for (i, (_, c, _)) in tests.iter().enumerate() {
         let x = (i + 1) as f64;
         let k = c.null.len().max(1) as f64;
         copies.extend(

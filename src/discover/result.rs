@@ -93,6 +93,9 @@ impl Analysis for DiscoverResult {
             for r in &d.rivals {
                 let _ = writeln!(out, "  against {}: {}", r.rival.name(), r.sentence());
             }
+            if let Some(t) = &d.time {
+                let _ = writeln!(out, "  against a change in time: {}", t.sentence());
+            }
         }
         for x in &o.declined {
             let _ = writeln!(
@@ -102,6 +105,9 @@ impl Analysis for DiscoverResult {
                 x.channel.name(),
                 x.calibration.sentence()
             );
+            if let Some(t) = &x.time {
+                let _ = writeln!(out, "  against a change in time: {}", t.sentence());
+            }
         }
         for a in &o.ambiguous {
             let contenders: Vec<String> = a

@@ -40,8 +40,10 @@ pub(super) enum Pick {
     Clear(Candidate, Option<(Effect, f64)>, Option<Calibrated>),
     /// Contenders too close to tell apart: the channel is closed.
     Ambiguous(Ambiguity),
-    /// The best candidate cleared the screen but not its calibration: nothing is named.
-    Declined(Candidate, Calibration),
+    /// The best candidate cleared the screen but not its calibration, or a smooth change in
+    /// time can produce what it explains and it cannot produce the change (the test, given):
+    /// nothing is named.
+    Declined(Candidate, Calibration, Option<super::TimeRivalry>),
 }
 
 /// Per channel: the held-out gaps, what is left unexplained, and the report's view.

@@ -30,6 +30,9 @@ pub struct Named {
     /// The rival names it was told from.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rivals: Vec<super::Rivalry>,
+    /// The test against a smooth change in time (`drift`, `gain_drift`, `creep`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time: Option<super::TimeRivalry>,
 }
 
 /// A candidate with its score.
@@ -82,6 +85,7 @@ impl DiscoverySummary {
                     form: d.form,
                     calibration: d.calibration.clone(),
                     rivals: d.rivals.clone(),
+                    time: d.time.clone(),
                 })
                 .collect(),
             candidates: outcome

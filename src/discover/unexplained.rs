@@ -196,7 +196,7 @@ pub struct Residuals<'a> {
 
 /// One fitted set of groups, ready for any target: the normal equations of each fold left out
 /// and of all folds, at every smoothing weight (one, unpenalized, for a set without a spline).
-struct Prepared {
+pub(super) struct Prepared {
     groups: Vec<usize>,
     /// Per smoothing weight: the factor of all training folds, and of each fold left out.
     factors: Vec<Factors>,
@@ -208,27 +208,33 @@ type Factors = (Cholesky<f64, Dyn>, Vec<Cholesky<f64, Dyn>>);
 /// A set's columns, and where each penalized block starts among them with its penalty.
 type Columns<'a> = (Vec<&'a Vec<f64>>, Vec<(usize, &'a DMatrix<f64>)>);
 
+/// A group of unpenalized columns beside the kinds: over the training recording and, with a
+/// holdout, over the evaluation one.
+pub(super) type Extra = (Vec<Vec<f64>>, Option<Vec<Vec<f64>>>);
+
 /// The statistic (the larger of all kinds together and the best kind alone), each kind's
 /// evidence alone, and every set's fit.
 type Statistic = (f64, Vec<(GenericKind, f64)>, Vec<SetFit>);
 
-/// A channel's generic test over any target: the groups' whitened columns, the folds.
-struct Generic<'a> {
+/// A channel's generic test over any target: the groups' whitened columns (group 0 the
+/// model's, then each kind's, then any extra group's), the sets of groups fitted, the folds.
+pub(super) struct Generic<'a> {
     r: &'a Residuals<'a>,
     groups: Vec<Group>,
+    sets: Vec<Vec<usize>>,
     folds: Vec<Vec<usize>>,
 }
 
 /// A target whitened over the training recording and, with a holdout, the evaluation one.
 #[derive(Clone)]
-struct Target {
+pub(super) struct Target {
     white: Vec<f64>,
     white_test: Option<Vec<f64>>,
 }
 
 /// The result of one set on one target: the held-out sum of squares, the correlation time of
 /// the training residual, and the whitened training residual.
-struct SetFit {
+pub(super) struct SetFit {
     test_ss: f64,
     tau: f64,
     residual: Vec<f64>,
@@ -306,8 +312,25 @@ impl Residuals<'_> {
         Some(design.columns[at].clone())
     }
 
-    /// The whitened, scaled columns of the final model and of each kind.
+    /// The whitened, scaled columns of the final model and of each kind, with the sets of the
+    /// `unexplained` test ([`Generic::kind_sets`]).
     fn generic(&self) -> Option<Generic<'_>> {
+        self.generic_of(
+            &GenericKind::ALL,
+            Vec::new(),
+            Generic::kind_sets(GenericKind::ALL.len()),
+        )
+    }
+
+    /// The whitened, scaled columns of the final model (group 0), of each of `kinds` (groups
+    /// 1 to `kinds.len()`) and of each `extra` group after them (unpenalized columns over the
+    /// training and, with a holdout, the evaluation recording), fitted in `sets`.
+    pub(super) fn generic_of(
+        &self,
+        kinds: &[GenericKind],
+        extra: Vec<Extra>,
+        sets: Vec<Vec<usize>>,
+    ) -> Option<Generic<'_>> {
         let rows: Vec<usize> = (0..self.train.len()).filter(|&i| self.train[i]).collect();
         if rows.len() < 10 * FOLDS {
             return None;
@@ -363,16 +386,20 @@ impl Residuals<'_> {
             self.holdout.then(|| self.test_design.columns.clone()),
             Vec::new(),
         ));
-        for kind in GenericKind::ALL {
+        for &kind in kinds {
             let (cols, blocks) = self.columns(kind, &x, &smooth, self.data);
             let test = self
                 .holdout
                 .then(|| self.columns(kind, &x_test, &smooth_test, self.test_data).0);
             groups.push(make(cols, test, blocks));
         }
+        for (cols, test) in extra {
+            groups.push(make(cols, test.filter(|_| self.holdout), Vec::new()));
+        }
         Some(Generic {
             r: self,
             groups,
+            sets,
             folds: folds(&rows),
         })
     }
@@ -435,11 +462,12 @@ fn folds(rows: &[usize]) -> Vec<Vec<usize>> {
 }
 
 impl Generic<'_> {
-    /// The sets tested: the final model alone, each kind alone with it, and all kinds.
-    fn sets() -> Vec<Vec<usize>> {
+    /// The sets of the `unexplained` test of `kinds` kinds: the final model alone, each kind
+    /// alone with it, and all kinds.
+    fn kind_sets(kinds: usize) -> Vec<Vec<usize>> {
         let mut sets = vec![vec![0]];
-        sets.extend((1..=GenericKind::ALL.len()).map(|k| vec![0, k]));
-        sets.push((0..=GenericKind::ALL.len()).collect());
+        sets.extend((1..=kinds).map(|k| vec![0, k]));
+        sets.push((0..=kinds).collect());
         sets
     }
 
@@ -458,8 +486,9 @@ impl Generic<'_> {
     }
 
     /// Each set's normal equations factored for every smoothing weight and fold.
-    fn prepare_sets(&self) -> Option<Vec<Prepared>> {
-        Self::sets()
+    pub(super) fn prepare_sets(&self) -> Option<Vec<Prepared>> {
+        self.sets
+            .clone()
             .into_par_iter()
             .map(|set| {
                 let (cols, penalties) = self.columns_of(&set);
@@ -516,7 +545,7 @@ impl Generic<'_> {
 
     /// `set` fitted to `target`: the smoothing weight by cross-validation over the folds, then
     /// all folds at that weight.
-    fn fit(&self, set: &Prepared, target: &Target) -> SetFit {
+    pub(super) fn fit(&self, set: &Prepared, target: &Target) -> SetFit {
         let (cols, _) = self.columns_of(&set.groups);
         let p = cols.len();
         let xty = |rows: &[usize]| -> DVector<f64> {
@@ -640,6 +669,29 @@ impl Generic<'_> {
         evidence: f64,
         seed: u64,
     ) -> Calibration {
+        self.calibrate_by(
+            &fits[0],
+            &fits[fits.len() - 1],
+            evidence,
+            UNEXPLAINED_NATS,
+            seed,
+            &|copy| self.statistic(sets, copy).map_or(f64::NAN, |s| s.0),
+        )
+    }
+
+    /// A bootstrap of the test `statistic`: copies of the fit `world` (the model the test's
+    /// null holds), with noise fitted to the residual of the fit `fuller` (the test's
+    /// alternative: Hall & Wilson's guideline), the statistic on each, and the rule applied
+    /// to `evidence` after `screen`; [`MORE_COPIES`] when the first leave it close.
+    pub(super) fn calibrate_by(
+        &self,
+        world: &SetFit,
+        fuller: &SetFit,
+        evidence: f64,
+        screen: f64,
+        seed: u64,
+        statistic: &(dyn Fn(&Target) -> f64 + Sync),
+    ) -> Calibration {
         let noise = self.r.noise;
         // Back from whitened residuals to the channel's: the whitening's inverse.
         let colour = |w: &[f64]| -> Vec<f64> {
@@ -659,17 +711,13 @@ impl Generic<'_> {
         let target = &self.r.train_design.target;
         let model: Vec<f64> = target
             .iter()
-            .zip(colour(&fits[0].residual))
+            .zip(colour(&world.residual))
             .map(|(y, e)| y - e)
             .collect();
         let moving = self.r.data.moving();
-        let copy_noise = CopyNoise::fit(
-            &colour(&fits[fits.len() - 1].residual),
-            &moving,
-            self.r.lags,
-        );
-        // The final model on the holdout: its target less its held-out residual.
-        let model_test: Option<Vec<f64>> = fits[0].test_residual.as_ref().map(|w| {
+        let copy_noise = CopyNoise::fit(&colour(&fuller.residual), &moving, self.r.lags);
+        // The world on the holdout: its target less its held-out residual.
+        let model_test: Option<Vec<f64>> = world.test_residual.as_ref().map(|w| {
             self.r
                 .test_design
                 .target
@@ -687,11 +735,10 @@ impl Generic<'_> {
             };
             let white = make(&model);
             let white_test = model_test.as_deref().map(&mut make);
-            let copy = Target { white, white_test };
-            self.statistic(sets, &copy).map_or(f64::NAN, |s| s.0)
+            statistic(&Target { white, white_test })
         };
         let mut null: Vec<f64> = (0..COPIES).into_par_iter().map(draw).collect();
-        let first = Calibration::of(evidence, null.clone(), UNEXPLAINED_NATS);
+        let first = Calibration::of(evidence, null.clone(), screen);
         let close = match (first.bound, first.null_sd) {
             (Some(b), Some(sd)) => (evidence - b).abs() < sd,
             _ => false,
@@ -705,7 +752,46 @@ impl Generic<'_> {
                 .map(draw)
                 .collect::<Vec<_>>(),
         );
-        Calibration::of(evidence, null, UNEXPLAINED_NATS)
+        Calibration::of(evidence, null, screen)
+    }
+
+    /// The evidence of the best of the sets `alternatives` (indices into the prepared sets;
+    /// the best by its training sum of squares, as a candidate's grid shape is chosen) over the
+    /// set `from`, on `target`; with the index of that best and the fits of `from` and of it.
+    pub(super) fn nested(
+        &self,
+        sets: &[Prepared],
+        from: usize,
+        alternatives: &[usize],
+        target: &Target,
+    ) -> Option<(f64, usize, SetFit, SetFit)> {
+        let n = self.r.test.iter().filter(|t| **t).count();
+        let base = self.fit(&sets[from], target);
+        let train_ss = |f: &SetFit| -> f64 {
+            f.residual
+                .iter()
+                .zip(self.r.train)
+                .filter(|(_, t)| **t)
+                .map(|(v, _)| v * v)
+                .sum()
+        };
+        let (best, fit) = alternatives
+            .iter()
+            .map(|&a| (a, self.fit(&sets[a], target)))
+            .min_by(|a, b| train_ss(&a.1).total_cmp(&train_ss(&b.1)))?;
+        let e = super::evidence(n, base.test_ss, fit.test_ss, fit.tau);
+        Some((e, best, base, fit))
+    }
+
+    /// The observed target of the test: the final model's, whitened.
+    pub(super) fn observed(&self) -> Target {
+        Target {
+            white: self.r.noise.whiten(&self.r.train_design.target),
+            white_test: self
+                .r
+                .holdout
+                .then(|| self.r.noise.whiten(&self.r.test_design.target)),
+        }
     }
 }
 
