@@ -272,6 +272,13 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         ]);
     }
     page.table(table);
+    rival_table(page, outcome);
+    calibration_figure(page, &tests, at);
+}
+
+/// The rival tests of every name, and the tests against a change in time of names and of the
+/// candidates it refused.
+fn rival_table(page: &mut Page, outcome: &Outcome) {
     let rivals: Vec<(&Discovery, &Rivalry)> = outcome
         .discovered
         .iter()
@@ -307,6 +314,10 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         }
         page.table(table);
     }
+}
+
+/// The figure of [`calibration_section`]: each test's copies, its bound and the observation.
+fn calibration_figure(page: &mut Page, tests: &[(String, &Calibration, bool)], at: Placement<'_>) {
     // Evidence spans orders of magnitude between a copy and a clear effect: a signed
     // log scale keeps both in view.
     let squash = |e: f64| e.signum() * (1.0 + e.abs()).log10();
