@@ -236,6 +236,22 @@ pub fn checks(r: &Reproduction) -> Vec<Check> {
 /// paper's bench must have had: one that sets the other number without moving this one.
 /// With every number within, it says that.
 pub fn finding(checks: &[Check], tradeoffs: &[Tradeoff]) -> String {
+    finding_at(checks, tradeoffs, Explain::FullSize)
+}
+
+/// Whether a run may be explained by the bench file's trade-offs, which were measured at the
+/// paper's full durations.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Explain {
+    /// A full-size run: the trade-offs apply.
+    FullSize,
+    /// A shorter run: its numbers differ from full size's, so the trade-offs do not explain them.
+    Shorter,
+}
+
+/// [`finding`] for a run of the given size: a shorter run's numbers outside are named, and no
+/// reason is given from trade-offs measured at full size.
+pub fn finding_at(checks: &[Check], tradeoffs: &[Tradeoff], explain: Explain) -> String {
     let outside: Vec<&Check> = checks.iter().filter(|c| c.outside).collect();
     if outside.is_empty() {
         return format!(
@@ -250,12 +266,12 @@ pub fn finding(checks: &[Check], tradeoffs: &[Tradeoff]) -> String {
     );
     for c in outside {
         text.push(' ');
-        text += &one_finding(c, checks, tradeoffs);
+        text += &one_finding(c, checks, tradeoffs, explain);
     }
     text
 }
 
-fn one_finding(c: &Check, checks: &[Check], tradeoffs: &[Tradeoff]) -> String {
+fn one_finding(c: &Check, checks: &[Check], tradeoffs: &[Tradeoff], explain: Explain) -> String {
     let (Some(v), Some(rel)) = (c.dlw, c.relative) else {
         return format!("{}: the run gave no value.", capitalized(&c.what));
     };
@@ -279,6 +295,11 @@ fn one_finding(c: &Check, checks: &[Check], tradeoffs: &[Tradeoff]) -> String {
         .iter()
         .filter(|t| t.metrics.contains_key(&c.name))
         .collect();
+    if explain == Explain::Shorter {
+        reading.text += " The limits and the bench file's trade-offs are for the paper's full \
+             durations and this run is shorter, so it does not say why.";
+        return reading.text;
+    }
     if relevant.is_empty() {
         reading.text +=
             " No trade-off the bench file records moves it, so this run cannot say why.";
@@ -606,6 +627,23 @@ mod tests {
         let f = finding(&checks, &tradeoffs);
         assert!(f.contains("the bench could be moved there"), "{f}");
         assert!(!f.contains("must have had"), "{f}");
+    }
+
+    /// A shorter run's numbers differ from full size's: the trade-offs measured at full size
+    /// give no reason for them (a `--short` run once read "this bench cannot bring Joint A's
+    /// linear error within its limit", a number within it at full size).
+    #[test]
+    fn a_shorter_run_is_not_explained_by_full_size_tradeoffs() {
+        let (checks, tradeoffs) = twin_like(6.50);
+        let text = finding_at(&checks, &tradeoffs, Explain::Shorter);
+        assert!(
+            text.contains("this run is shorter, so it does not say why"),
+            "{text}"
+        );
+        assert!(!text.contains("must have had"), "{text}");
+        assert!(!text.contains("Measured with"), "{text}");
+        let full = finding_at(&checks, &tradeoffs, Explain::FullSize);
+        assert!(full.contains("must have had"), "{full}");
     }
 
     #[test]

@@ -49,7 +49,12 @@ impl Reproduction {
     /// The sentence on the numbers outside their agreement ([`agreement::finding`]), with the
     /// bench file's measured trade-offs.
     pub fn finding(&self) -> String {
-        agreement::finding(&self.checks(), self.tradeoffs())
+        let explain = if self.settings.duration_scale == 1.0 {
+            agreement::Explain::FullSize
+        } else {
+            agreement::Explain::Shorter
+        };
+        agreement::finding_at(&self.checks(), self.tradeoffs(), explain)
     }
 
     /// The trade-offs the bench file records (none for the ideal bench).
