@@ -20,7 +20,7 @@
 //! --test discover_matrix -- --nocapture`.
 
 mod common;
-use common::discovery::{above, discover_json, gaps, named};
+use common::discovery::{self, above, discover_json, gaps, named};
 use common::shipped_design;
 
 use rayon::prelude::*;
@@ -149,12 +149,7 @@ fn run(dir: &Path, case: &Case) -> Outcome {
             .map(|a| {
                 (
                     a["channel"].as_str().unwrap().to_owned(),
-                    a["contenders"]
-                        .as_array()
-                        .unwrap()
-                        .iter()
-                        .map(|c| c[0].as_str().unwrap().to_owned())
-                        .collect(),
+                    discovery::contenders(a),
                 )
             })
             .collect(),

@@ -253,17 +253,12 @@ fn drift_is_time_not_history() {
             "rate-and-drift: {got:?} and not ambiguous on sensor1: {}",
             report["ambiguous"]
         );
-        let contenders: Vec<&str> = ambiguous[0]["contenders"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|c| c[0].as_str().unwrap())
-            .collect();
+        let contenders = discovery::contenders(&ambiguous[0]);
         assert!(
-            contenders.contains(&"drift")
+            contenders.iter().any(|c| c == "drift")
                 && contenders
                     .iter()
-                    .all(|c| ["drift", "creep", "gain_drift"].contains(c)),
+                    .all(|c| ["drift", "creep", "gain_drift"].contains(&c.as_str())),
             "rate-and-drift: ambiguous among {contenders:?}"
         );
     }

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use crate::reproduce::paper::{TABLE_III, TABLE_IV, TWO_SENSOR_RMSE};
+use crate::reproduce::paper::{TABLE_IV, TWO_SENSOR_RMSE};
 use crate::reproduce::TablesRun;
 use crate::sensor::{Sensor, Sensors};
 
@@ -89,18 +89,8 @@ impl Table3Field {
 
     /// The paper's value for joint index `i` (0 = A).
     fn paper(self, i: usize) -> f64 {
-        let t = &TABLE_III[i];
-        match self {
-            Self::GaugeFactor => t.gauge_factor,
-            Self::R0 => t.r0_ohm,
-            Self::CenterOhm => t.center_ohm,
-            Self::CenterStrain => t.center_strain,
-            Self::CenterSlope => t.center_slope_ohm,
-            // Joint C's 754 kΩ is a misplaced decimal point (`sim::JOINT_C_PI`).
-            Self::PeakOhm if i == 2 => t.peak_ohm / 10.0,
-            Self::PeakOhm => t.peak_ohm,
-            Self::PeakStrain => t.peak_strain,
-        }
+        let row = Self::ALL.iter().position(|f| *f == self).unwrap_or(0);
+        crate::reproduce::paper::table_iii_as_read(i)[row]
     }
 }
 

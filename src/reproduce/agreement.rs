@@ -8,8 +8,8 @@
 
 use serde::Serialize;
 
-use super::paper::{TABLE_III, TABLE_IV, TWO_SENSOR_RMSE};
-use super::patterns::{COMPRESSION, ONE};
+use super::paper::{table_iii_as_read, TABLE_IV, TWO_SENSOR_RMSE};
+use super::patterns::{rmse, COMPRESSION, ONE};
 use super::twin::Tradeoff;
 use super::{Bench, Reproduction};
 use crate::control::PAPER_TABLE_VI;
@@ -113,17 +113,6 @@ impl Check {
     }
 }
 
-fn rmse(r: &Reproduction, letter: char, config: &str, sensors: Sensors) -> Option<f64> {
-    r.joints
-        .iter()
-        .find(|j| j.letter == letter)?
-        .estimation
-        .runs
-        .iter()
-        .find(|x| x.config == config && x.sensors == sensors)
-        .map(|x| x.metrics.rmse_deg)
-}
-
 /// Tables IV-VI's ten numbers, each against the paper's within [`HEADLINE_TOLERANCE`]; then
 /// Table III's of Joints A-C whose allowed distance the bench file records.
 pub fn checks(r: &Reproduction) -> Vec<Check> {
@@ -174,52 +163,25 @@ pub fn checks(r: &Reproduction) -> Vec<Check> {
     for (i, j) in r.joints.iter().enumerate() {
         let s = &j.loops.sensors[0].summary;
         let c = s.characteristic.as_ref();
-        let t = &TABLE_III[i];
-        let rows: [(f64, Option<f64>, Unit, &str); 7] = [
+        let rows: [(Option<f64>, Unit, &str); 7] = [
+            (Some(s.gauge_factor), Unit::Plain, "line's gauge factor"),
+            (Some(s.r0_ohm), Unit::Ohm, "line's R₀"),
+            (c.map(|c| c.center_ohm), Unit::Ohm, "loop's centre R_c"),
             (
-                t.gauge_factor,
-                Some(s.gauge_factor),
-                Unit::Plain,
-                "line's gauge factor",
-            ),
-            (t.r0_ohm, Some(s.r0_ohm), Unit::Ohm, "line's R₀"),
-            (
-                t.center_ohm,
-                c.map(|c| c.center_ohm),
-                Unit::Ohm,
-                "loop's centre R_c",
-            ),
-            (
-                t.center_strain,
                 c.map(|c| c.center_strain),
                 Unit::Strain,
                 "loop's centre ε_c",
             ),
             (
-                t.center_slope_ohm,
                 c.map(|c| c.center_slope_ohm),
                 Unit::OhmPerStrain,
                 "loop's steepest slope m_c",
             ),
-            // Joint C's 754 kΩ is a misplaced decimal point (`crate::sim::JOINT_C_PI`).
-            (
-                if j.letter == 'C' {
-                    t.peak_ohm / 10.0
-                } else {
-                    t.peak_ohm
-                },
-                c.map(|c| c.peak_ohm),
-                Unit::Ohm,
-                "loop's peak R_peak",
-            ),
-            (
-                t.peak_strain,
-                c.map(|c| c.peak_strain),
-                Unit::Strain,
-                "loop's peak ε_peak",
-            ),
+            (c.map(|c| c.peak_ohm), Unit::Ohm, "loop's peak R_peak"),
+            (c.map(|c| c.peak_strain), Unit::Strain, "loop's peak ε_peak"),
         ];
-        for (row, (paper, dlw, unit, what)) in TABLE3_ROWS.iter().zip(rows) {
+        let papers = table_iii_as_read(i);
+        for ((row, paper), (dlw, unit, what)) in TABLE3_ROWS.iter().zip(papers).zip(rows) {
             let name = format!("table3.{}.{row}", j.letter);
             if let Some(&limit) = agreements.get(&name) {
                 let what = format!("Joint {}'s {what} (Table III)", j.letter);

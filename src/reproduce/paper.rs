@@ -52,6 +52,27 @@ pub const TABLE_III: [TableIii; 3] = [
     },
 ];
 
+/// Table III's seven numbers of joint `i` (0 = A) in `TABLE3_ROWS`'s order (GF, R₀, R_c, ε_c,
+/// m_c, R_peak, ε_peak), Joint C's `R_peak` read as 75.4 kΩ (the misplaced decimal point of
+/// [`TABLE_III`]): the values the reproduction and the calibration compare with.
+pub fn table_iii_as_read(i: usize) -> [f64; 7] {
+    let t = &TABLE_III[i];
+    let peak_ohm = if i == 2 {
+        t.peak_ohm / 10.0
+    } else {
+        t.peak_ohm
+    };
+    [
+        t.gauge_factor,
+        t.r0_ohm,
+        t.center_ohm,
+        t.center_strain,
+        t.center_slope_ohm,
+        peak_ohm,
+        t.peak_strain,
+    ]
+}
+
 /// Section IV-A2: correlation of GF with the rise time, Joints A-C.
 pub const RATE_CORRELATION: [f64; 3] = [0.0062, 0.0010, 0.0011];
 /// Section IV-A2: standard deviation of `R₀` over the 25 cycles (Ω), Joints A-C.

@@ -113,7 +113,7 @@ pub const HYSTERETIC_RESIDUAL_RATIO: f64 = 2.0;
 pub const TWO_SENSOR_ERROR_RATIO: f64 = 1.732_050_8;
 
 /// The RMSE (°) of `config` estimated from `sensors` on the joint `letter`, if it ran.
-fn rmse(r: &Reproduction, letter: char, config: &str, sensors: Sensors) -> Option<f64> {
+pub(super) fn rmse(r: &Reproduction, letter: char, config: &str, sensors: Sensors) -> Option<f64> {
     r.joints
         .iter()
         .find(|j| j.letter == letter)?

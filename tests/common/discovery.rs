@@ -38,6 +38,16 @@ pub fn named(report: &serde_json::Value) -> Vec<(String, String)> {
         .collect()
 }
 
+/// The effects an `ambiguous` entry of a report leaves open, in its order.
+pub fn contenders(ambiguous: &serde_json::Value) -> Vec<String> {
+    ambiguous["contenders"]
+        .as_array()
+        .expect("a contenders array")
+        .iter()
+        .map(|c| c[0].as_str().unwrap().to_owned())
+        .collect()
+}
+
 /// Per channel, the held-out RMSE before and after.
 pub fn gaps(report: &serde_json::Value) -> Vec<(String, f64, f64)> {
     report["gaps"]
@@ -107,17 +117,7 @@ pub fn judge(report: &serde_json::Value, truth: &Truth) -> Judgement {
         .as_array()
         .unwrap()
         .iter()
-        .map(|a| {
-            (
-                a["channel"].as_str().unwrap().to_owned(),
-                a["contenders"]
-                    .as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|c| c[0].as_str().unwrap().to_owned())
-                    .collect(),
-            )
-        })
+        .map(|a| (a["channel"].as_str().unwrap().to_owned(), contenders(a)))
         .collect();
     let mut j = Judgement::default();
     match truth {
