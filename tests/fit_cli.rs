@@ -259,6 +259,56 @@ fn pi_sensor_fit_within_noise_and_pi_config_beats_linear_on_a_random_recording()
     );
 }
 
+/// A sensor with no hysteresis and a slow, strong noise (`tests/data/noisy-tanh-sensor.toml`):
+/// the PI fit has only noise to put into its plays. Its inverse must still estimate the
+/// recording it was fitted on no worse than the line it contains.
+///
+/// Before the largest radius was bounded by half the span of the plays' input, the fit could
+/// put a large weight on a play that moved only on the first rise: on these seeds the PI
+/// config estimated its own characterization with 10.3° and 7.1° RMSE against the line's
+/// 2.1°, and a random pattern of the same sensor with up to 13°.
+#[test]
+fn a_pi_fit_to_noise_alone_estimates_no_worse_than_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scenario = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/noisy-tanh-sensor.toml"),
+    )
+    .unwrap();
+    let file = d.join("scenario.toml");
+    std::fs::write(&file, scenario).unwrap();
+    for seed in ["201", "101"] {
+        let rec = d.join(format!("char{seed}"));
+        ok(&[
+            "simulate",
+            "--design",
+            &shipped_design("joint-a.toml"),
+            "--scenario",
+            &s(&file),
+            "--protocol",
+            "characterization",
+            "--seed",
+            seed,
+            "-o",
+            &s(&rec),
+        ]);
+        let (lin, pi) = (
+            d.join(format!("lin{seed}.toml")),
+            d.join(format!("pi{seed}.toml")),
+        );
+        fit("joint-a.toml", &rec, &lin, &["--model", "linear"]);
+        fit("joint-a.toml", &rec, &pi, &["--model", "pi"]);
+        let (e_lin, e_pi) = (estimate(&lin, &rec, d), estimate(&pi, &rec, d));
+        eprintln!(
+            "seed {seed}: angle RMSE on its own recording: linear {e_lin:.2}°, PI {e_pi:.2}°"
+        );
+        assert!(
+            e_pi <= e_lin,
+            "seed {seed}: the PI config estimates the recording it was fitted on with {e_pi:.2}° RMSE, the line with {e_lin:.2}°"
+        );
+    }
+}
+
 /// The report folder: report.html and SVGs that parse, with the plots' titles.
 fn check_report(dir: &Path, sensors: usize) {
     let html = std::fs::read_to_string(dir.join("report.html")).unwrap();

@@ -24,6 +24,10 @@
 //! 5. the best start on every sample, refined once more there. No step is ever taken that
 //!    raises the residual, so the fit is never worse than the linear start, hence than the line.
 //!
+//! The largest radius never exceeds half the span of the plays' input over the recording
+//! (`Projection::half_span`): every play then moves in every full loop, so every weight is
+//! fitted to what the whole recording shows, not to its first rise.
+//!
 //! Constraints: generalized PI keeps `P₁ > 0` and every partial sum `Sᵢ ≥ 1.5·m·P₁`
 //! ([`PARTIAL_SUM_MARGIN`] `m`), so the inverse of Eq. 13 exists; continuous PI keeps every
 //! `Pᵢ ≥ 10⁻⁴·P₁ > 0`. Both become `β ≥ 0` on re-parametrized columns.
@@ -611,6 +615,17 @@ impl Projection {
         }
     }
 
+    /// Half the span of the plays' input over the recording: the least radius a play needs
+    /// to stay still through a full loop. A larger radius moves only on the first rise (or a
+    /// new extreme), so its weight would be fitted to the recording's start alone.
+    fn half_span(&self, l: &[f64; 4], u: &[f64; 4]) -> f64 {
+        let nu = |a: &[f64; 4], x: f64| a[0] * (a[1] * x + a[2]).tanh() + a[3];
+        let (x0, x1) = self.x_range;
+        let lo = nu(l, x0).min(nu(u, x0));
+        let hi = nu(l, x1).max(nu(u, x1));
+        0.5 * (hi - lo)
+    }
+
     fn evaluations(&self) -> usize {
         self.evaluations.load(Ordering::Relaxed)
     }
@@ -630,6 +645,7 @@ impl Projection {
     /// weights multiply (see the module's constraints).
     fn rows(&self, shape: &Shape, mut visit: impl FnMut(usize, &[f64])) {
         let (l, u, rho_max) = shape.branches(self.reach);
+        let rho_max = rho_max.min(self.half_span(&l, &u));
         let n = self.order;
         let radii: Vec<f64> = (0..n)
             .map(|i| rho_max * i as f64 / (n - 1).max(1) as f64)
@@ -797,6 +813,7 @@ impl Projection {
         };
         let total: f64 = weights.iter().sum();
         let (l, u, rho_max) = shape.branches(self.reach);
+        let rho_max = rho_max.min(self.half_span(&l, &u));
         // Σ Pᵢ·yᵢ + C = Σ (Pᵢ/P₁)·(P₁·yᵢ + c) with c = C·P₁/ΣPᵢ.
         let c = solved.constant * first / total;
         let loading = [first * l[0], l[1], l[2], c];
