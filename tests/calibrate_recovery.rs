@@ -76,6 +76,7 @@ fn recover(truth: &[(&str, f64)]) {
         seed: 5,
         duration_scale: SCALE,
         side_conditions: false,
+        seeds: 1,
     };
     let space = space();
     let names: Vec<String> = space.parameters.iter().map(|p| p.name()).collect();
@@ -210,6 +211,7 @@ fn a_start_point_is_evaluated_checked_first_and_the_result_is_the_best_full_chec
         seed: 3,
         duration_scale: 0.02,
         side_conditions: false,
+        seeds: 1,
     };
     // Off the design's strata and away from the ideal point.
     let start = vec![0.93, 0.071];

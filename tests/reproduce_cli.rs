@@ -503,9 +503,9 @@ fn the_twin_at_full_size() {
 
 /// The trade-offs the shipped twin records (`[[calibration.tradeoffs]]`, which the report's
 /// finding reads) are what the simulator measures: each value of each parameter set on the
-/// shipped bench, Joint A run at full size with seed 0 (`reproduce::tables_of`, the same
+/// shipped bench, the parameter's joint run at full size with seed 0 (`reproduce::tables_of`, the same
 /// numbers `dlw reproduce` prints), every recorded metric within 1e-6 of the recorded value.
-/// Six full-size runs of Joint A, about a minute in release: with `DLW_TWIN_TRADEOFF=1`.
+/// Ten full-size runs of one joint, about a minute in release: with `DLW_TWIN_TRADEOFF=1`.
 #[test]
 fn the_twins_recorded_tradeoffs_are_measured() {
     use dlw::reproduce::{tables_of, Bench, Settings};
@@ -519,20 +519,21 @@ fn the_twins_recorded_tradeoffs_are_measured() {
     let tradeoffs = file.calibration.as_ref().unwrap().tradeoffs.clone();
     assert!(!tradeoffs.is_empty());
     for t in &tradeoffs {
+        let letter = t.parameter.chars().next().unwrap();
         for (k, &v) in t.values.iter().enumerate() {
             let mut f = file.clone();
-            let a = f.joint.get_mut("A").unwrap();
-            match t.parameter.as_str() {
-                "A.sensor1.noise_ppm" => {
-                    a.sensor1.noise.enabled = v > 0.0;
+            let joint = f.joint.get_mut(&letter.to_string()).unwrap();
+            match t.parameter.split_once('.').unwrap().1 {
+                "sensor1.noise_ppm" => {
+                    joint.sensor1.noise.enabled = v > 0.0;
                     if v > 0.0 {
-                        a.sensor1.noise.sigma_ppm = v;
+                        joint.sensor1.noise.sigma_ppm = v;
                     }
                 }
-                "A.sensor1.noise_tau_s" => a.sensor1.noise.tau_s = v,
+                "sensor1.noise_tau_s" => joint.sensor1.noise.tau_s = v,
                 other => panic!("the test does not set {other}"),
             }
-            let run = tables_of(&Settings::new(1.0, Bench::Twin(f)), &['A']).unwrap();
+            let run = tables_of(&Settings::new(1.0, Bench::Twin(f)), &[letter]).unwrap();
             let all = dlw::calibrate::Metric::all();
             let values = dlw::calibrate::measure(&run);
             for (name, recorded) in &t.metrics {

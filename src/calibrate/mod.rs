@@ -87,6 +87,10 @@ pub struct Options {
     /// calibration to the paper's numbers) or only the targets (a test's recovery of known
     /// parameters).
     pub side_conditions: bool,
+    /// Each evaluation runs the bench on reproduction seeds `0..seeds` (`dlw reproduce
+    /// --seed`) and takes each metric's mean: a twin fitted to one seed's noise holds on that
+    /// seed only. Every point is run on the same seeds (common random numbers).
+    pub seeds: u64,
 }
 
 impl Default for Options {
@@ -99,6 +103,7 @@ impl Default for Options {
             seed: 1,
             duration_scale: 1.0,
             side_conditions: true,
+            seeds: 3,
         }
     }
 }
@@ -177,6 +182,34 @@ fn ratios(full: &Evaluation, short: &Evaluation) -> Vec<f64> {
         .collect()
 }
 
+/// The metrics of a run of `settings`; every one `None` when the bench is infeasible.
+///
+/// # Errors
+/// [`CalibrateError::Reproduce`] for any other failure.
+fn measured(settings: &Settings) -> Result<Vec<Option<f64>>, CalibrateError> {
+    match tables(settings) {
+        Ok(run) => Ok(measure(&run)),
+        // A bench so noisy that a fit refuses it (no positive slope, r² below the fit's
+        // floor) or a simulation leaves the physical range: the point is infeasible, its
+        // metrics unknown, and the objective counts every target as far off.
+        Err(ReproduceError::Analysis { .. } | ReproduceError::Config { .. })
+        | Err(ReproduceError::Sim { .. }) => Ok(vec![None; metrics().len()]),
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// Per metric, the mean over the seeds' runs; `None` where any seed lacks it.
+fn mean_over_seeds(runs: &[Vec<Option<f64>>]) -> Vec<Option<f64>> {
+    (0..metrics().len())
+        .map(|k| {
+            let values: Option<Vec<f64>> = runs.iter().map(|r| r[k]).collect();
+            values
+                .filter(|v| !v.is_empty())
+                .map(|v| v.iter().sum::<f64>() / v.len() as f64)
+        })
+        .collect()
+}
+
 /// The metrics of a run, in [`Metric::all`]'s order.
 pub fn measure(run: &TablesRun) -> Vec<Option<f64>> {
     metrics().into_iter().map(|m| m.value(run)).collect()
@@ -217,30 +250,26 @@ impl Calibration {
         })
     }
 
-    /// Runs the bench of `u` at `repeats` repetitions (the paper's timings) and measures it.
+    /// Runs the bench of `u` at `repeats` repetitions (the paper's timings) on every seed of
+    /// [`Options::seeds`] and measures it: each metric's mean over the seeds (`None` when a
+    /// seed did not give it).
     ///
     /// # Errors
     /// [`CalibrateError::Reproduce`].
     pub fn run(&self, u: &[f64], repeats: u32) -> Result<Evaluation, CalibrateError> {
-        let settings = Settings {
-            repeats,
-            ..Settings::new(
-                self.options.duration_scale,
-                Bench::Twin(self.space.bench(u).into()),
-            )
-        };
-        let values = match tables(&settings) {
-            Ok(run) => measure(&run),
-            // A bench so noisy that a fit refuses it (no positive slope, r² below the fit's
-            // floor) or a simulation leaves the physical range: the point is infeasible, its
-            // metrics unknown, and the objective counts every target as far off.
-            Err(ReproduceError::Analysis { .. } | ReproduceError::Config { .. })
-            | Err(ReproduceError::Sim { .. }) => vec![None; metrics().len()],
-            Err(e) => return Err(e.into()),
-        };
+        let bench = Bench::Twin(self.space.bench(u).into());
+        let mut runs = Vec::new();
+        for seed in 0..self.options.seeds.max(1) {
+            let settings = Settings {
+                repeats,
+                seed,
+                ..Settings::new(self.options.duration_scale, bench.clone())
+            };
+            runs.push(measured(&settings)?);
+        }
         Ok(Evaluation {
             u: u.to_vec(),
-            values,
+            values: mean_over_seeds(&runs),
         })
     }
 
@@ -251,6 +280,9 @@ impl Calibration {
     /// [`CalibrateError::Reproduce`].
     pub fn baseline(&mut self) -> Result<(), CalibrateError> {
         // At the calibration's own timings: the paper's (1) unless a test shrinks them.
+        // Seed 0 only, whatever `seeds`: a mean of relative distances is ruled by one seed's
+        // outlier (the ideal Joint C's m_c read 584 kΩ against the paper's 181 kΩ on one of
+        // seeds 0-2, so the mean allowed 228 %), and seed 0 is the run `dlw reproduce` prints.
         let settings = Settings::new(self.options.duration_scale, Bench::Ideal);
         let values = measure(&tables(&settings)?);
         self.agreements = metrics()
@@ -510,8 +542,10 @@ impl Calibration {
         file.calibration = Some(crate::reproduce::Provenance {
             method: format!(
                 "surrogate (quadratic per metric) on a Latin hypercube of {} short-sized \
-                 evaluations with common random numbers, {} rounds, {} full-size checks",
+                 evaluations with common random numbers, each metric the mean over seeds 0 to \
+                 {}, {} rounds, {} full-size checks",
                 self.options.design_points,
+                self.options.seeds.max(1) - 1,
                 self.options.rounds * self.options.full_checks,
                 self.options.full_checks
             ) + if self.start.is_some() {

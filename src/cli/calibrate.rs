@@ -1,5 +1,5 @@
 //! `dlw calibrate -o DIR (paper-bench.toml, calibration.json, evaluations.json) [--design-points N] [--rounds R] [--local-points K] [--full-checks C]
-//! [--seed S] [--start FILE] [--json]`: the paper's bench as a calibrated twin.
+//! [--seed S] [--seeds N] [--start FILE] [--json]`: the paper's bench as a calibrated twin.
 
 use super::written::Written;
 use std::time::Instant;
@@ -27,6 +27,10 @@ pub struct Args {
     /// Seed of the design (the simulations use the reproduction's seeds).
     #[arg(long, default_value_t = Options::default().seed)]
     seed: u64,
+    /// Run every evaluation on the reproduction's seeds 0 to N−1 and fit each metric's mean, so
+    /// the twin holds on other seeds than the one it was fitted on (N times the cost).
+    #[arg(long, default_value_t = Options::default().seeds, value_parser = clap::value_parser!(u64).range(1..=10))]
+    seeds: u64,
     /// Start from a bench file's `[calibration.parameters]` (parameters it does not name keep
     /// the ideal bench's values): the point joins the design and is checked at full size first,
     /// so the result is never worse at full size.
@@ -41,6 +45,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         local_points: args.local_points,
         full_checks: args.full_checks,
         seed: args.seed,
+        seeds: args.seeds,
         ..Options::default()
     };
     let space = Space::paper();
