@@ -337,15 +337,24 @@ impl Calibration {
         self.evaluate(points)
     }
 
-    /// The surrogates of every metric on the evaluations so far.
+    /// The surrogates of every metric on the evaluations so far, each in the parameters that
+    /// can move it ([`Parameter::affects`] its [`Metric::joint`]).
     pub fn surrogates(&self) -> Vec<Option<Quadratic>> {
         let points: Vec<Vec<f64>> = self.evaluations.iter().map(|e| e.u.clone()).collect();
         let weights = vec![1.0; points.len()];
-        (0..metrics().len())
-            .map(|k| {
+        metrics()
+            .into_iter()
+            .enumerate()
+            .map(|(k, metric)| {
                 let values: Vec<Option<f64>> =
                     self.evaluations.iter().map(|e| e.values[k]).collect();
-                Quadratic::fit(&points, &values, &weights)
+                let mask: Vec<bool> = self
+                    .space
+                    .parameters
+                    .iter()
+                    .map(|p| p.affects(metric.joint()))
+                    .collect();
+                Quadratic::fit_on(&points, &values, &weights, &mask)
             })
             .collect()
     }
@@ -589,5 +598,71 @@ impl Calibration {
             tradeoffs: Vec::new(),
         });
         file
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each metric's mean over the seeds; a metric one seed lacks is missing.
+    #[test]
+    fn a_seeds_mean_is_per_metric_and_missing_where_any_seed_lacks_it() {
+        let n = metrics().len();
+        let mut a = vec![Some(1.0); n];
+        let mut b = vec![Some(3.0); n];
+        a[1] = None;
+        b[2] = Some(5.0);
+        let mean = mean_over_seeds(&[a, b]);
+        assert_eq!(mean[0], Some(2.0));
+        assert_eq!(mean[1], None);
+        assert_eq!(mean[2], Some(3.0));
+        assert_eq!(mean_over_seeds(&[vec![Some(4.0); n]])[0], Some(4.0));
+    }
+
+    /// The surrogate of a Joint C number gets no slope from Joint A's parameter even where the
+    /// design's points make the two move together (the calibration's report had named Joint
+    /// A's hysteresis share as what Joint C's PI error needed), and keeps the slope of its own.
+    #[test]
+    fn a_joint_s_surrogate_is_fitted_in_the_bench_and_its_own_parameters() {
+        let space = Space::paper();
+        let index = |name: &str| {
+            space
+                .parameters
+                .iter()
+                .position(|p| p.name() == name)
+                .unwrap()
+        };
+        let (a_hyst, c_noise) = (
+            index("A.sensor1.hysteresis_share"),
+            index("C.sensor1.noise_ppm"),
+        );
+        let mut c = Calibration::new(space.clone(), Options::default()).unwrap();
+        let all = metrics();
+        let c_pi = all
+            .iter()
+            .position(|m| {
+                *m == Metric::Table4 {
+                    joint: 'C',
+                    pi: true,
+                }
+            })
+            .unwrap();
+        for u in latin_hypercube(40, space.len(), 3) {
+            let mut values = vec![Some(1.0); all.len()];
+            // Joint C's PI error grows with C's noise and, by the design's chance, A's share
+            // follows C's noise here.
+            values[c_pi] = Some((1.0 + u[c_noise]).exp());
+            let mut u = u;
+            u[a_hyst] = u[c_noise];
+            c.evaluations.push(Evaluation { u, values });
+        }
+        let models = c.surrogates();
+        let model = models[c_pi].as_ref().unwrap();
+        let at = vec![0.5; space.len()];
+        assert_eq!(model.log_slope(&at, a_hyst), 0.0);
+        approx::assert_relative_eq!(model.log_slope(&at, c_noise), 1.0, epsilon = 0.05);
+        assert_eq!(Metric::Table6 { closed: true }.joint(), 'D');
+        assert!(space.parameters[c_noise].affects('C') && !space.parameters[c_noise].affects('A'));
     }
 }

@@ -78,6 +78,15 @@ pub struct Parameter {
 }
 
 impl Parameter {
+    /// Whether the parameter can move a number of joint `letter`: the bench's parameters move
+    /// every joint's, a joint's sensor or plant only its own.
+    pub fn affects(&self, letter: char) -> bool {
+        match self.scope {
+            Scope::Bench => true,
+            Scope::Sensor(l, _) | Scope::Plant(l) => l == letter,
+        }
+    }
+
     /// `tracker_white_deg`, `A.sensor1.hysteresis_share`, `D.relaxation_fraction`.
     pub fn name(&self) -> String {
         let knob = match self.knob {

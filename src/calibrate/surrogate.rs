@@ -36,16 +36,20 @@ pub fn latin_hypercube(n: usize, dim: usize, seed: u64) -> Vec<Vec<f64>> {
 /// keep a coefficient that the design does not determine near zero, small next to the fit.
 const RIDGE: f64 = 1e-3;
 
-/// `ln(metric)` as a quadratic in each parameter: `c₀ + Σ bᵢ·uᵢ + Σ aᵢ·uᵢ²`.
+/// `ln(metric)` as a quadratic in each parameter it depends on: `c₀ + Σ bᵢ·uᵢ + Σ aᵢ·uᵢ²`
+/// over the parameters `i` of its mask; the others' coefficients are 0.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Quadratic {
     coefficients: DVector<f64>,
+    mask: Vec<bool>,
 }
 
-fn features(u: &[f64]) -> impl Iterator<Item = f64> + '_ {
+/// The features `1, uᵢ, uᵢ²`, each 0 for a parameter outside `mask`.
+fn features<'a>(u: &'a [f64], mask: &'a [bool]) -> impl Iterator<Item = f64> + 'a {
+    let on = move |(x, m): (&f64, &bool)| if *m { *x } else { 0.0 };
     std::iter::once(1.0)
-        .chain(u.iter().copied())
-        .chain(u.iter().map(|x| x * x))
+        .chain(u.iter().zip(mask).map(on))
+        .chain(u.iter().zip(mask).map(on).map(|x| x * x))
 }
 
 impl Quadratic {
@@ -53,6 +57,19 @@ impl Quadratic {
     /// value is missing or not positive are left out. `None` with fewer points than parameters.
     pub fn fit(points: &[Vec<f64>], values: &[Option<f64>], weights: &[f64]) -> Option<Self> {
         let dim = points.first()?.len();
+        Self::fit_on(points, values, weights, &vec![true; dim])
+    }
+
+    /// [`Quadratic::fit`] in the parameters of `mask` only: a metric that cannot depend on a
+    /// parameter (another joint's) gets no coefficient for it, so the design's chance
+    /// correlations cannot give it one. `None` with fewer points than parameters in the mask.
+    pub fn fit_on(
+        points: &[Vec<f64>],
+        values: &[Option<f64>],
+        weights: &[f64],
+        mask: &[bool],
+    ) -> Option<Self> {
+        let dim = mask.len();
         let k = 1 + 2 * dim;
         let rows: Vec<(&Vec<f64>, f64, f64)> = points
             .iter()
@@ -60,13 +77,13 @@ impl Quadratic {
             .zip(weights)
             .filter_map(|((p, v), w)| v.filter(|v| *v > 0.0).map(|v| (p, v.ln(), *w)))
             .collect();
-        if rows.len() <= dim {
+        if rows.len() <= mask.iter().filter(|m| **m).count() {
             return None;
         }
         let mut a = DMatrix::<f64>::zeros(k, k);
         let mut b = DVector::<f64>::zeros(k);
         for (p, y, w) in &rows {
-            let f: Vec<f64> = features(p).collect();
+            let f: Vec<f64> = features(p, mask).collect();
             for i in 0..k {
                 b[i] += w * f[i] * y;
                 for j in 0..k {
@@ -79,15 +96,15 @@ impl Quadratic {
             a[(i, i)] += RIDGE * total;
         }
         let coefficients = a.cholesky()?.solve(&b);
-        coefficients
-            .iter()
-            .all(|c| c.is_finite())
-            .then_some(Self { coefficients })
+        coefficients.iter().all(|c| c.is_finite()).then_some(Self {
+            coefficients,
+            mask: mask.to_vec(),
+        })
     }
 
     /// The model's value (not its log) at `u`.
     pub fn predict(&self, u: &[f64]) -> f64 {
-        features(u)
+        features(u, &self.mask)
             .zip(self.coefficients.iter())
             .map(|(f, c)| f * c)
             .sum::<f64>()
@@ -96,6 +113,9 @@ impl Quadratic {
 
     /// `d ln(value)/du_i` at `u`.
     pub fn log_slope(&self, u: &[f64], i: usize) -> f64 {
+        if !self.mask[i] {
+            return 0.0;
+        }
         let dim = u.len();
         self.coefficients[1 + i] + 2.0 * self.coefficients[1 + dim + i] * u[i]
     }
@@ -206,6 +226,36 @@ mod tests {
             assert_eq!(strata, (0..16).collect::<Vec<_>>());
         }
         assert_eq!(points, latin_hypercube(16, 3, 7));
+    }
+
+    /// A metric of one parameter, fitted on a small design where a second parameter happens to
+    /// track it: the unmasked fit gives the second a slope, the masked one none, and still
+    /// recovers the first.
+    #[test]
+    fn a_masked_parameter_gets_no_slope_from_a_chance_correlation() {
+        let points: Vec<Vec<f64>> = (0..8)
+            .map(|i| {
+                let x = f64::from(i) / 7.0;
+                vec![x, (x + 0.05 * (f64::from(i) * 2.3).sin()).clamp(0.0, 1.0)]
+            })
+            .collect();
+        let values: Vec<Option<f64>> = points.iter().map(|p| Some((0.3 + p[0]).exp())).collect();
+        let weights = vec![1.0; points.len()];
+        let open = Quadratic::fit(&points, &values, &weights).unwrap();
+        let masked = Quadratic::fit_on(&points, &values, &weights, &[true, false]).unwrap();
+        let u = [0.5, 0.5];
+        assert!(
+            open.log_slope(&u, 1).abs() > 0.05,
+            "{}",
+            open.log_slope(&u, 1)
+        );
+        assert_eq!(masked.log_slope(&u, 1), 0.0);
+        assert_relative_eq!(masked.log_slope(&u, 0), 1.0, epsilon = 0.05);
+        assert_relative_eq!(
+            masked.predict(&[0.2, 0.9]),
+            0.5f64.exp(),
+            max_relative = 0.02
+        );
     }
 
     /// A metric that is exactly `exp(quadratic)` is recovered, and the boxed minimizer finds a

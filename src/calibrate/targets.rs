@@ -98,6 +98,19 @@ const TENSION: Sensors = Sensors::Single(Sensor::One);
 const COMPRESSION: Sensors = Sensors::Single(Sensor::Two);
 
 impl Metric {
+    /// The joint whose runs give the number: Table V's is Joint C's, Table VI's Joint D's.
+    /// `reproduce::tables_of` runs each joint on its own scenario and seeds, so the number
+    /// depends on no other joint's parameters.
+    pub fn joint(self) -> char {
+        match self {
+            Self::Table4 { joint, .. }
+            | Self::Table3 { joint, .. }
+            | Self::LineOverPiResidual { joint } => joint,
+            Self::Table5 { .. } => 'C',
+            Self::Table6 { .. } => 'D',
+        }
+    }
+
     /// A short name, `table4.A.pi`, `table5.both`, `table6.closed`, `table3.C.m_c`.
     pub fn name(self) -> String {
         match self {
