@@ -616,15 +616,17 @@ const IDEAL_TABLE_III: [[f64; 7]; 3] = [
     ],
 ];
 
-/// Numbers of Tables IV-VI the shipped twin does not bring within 25 % of the paper's: none
-/// (the first twin missed Joint C's two, Table V's two and Table VI's closed loop;
-/// docs/experiments.md says why and what fixed each).
-const UNMET: [&str; 0] = [];
+/// Numbers of Tables IV-VI the shipped twin does not bring within 25 % of the paper's: Joint
+/// C's PI error. The twin met it until the PI fit's radius was bounded (5288602): the 5.99°
+/// came from a fit that failed; with the bounded fit no point the calibration measured puts
+/// Joint C's PI above its line (docs/experiments.md, "The bounded PI fit and the twin on four
+/// seeds"), and the report's finding says so from the recorded trade-off.
+const UNMET: [&str; 1] = ["Table IV Joint C PI"];
 
-/// The patterns the shipped twin does not hold though it could: none (the first twin's
-/// correlated tracker error, 0.79° with a 10 s time constant, spoiled Joints A-C's relaxation
-/// fits; it is held off now).
-const TWIN_NOT_HELD: [&str; 0] = [];
+/// The patterns the shipped twin does not hold: Joint C's, the same fact as its unmet PI error
+/// ([`UNMET`]). (The first twin's correlated tracker error, 0.79° with a 10 s time constant,
+/// spoiled Joints A-C's relaxation fits; it is held off now.)
+const TWIN_NOT_HELD: [&str; 1] = ["linear beats PI for Joint C (Table IV)"];
 
 /// The patterns the shipped twin cannot show: none (the first twin's Table V sensors erred 3.3
 /// times apart; each sensor's own noise now makes them err comparably).

@@ -382,9 +382,9 @@ pub struct Accuracy {
     pub closed_loop_rmse_deg: f64,
 }
 
-/// The accuracy of `joint` (its design and scenario; its letter picks the seeds) at
-/// `repeats` repetitions of the paper's timings, with the closed loop run on `control_joint`
-/// (the same sensor on Joint D's plant).
+/// The accuracy of `joint` (its design and scenario; its letter and `seed`, as
+/// [`Settings::seed`], pick the seeds) at `repeats` repetitions of the paper's timings, with the
+/// closed loop run on `control_joint` (the same sensor on Joint D's plant).
 ///
 /// # Errors
 /// [`ReproduceError`] naming the experiment.
@@ -392,6 +392,7 @@ pub fn accuracy(
     joint: &SimJoint,
     control_joint: &SimJoint,
     repeats: u32,
+    seed: u64,
 ) -> Result<Accuracy, ReproduceError> {
     if !(1..=PAPER_REPEATS).contains(&repeats) {
         return Err(ReproduceError::Repeats { value: repeats });
@@ -400,7 +401,7 @@ pub fn accuracy(
         scale: 1.0,
         repeats,
         models: &[ModelKind::Linear, ModelKind::Pi],
-        seed: 0,
+        seed,
     };
     let quiet = |_: &str| {};
     let (estimated, control) = rayon::join(
