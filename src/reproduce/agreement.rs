@@ -226,12 +226,16 @@ pub fn finding_at(checks: &[Check], tradeoffs: &[Tradeoff], explain: Explain) ->
         outside.len(),
         checks.len()
     );
+    // One paragraph per number: a reader (and the report, which splits on them) finds each.
     for c in outside {
-        text.push(' ');
+        text += PARAGRAPH;
         text += &one_finding(c, checks, tradeoffs, explain);
     }
     text
 }
+
+/// What separates the finding's paragraphs: the count, then one per number outside.
+pub const PARAGRAPH: &str = "\n\n";
 
 fn one_finding(c: &Check, checks: &[Check], tradeoffs: &[Tradeoff], explain: Explain) -> String {
     let (Some(v), Some(rel)) = (c.dlw, c.relative) else {

@@ -85,7 +85,15 @@ fn agreement_section(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
     } else {
         ""
     };
-    page.text(format!("{limits}{short} {}", r.finding()));
+    let finding = r.finding();
+    let mut paragraphs = finding.split(super::agreement::PARAGRAPH);
+    page.text(format!(
+        "{limits}{short} {}",
+        paragraphs.next().unwrap_or_default()
+    ));
+    for p in paragraphs {
+        page.text(p);
+    }
     let moved = super::moved(&r.settings.bench);
     if moved.is_empty() {
         return;
@@ -154,8 +162,9 @@ pub(super) fn add_sections(page: &mut Page, r: &Reproduction, at: Placement<'_>)
             "Joints A-D of Table I on the calibrated twin of the paper's bench \
              ({}: one scenario per joint{}): the sensors' hysteresis shares and their own slow \
              resistance noise, the tracker's and the ADC's noise, a thermal wander of R₀ and \
-             Joint D's relaxation and backlash were moved until the reproduction's Tables IV-VI landed on \
-             the paper's (docs/experiments.md); --ideal runs the clean bench",
+             Joint D's relaxation and backlash were moved by `dlw calibrate` towards the paper's \
+             Tables IV-VI (docs/experiments.md; the agreement below says which numbers are within \
+             their limits); --ideal runs the clean bench",
             super::PAPER_BENCH_PATH,
             file.calibration
                 .as_ref()
