@@ -18,7 +18,7 @@
 //! both joints, with their clean twins and more controls, 100 clean recordings per joint.
 
 mod common;
-use common::discovery::{discover_json, judge, Judgement, Truth};
+use common::discovery::{judge, Judgement, Truth};
 use common::shipped_design;
 use common::third_generator::{self, Bench, Effect, Size};
 
@@ -117,6 +117,11 @@ impl Case {
 }
 
 fn run(dir: &Path, case: &Case) -> serde_json::Value {
+    try_run(dir, case).unwrap_or_else(|e| panic!("discover {} failed: {e}", case.name()))
+}
+
+/// The report of `dlw discover --json` on `case`, or its error message when it fails.
+fn try_run(dir: &Path, case: &Case) -> Result<serde_json::Value, String> {
     let design = shipped_design(case.design);
     let rec = dir.join(case.name());
     let bench = Bench {
@@ -125,10 +130,23 @@ fn run(dir: &Path, case: &Case) -> serde_json::Value {
         seed: case.seed,
     };
     third_generator::write_recording(Path::new(&design), &bench, &rec);
-    let json = discover_json(&design, &rec, &dir.join(format!("{}-out", case.name())));
+    let out = dir.join(format!("{}-out", case.name()));
+    let o = common::dlw(&[
+        "discover".as_ref(),
+        "--design".as_ref(),
+        design.as_ref(),
+        rec.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--json".as_ref(),
+    ]);
     // The recordings are large (Joint C: 1.5 M rows); only the result is kept.
     let _ = std::fs::remove_dir_all(&rec);
-    json
+    if o.status.success() {
+        Ok(serde_json::from_slice(&o.stdout).expect("discover --json prints JSON"))
+    } else {
+        Err(String::from_utf8_lossy(&o.stderr).trim().to_owned())
+    }
 }
 
 /// What one run of the cases found.
@@ -217,13 +235,20 @@ fn run_cases() -> Summary {
     if full {
         for seed in 0..3u64 {
             for (i, effect) in Effect::ALL.into_iter().enumerate() {
-                for (j, size) in Size::ALL.into_iter().enumerate() {
+                // Joint A also at the larger sizes where they are physical; Joint C's are
+                // already ×4 the constants.
+                for (j, size) in Size::ALL.into_iter().chain(Size::LARGE).enumerate() {
                     let s = 10_000 + 100 * seed + 10 * i as u64 + j as u64;
-                    cases.push(Case {
-                        design: "joint-a.toml",
-                        effect: Some((effect, size, 1)),
-                        seed: s,
-                    });
+                    if size.0 <= effect.largest_physical(false) {
+                        cases.push(Case {
+                            design: "joint-a.toml",
+                            effect: Some((effect, size, 1)),
+                            seed: s,
+                        });
+                    }
+                    if j >= Size::ALL.len() {
+                        continue;
+                    }
                     cases.push(Case {
                         design: "joint-c.toml",
                         effect: Some((effect, size, 1 + (i + j + seed as usize) % 2)),
@@ -282,19 +307,7 @@ fn run_cases() -> Summary {
         .map(|case| {
             let json = run(dir.path(), case);
             let j = judge(&json, &case.truth());
-            let said = format!(
-                "named {:?}, ambiguous {}, unexplained {}",
-                common::discovery::named(&json),
-                json["ambiguous"],
-                json["unexplained"]
-                    .as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|u| u["channel"].as_str().unwrap())
-                    .collect::<Vec<_>>()
-                    .join(",")
-            );
-            (*case, j, said)
+            (*case, j, said(&json))
         })
         .collect();
     let mut wrong = Vec::new();
@@ -401,5 +414,204 @@ fn write_samples() {
                 &dir.join(case.name()),
             );
         }
+    }
+}
+
+/// What a report named, left ambiguous and flagged, in one line.
+fn said(json: &serde_json::Value) -> String {
+    let ambiguous: Vec<String> = json["ambiguous"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| {
+            let contenders: Vec<String> = a["contenders"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|c| format!("{} {:.1}", c[0].as_str().unwrap(), c[1].as_f64().unwrap()))
+                .collect();
+            format!(
+                "{} [{}]",
+                a["channel"].as_str().unwrap(),
+                contenders.join(", ")
+            )
+        })
+        .collect();
+    format!(
+        "named {:?}, ambiguous [{}], unexplained {}",
+        common::discovery::named(json),
+        ambiguous.join("; "),
+        json["unexplained"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|u| u["channel"].as_str().unwrap())
+            .collect::<Vec<_>>()
+            .join(",")
+    )
+}
+
+/// A list of numbers from the environment: `1-6`, `1,3,5` or `20000-20099`.
+fn env_list(key: &str, default: &str) -> Vec<f64> {
+    let text = std::env::var(key).unwrap_or_else(|_| default.to_owned());
+    text.split(',')
+        .flat_map(|part| match part.split_once('-') {
+            Some((a, b)) => {
+                let (a, b): (u64, u64) = (a.trim().parse().unwrap(), b.trim().parse().unwrap());
+                (a..=b).map(|k| k as f64).collect::<Vec<_>>()
+            }
+            None => vec![part.trim().parse().unwrap()],
+        })
+        .collect()
+}
+
+/// Measures detection against size (docs/discovery.md, "Detection against size"): each effect
+/// of `THIRD_EFFECTS` (tags, comma-separated, `clean` for clean recordings; default every
+/// effect) at each size of `THIRD_SIZES` (default `0.5,1,2,4,8`) on the seeds `THIRD_SEEDS`
+/// (default `1-6`), on `THIRD_JOINT` (default `joint-a.toml`), sensor `THIRD_SENSOR` (default 1
+/// on Joint A, 2 on Joint C, as `write_samples` puts them). Prints a line per case as it ends,
+/// then per effect and size the cases right and wrong, and the smallest size from which every
+/// larger size measured was right on every seed:
+/// `nice -n 5 cargo test --release --test discover_third_generator -- --ignored
+/// measure_detection --nocapture`.
+#[test]
+#[ignore = "a measurement: minutes on Joint A, hours on Joint C"]
+fn measure_detection() {
+    let design: &'static str = Box::leak(
+        std::env::var("THIRD_JOINT")
+            .unwrap_or_else(|_| "joint-a.toml".to_owned())
+            .into_boxed_str(),
+    );
+    let bsn = design == "joint-c.toml";
+    let sensor =
+        std::env::var("THIRD_SENSOR").map_or(if bsn { 2 } else { 1 }, |s| s.parse().unwrap());
+    let seeds: Vec<u64> = env_list("THIRD_SEEDS", "1-6")
+        .into_iter()
+        .map(|s| s as u64)
+        .collect();
+    let mut sizes: Vec<Size> = env_list("THIRD_SIZES", "0.5,1,2,4,8")
+        .into_iter()
+        .map(Size)
+        .collect();
+    sizes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let wanted = std::env::var("THIRD_EFFECTS").ok();
+    let wants = |tag: &str| {
+        wanted
+            .as_ref()
+            .is_none_or(|w| w.split(',').any(|x| x.trim() == tag))
+    };
+    let mut effects: Vec<Option<Effect>> = Effect::ALL
+        .into_iter()
+        .filter(|e| wants(e.tag()))
+        .map(Some)
+        .collect();
+    if wants("clean") {
+        effects.push(None);
+    }
+    let mut cases = Vec::new();
+    for effect in &effects {
+        for &seed in &seeds {
+            match effect {
+                Some(e) => cases.extend(sizes.iter().map(|&size| Case {
+                    design,
+                    effect: Some((*e, size, sensor)),
+                    seed,
+                })),
+                None => cases.push(Case {
+                    design,
+                    effect: None,
+                    seed,
+                }),
+            }
+        }
+    }
+    eprintln!("measure_detection: {} cases on {design}", cases.len());
+    let dir = tempfile::tempdir().unwrap();
+    // A case whose discovery failed is kept with its error: neither right nor wrong.
+    let results: Vec<(Case, Judgement, bool)> = cases
+        .par_iter()
+        .map(|case| {
+            let start = std::time::Instant::now();
+            let past = case
+                .effect
+                .filter(|(e, s, _)| s.0 > e.largest_physical(bsn))
+                .map_or("", |_| " (past physical)");
+            let json = match try_run(dir.path(), case) {
+                Ok(json) => json,
+                Err(e) => {
+                    eprintln!(
+                        "{}{past}: ERROR in {:.1} s: {e}",
+                        case.name(),
+                        start.elapsed().as_secs_f64()
+                    );
+                    return (*case, Judgement::default(), true);
+                }
+            };
+            let j = judge(&json, &case.truth());
+            eprintln!(
+                "{}{past}: {} in {:.1} s: {}{}",
+                case.name(),
+                if j.right { "right" } else { "missed" },
+                start.elapsed().as_secs_f64(),
+                said(&json),
+                if j.wrong.is_empty() {
+                    String::new()
+                } else {
+                    format!("  WRONG {:?}", j.wrong)
+                }
+            );
+            (*case, j, false)
+        })
+        .collect();
+    for effect in &effects {
+        let mine: Vec<&(Case, Judgement, bool)> = results
+            .iter()
+            .filter(|(c, ..)| c.effect.map(|(e, ..)| e) == *effect)
+            .collect();
+        let errors = |at: &[&(Case, Judgement, bool)]| at.iter().filter(|r| r.2).count();
+        let Some(e) = effect else {
+            let alarms: Vec<String> = mine
+                .iter()
+                .filter(|(_, j, _)| j.alarm)
+                .map(|(c, ..)| c.name())
+                .collect();
+            eprintln!(
+                "clean on {design}: {} of {} named or flagged {alarms:?}, {} failed",
+                alarms.len(),
+                mine.len(),
+                errors(&mine)
+            );
+            continue;
+        };
+        // Per size: (right, wrong, failed, cases).
+        let rows: Vec<(f64, usize, usize, usize, usize)> = sizes
+            .iter()
+            .map(|size| {
+                let at: Vec<&(Case, Judgement, bool)> = mine
+                    .iter()
+                    .filter(|(c, ..)| c.effect.is_some_and(|(_, s, _)| s == *size))
+                    .copied()
+                    .collect();
+                let right = at.iter().filter(|(_, j, _)| j.right && j.wrong.is_empty());
+                let wrong = at.iter().filter(|(_, j, _)| !j.wrong.is_empty());
+                (size.0, right.count(), wrong.count(), errors(&at), at.len())
+            })
+            .collect();
+        let detection = rows
+            .iter()
+            .enumerate()
+            .find(|(k, _)| rows[*k..].iter().all(|r| r.1 == r.4))
+            .map_or(f64::INFINITY, |(_, r)| r.0);
+        let cells: Vec<String> = rows
+            .iter()
+            .map(|(s, right, wrong, failed, n)| {
+                format!("×{s} {right}/{n} (wrong {wrong}, failed {failed})")
+            })
+            .collect();
+        eprintln!(
+            "{} on {design} sensor {sensor}: {}; detection size ×{detection}",
+            e.tag(),
+            cells.join(", ")
+        );
     }
 }
