@@ -26,33 +26,43 @@ use rayon::prelude::*;
 use std::path::Path;
 use std::sync::OnceLock;
 
-/// The size (a multiple of the generator's constants) from which the 95 % (80 % for the gains)
-/// is asserted on Joint A: the smallest of ×0.5, ×1, ×2 at which the effect was right on every
-/// one of six seeds, measured on 2026-11-27 (seeds 1-6, release; docs/discovery.md,
-/// "Detection against size"). `INFINITY`: not right on all six even at ×2, the largest size
-/// the generator has, so no size is asserted (creep, hysteresis, relaxation and the
-/// random-walk gain 5/6 at ×2, drift 1/6). Joint C's was not measured (a Joint C discovery
-/// costs six of Joint A's; one seed is in the docs), so its cases count only towards "nothing
-/// wrong".
-const DETECTION: [(Effect, f64); 7] = [
-    (Effect::Relaxation, f64::INFINITY),
-    (Effect::Creep, f64::INFINITY),
-    (Effect::Hysteresis, f64::INFINITY),
-    (Effect::Saturation, 1.0),
-    (Effect::Drift, f64::INFINITY),
-    (Effect::GainWalk, f64::INFINITY),
-    (Effect::GainCycle, 2.0),
+/// The detection size per effect (a multiple of the generator's constants), on Joint A and on
+/// Joint C: the smallest size measured from which every larger size measured was right on
+/// every seed (the right effect named first on the right channel, no wrong name; a gain flagged
+/// or named `gain_drift` there), measured 2026-11-27 in release by `measure_detection` (Joint
+/// A: seeds 1-12 at ×0.5, ×1, ×2, ×4, ×8; Joint C: seeds 1-3, sizes in docs/discovery.md,
+/// "Detection against size"). `INFINITY`: not right on every seed at any size up to the largest
+/// measured, so nothing is asserted (the shares are in the docs). Above it the 95 % (80 % for
+/// the gains) is asserted on the CI cases.
+const DETECTION: [(Effect, f64, f64); 7] = [
+    // Joint A: seed 3 never named (flagged `unexplained` on plant) at ×1-×8, 11/12 at each.
+    (Effect::Relaxation, f64::INFINITY, f64::INFINITY),
+    // Joint A: wrong names at ×1, ×4, ×8 (`hysteresis`; `drift`, `rate` beside `creep`).
+    (Effect::Creep, f64::INFINITY, f64::INFINITY),
+    (Effect::Hysteresis, 4.0, f64::INFINITY),
+    // Joint A: 12/12 at ×1, ×2, ×8; at ×4 one wrong `ambiguous` (`gain_drift`, `drift`).
+    (Effect::Saturation, 8.0, f64::INFINITY),
+    // Joint A: 3/12 at ×2, ×4 and ×8.
+    (Effect::Drift, f64::INFINITY, f64::INFINITY),
+    // Joint A: 9/12 at ×4, the largest physical size.
+    (Effect::GainWalk, f64::INFINITY, f64::INFINITY),
+    // Joint A: 12/12 at ×2 and ×4; at ×8 `dlw discover` failed on seed 3 (its `gain_drift`'s
+    // fade, 26.9 /h, out of the scenario's range).
+    (Effect::GainCycle, f64::INFINITY, f64::INFINITY),
 ];
 
-/// The detection size of `e` on `design` ([`DETECTION`]; Joint C's: none measured).
+/// The detection size of `e` on `design` ([`DETECTION`]).
 fn detection(design: &str, e: Effect) -> f64 {
-    if design != "joint-a.toml" {
-        return f64::INFINITY;
-    }
     DETECTION
         .iter()
-        .find(|(x, _)| *x == e)
-        .map_or(f64::INFINITY, |d| d.1)
+        .find(|(x, ..)| *x == e)
+        .map_or(f64::INFINITY, |d| {
+            if design == "joint-c.toml" {
+                d.2
+            } else {
+                d.1
+            }
+        })
 }
 
 /// One recording.
@@ -183,13 +193,22 @@ fn discover_names_nothing_wrong_on_the_third_generator() {
 /// The issue's detection figures above the measured detection sizes ([`DETECTION`]): the right
 /// effect on the right channel in ≥ 95 % of the library cases at or above them, the gains
 /// flagged or named `gain_drift` in ≥ 80 %. Fails when a case at or above its size is missed.
+/// No gain has a detection size today (none was right on every seed), so the 80 % is asserted
+/// only once one has.
 #[test]
 fn discover_meets_the_detection_figures_on_the_third_generator() {
     let s = summary();
     assert!(s.wrong.is_empty(), "wrong names or flags: {:#?}", s.wrong);
     assert!(
-        s.library > 0 && s.gains > 0,
-        "no case at or above its detection size"
+        s.library > 0,
+        "no library case at or above its detection size"
+    );
+    let gain_sizes = DETECTION
+        .iter()
+        .filter(|d| d.0.name().is_none() && (d.1.is_finite() || d.2.is_finite()));
+    assert!(
+        s.gains > 0 || gain_sizes.count() == 0,
+        "no gain case at or above its detection size"
     );
     assert!(
         s.library_right as f64 >= 0.95 * s.library as f64,
@@ -227,6 +246,65 @@ fn a_wandering_baseline_or_gain_is_never_named_another_effect() {
         let j = judge(&json, &case.truth());
         assert!(j.wrong.is_empty(), "{}: {:?}", case.name(), j.wrong);
     }
+}
+
+/// The wrong names the detection measurement of 2026-11-27 found on Joint A (docs/discovery.md,
+/// "Detection against size"), seeds of that measurement, none in the CI cases: a creep named
+/// `hysteresis` at ×1 (seed 12), ×4 and ×8 (seed 3); a creep named with `drift` (×4) and with
+/// `drift` and `rate` (×8) beside it (seed 10); a saturation ×4 (seed 2) named, then its
+/// channel left `ambiguous` between `gain_drift` and `drift`; a random-walk and a cycling gain
+/// ×0.5 (seed 9) left `ambiguous` between `drift` and `creep`. Not fixed; fails today.
+#[test]
+#[ignore = "fails: wrong names found by the detection measurement, not fixed"]
+fn the_detection_measurements_wrong_names_are_not_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let found = [
+        (Effect::Creep, 1.0, 12),
+        (Effect::Creep, 4.0, 3),
+        (Effect::Creep, 8.0, 3),
+        (Effect::Creep, 4.0, 10),
+        (Effect::Creep, 8.0, 10),
+        (Effect::Saturation, 4.0, 2),
+        (Effect::GainWalk, 0.5, 9),
+        (Effect::GainCycle, 0.5, 9),
+    ];
+    let wrong: Vec<(String, Vec<String>)> = found
+        .par_iter()
+        .map(|&(effect, size, seed)| {
+            let case = Case {
+                design: "joint-a.toml",
+                effect: Some((effect, Size(size), 1)),
+                seed,
+            };
+            let j = judge(&run(dir.path(), &case), &case.truth());
+            (case.name(), j.wrong)
+        })
+        .filter(|(_, w)| !w.is_empty())
+        .collect();
+    assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
+}
+
+/// A cycling gain at ×8 (amplitude 0.4, a physical size; Joint A, seed 3): `dlw discover`
+/// exits with an error (the `gain_drift` it named fades 26.9 /h, outside the scenario's ±10 /h)
+/// instead of a report that names or flags it. Found by the detection measurement of
+/// 2026-11-27; not fixed; fails today.
+#[test]
+#[ignore = "fails: discover errors on a large cycling gain, not fixed"]
+fn a_large_cycling_gain_gets_a_report_not_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = Case {
+        design: "joint-a.toml",
+        effect: Some((Effect::GainCycle, Size(8.0), 1)),
+        seed: 3,
+    };
+    let json = try_run(dir.path(), &case).unwrap_or_else(|e| panic!("{}: {e}", case.name()));
+    let j = judge(&json, &case.truth());
+    assert!(
+        j.right && j.wrong.is_empty(),
+        "{}: {}",
+        case.name(),
+        said(&json)
+    );
 }
 
 fn run_cases() -> Summary {
@@ -275,7 +353,11 @@ fn run_cases() -> Summary {
         }
     } else {
         for (i, effect) in Effect::ALL.into_iter().enumerate() {
-            for size in [Size(1.0), Size(2.0)] {
+            // ×1, and ×2 or the effect's detection size when it has one (measured on other
+            // seeds), so the detection figures are asserted on a case.
+            let d = detection("joint-a.toml", effect);
+            let larger = Size(if d.is_finite() { d.max(2.0) } else { 2.0 });
+            for size in [Size(1.0), larger] {
                 cases.push(Case {
                     design: "joint-a.toml",
                     effect: Some((effect, size, 1)),
