@@ -1,9 +1,9 @@
 //! `dlw discover` on the third generator (`tests/common/third_generator.rs`, issue 31): forms
 //! neither the simulator nor the other generators have (a relaxation and a creep with a spread
 //! of time constants, Preisach hysteresis, a saturation that is not odd, a random-walk drift,
-//! a random-walk gain and a gain cycling at a random period), at three sizes, with coloured
-//! noise (white + four AR(1) terms, 0.2-12.8 s), on a UAN joint (A, 300 s) and a BSN joint (C,
-//! 3000 s).
+//! a random-walk gain and a gain cycling at a random period), at sizes ×0.5 to ×8, with
+//! coloured noise (white + four AR(1) terms, 0.2-12.8 s), on a UAN joint (A, 300 s) and a BSN
+//! joint (C, 3000 s).
 //!
 //! Asserted in CI: no wrong name; `ambiguous` only on the right channel with the true name among
 //! the contenders; the plant's relaxation never names or flags a sensor; clean recordings named
@@ -11,14 +11,16 @@
 //! detection figures above each effect's MEASURED detection size, [`DETECTION`]: the right
 //! effect first on the right channel in ≥ 95 %, the gains flagged or named `gain_drift` in
 //! ≥ 80 % (`discover_meets_the_detection_figures_on_the_third_generator`). The two tests share
-//! one run of the cases. The issue asks the figures from the generator's ×1 for every effect;
-//! that is not met (docs/discovery.md, "Issue 31: acceptance, measured"). CI runs Joint A's
-//! effects at ×1 and ×2 and two of Joint C's; `DLW_DISCOVER_FULL=1 cargo test --release --test
-//! discover_third_generator -- --nocapture` runs three seeds of every effect at every size on
-//! both joints, with their clean twins and more controls, 100 clean recordings per joint.
+//! one run of the cases. Most effects have no detection size up to ×8 (docs/discovery.md,
+//! "Detection against size"). CI runs Joint A's effects at ×1 and at ×2 or their detection size,
+//! and two of Joint C's; `DLW_DISCOVER_FULL=1 cargo test --release --test
+//! discover_third_generator -- --nocapture` runs three seeds of every effect at ×0.5, ×1, ×2 on
+//! both joints and at ×4 and ×8 on Joint A where physical, with their clean twins and more
+//! controls, 100 clean recordings per joint. The ignored `measure_detection` is the measurement
+//! behind [`DETECTION`] and the clean controls' rate (its docs give the command).
 
 mod common;
-use common::discovery::{judge, Judgement, Truth};
+use common::discovery::{judge, try_discover_json, Judgement, Truth};
 use common::shipped_design;
 use common::third_generator::{self, Bench, Effect, Size};
 
@@ -140,23 +142,10 @@ fn try_run(dir: &Path, case: &Case) -> Result<serde_json::Value, String> {
         seed: case.seed,
     };
     third_generator::write_recording(Path::new(&design), &bench, &rec);
-    let out = dir.join(format!("{}-out", case.name()));
-    let o = common::dlw(&[
-        "discover".as_ref(),
-        "--design".as_ref(),
-        design.as_ref(),
-        rec.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-        "--json".as_ref(),
-    ]);
+    let json = try_discover_json(&design, &rec, &dir.join(format!("{}-out", case.name())));
     // The recordings are large (Joint C: 1.5 M rows); only the result is kept.
     let _ = std::fs::remove_dir_all(&rec);
-    if o.status.success() {
-        Ok(serde_json::from_slice(&o.stdout).expect("discover --json prints JSON"))
-    } else {
-        Err(String::from_utf8_lossy(&o.stderr).trim().to_owned())
-    }
+    json
 }
 
 /// What one run of the cases found.
