@@ -46,7 +46,7 @@
 //! The saturation (a smaller `ε_s⁺`) and the drift (a wandering baseline, far below `R₀` at
 //! ×8) stay physical. So on Joint A every effect is physical up to ×4, and at ×8 all but the
 //! random-walk gain. On Joint C (×4 the constants already) the random-walk gain is past
-//! physical from ×2 (a size the CI already ran), the creep and the hysteresis from ×4, the
+//! physical from ×2 (a size `DLW_DISCOVER_FULL` runs), the creep and the hysteresis from ×4, the
 //! cycling gain at ×8; the relaxation, the saturation and the drift stay physical.
 #![allow(dead_code)]
 
