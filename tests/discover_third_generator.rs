@@ -1,9 +1,9 @@
 //! `dlw discover` on the third generator (`tests/common/third_generator.rs`, issue 31): forms
 //! neither the simulator nor the other generators have (a relaxation and a creep with a spread
 //! of time constants, Preisach hysteresis, a saturation that is not odd, a random-walk drift,
-//! a random-walk gain and a gain cycling at a random period), at three sizes, with coloured
-//! noise (white + four AR(1) terms, 0.2-12.8 s), on a UAN joint (A, 300 s) and a BSN joint (C,
-//! 3000 s).
+//! a random-walk gain and a gain cycling at a random period), at sizes ×0.5 to ×8, with
+//! coloured noise (white + four AR(1) terms, 0.2-12.8 s), on a UAN joint (A, 300 s) and a BSN
+//! joint (C, 3000 s).
 //!
 //! Asserted in CI: no wrong name; `ambiguous` only on the right channel with the true name among
 //! the contenders; the plant's relaxation never names or flags a sensor; clean recordings named
@@ -11,14 +11,16 @@
 //! detection figures above each effect's MEASURED detection size, [`DETECTION`]: the right
 //! effect first on the right channel in ≥ 95 %, the gains flagged or named `gain_drift` in
 //! ≥ 80 % (`discover_meets_the_detection_figures_on_the_third_generator`). The two tests share
-//! one run of the cases. The issue asks the figures from the generator's ×1 for every effect;
-//! that is not met (docs/discovery.md, "Issue 31: acceptance, measured"). CI runs Joint A's
-//! effects at ×1 and ×2 and two of Joint C's; `DLW_DISCOVER_FULL=1 cargo test --release --test
-//! discover_third_generator -- --nocapture` runs three seeds of every effect at every size on
-//! both joints, with their clean twins and more controls, 100 clean recordings per joint.
+//! one run of the cases. Most effects have no detection size up to ×8 (docs/discovery.md,
+//! "Detection against size"). CI runs Joint A's effects at ×1 and at ×2 or their detection size,
+//! and two of Joint C's; `DLW_DISCOVER_FULL=1 cargo test --release --test
+//! discover_third_generator -- --nocapture` runs three seeds of every effect at ×0.5, ×1, ×2 on
+//! both joints and at ×4 and ×8 on Joint A where physical, with their clean twins and more
+//! controls, 100 clean recordings per joint. The ignored `measure_detection` is the measurement
+//! behind [`DETECTION`] and the clean controls' rate (its docs give the command).
 
 mod common;
-use common::discovery::{discover_json, judge, Judgement, Truth};
+use common::discovery::{judge, try_discover_json, Judgement, Truth};
 use common::shipped_design;
 use common::third_generator::{self, Bench, Effect, Size};
 
@@ -26,33 +28,49 @@ use rayon::prelude::*;
 use std::path::Path;
 use std::sync::OnceLock;
 
-/// The size (a multiple of the generator's constants) from which the 95 % (80 % for the gains)
-/// is asserted on Joint A: the smallest of ×0.5, ×1, ×2 at which the effect was right on every
-/// one of six seeds, measured on 2026-11-27 (seeds 1-6, release; docs/discovery.md,
-/// "Detection against size"). `INFINITY`: not right on all six even at ×2, the largest size
-/// the generator has, so no size is asserted (creep, hysteresis, relaxation and the
-/// random-walk gain 5/6 at ×2, drift 1/6). Joint C's was not measured (a Joint C discovery
-/// costs six of Joint A's; one seed is in the docs), so its cases count only towards "nothing
-/// wrong".
-const DETECTION: [(Effect, f64); 7] = [
-    (Effect::Relaxation, f64::INFINITY),
-    (Effect::Creep, f64::INFINITY),
-    (Effect::Hysteresis, f64::INFINITY),
-    (Effect::Saturation, 1.0),
-    (Effect::Drift, f64::INFINITY),
-    (Effect::GainWalk, f64::INFINITY),
-    (Effect::GainCycle, 2.0),
+/// The detection size per effect (a multiple of the generator's constants), on Joint A and on
+/// Joint C: the smallest size measured from which every larger size measured was right on
+/// every seed (the right effect named first on the right channel, no wrong name; a gain flagged
+/// or named `gain_drift` there), measured 2026-11-27 in release by `measure_detection` (Joint
+/// A: seeds 1-12 at ×0.5, ×1, ×2, ×4, ×8 on sensor 1; Joint C: seeds 1-3 on sensor 2 at ×0.5,
+/// ×1, ×2, and at ×4, ×8 where physical, on sensor 1 at ×0.5-×2, and seeds 4-6 of the
+/// relaxation and the creep at ×0.5-×2; docs/discovery.md, "Detection against size"). `INFINITY`: not right on every seed at any size up to the largest
+/// measured, so nothing is asserted (the shares are in the docs). Above it the 95 % (80 % for
+/// the gains) is asserted on the CI cases.
+const DETECTION: [(Effect, f64, f64); 7] = [
+    // Joint A: seed 3 never named (flagged `unexplained` on plant) at ×1-×8, 11/12 at each.
+    // Joint C: right at every size from ×0.5 to ×8 (seeds 1-3; seeds 4-6 at ×0.5-×2 too).
+    (Effect::Relaxation, f64::INFINITY, 0.5),
+    // Joint A: wrong names at ×1, ×4, ×8 (`hysteresis`; `drift`, `rate` beside `creep`).
+    // Joint C: at ×2 9/9 (seeds 1-6 on sensor 2, 1-3 on sensor 1; ×2.5 is the largest
+    // physical size there); at ×1 8/9 (seed 6 on sensor 2 flagged, not named).
+    (Effect::Creep, f64::INFINITY, 2.0),
+    // Joint C: 2/3 at ×2 on sensor 2 (3/3 on sensor 1), ×2 the largest physical size.
+    (Effect::Hysteresis, 4.0, f64::INFINITY),
+    // Joint A: 12/12 at ×1, ×2, ×8; at ×4 one wrong `ambiguous` (`gain_drift`, `drift`).
+    // Joint C: sensor 2 2/3 at ×1, 1/3 at ×2, 0/3 at ×4 and ×8.
+    (Effect::Saturation, 8.0, f64::INFINITY),
+    // Joint A: 3/12 at ×2, ×4 and ×8.
+    (Effect::Drift, f64::INFINITY, f64::INFINITY),
+    // Joint A: 9/12 at ×4, the largest physical size.
+    (Effect::GainWalk, f64::INFINITY, f64::INFINITY),
+    // Joint A: 12/12 at ×2 and ×4; at ×8 `dlw discover` failed on seed 3 (its `gain_drift`'s
+    // fade, 26.9 /h, out of the scenario's range).
+    (Effect::GainCycle, f64::INFINITY, f64::INFINITY),
 ];
 
-/// The detection size of `e` on `design` ([`DETECTION`]; Joint C's: none measured).
+/// The detection size of `e` on `design` ([`DETECTION`]).
 fn detection(design: &str, e: Effect) -> f64 {
-    if design != "joint-a.toml" {
-        return f64::INFINITY;
-    }
     DETECTION
         .iter()
-        .find(|(x, _)| *x == e)
-        .map_or(f64::INFINITY, |d| d.1)
+        .find(|(x, ..)| *x == e)
+        .map_or(f64::INFINITY, |d| {
+            if design == "joint-c.toml" {
+                d.2
+            } else {
+                d.1
+            }
+        })
 }
 
 /// One recording.
@@ -117,6 +135,11 @@ impl Case {
 }
 
 fn run(dir: &Path, case: &Case) -> serde_json::Value {
+    try_run(dir, case).unwrap_or_else(|e| panic!("discover {} failed: {e}", case.name()))
+}
+
+/// The report of `dlw discover --json` on `case`, or its error message when it fails.
+fn try_run(dir: &Path, case: &Case) -> Result<serde_json::Value, String> {
     let design = shipped_design(case.design);
     let rec = dir.join(case.name());
     let bench = Bench {
@@ -125,7 +148,7 @@ fn run(dir: &Path, case: &Case) -> serde_json::Value {
         seed: case.seed,
     };
     third_generator::write_recording(Path::new(&design), &bench, &rec);
-    let json = discover_json(&design, &rec, &dir.join(format!("{}-out", case.name())));
+    let json = try_discover_json(&design, &rec, &dir.join(format!("{}-out", case.name())));
     // The recordings are large (Joint C: 1.5 M rows); only the result is kept.
     let _ = std::fs::remove_dir_all(&rec);
     json
@@ -165,13 +188,22 @@ fn discover_names_nothing_wrong_on_the_third_generator() {
 /// The issue's detection figures above the measured detection sizes ([`DETECTION`]): the right
 /// effect on the right channel in ≥ 95 % of the library cases at or above them, the gains
 /// flagged or named `gain_drift` in ≥ 80 %. Fails when a case at or above its size is missed.
+/// No gain has a detection size today (none was right on every seed), so the 80 % is asserted
+/// only once one has.
 #[test]
 fn discover_meets_the_detection_figures_on_the_third_generator() {
     let s = summary();
     assert!(s.wrong.is_empty(), "wrong names or flags: {:#?}", s.wrong);
     assert!(
-        s.library > 0 && s.gains > 0,
-        "no case at or above its detection size"
+        s.library > 0,
+        "no library case at or above its detection size"
+    );
+    let gain_sizes = DETECTION
+        .iter()
+        .filter(|d| d.0.name().is_none() && (d.1.is_finite() || d.2.is_finite()));
+    assert!(
+        s.gains > 0 || gain_sizes.count() == 0,
+        "no gain case at or above its detection size"
     );
     assert!(
         s.library_right as f64 >= 0.95 * s.library as f64,
@@ -211,19 +243,85 @@ fn a_wandering_baseline_or_gain_is_never_named_another_effect() {
     }
 }
 
+/// The wrong names the detection measurement of 2026-11-27 found on Joint A (docs/discovery.md,
+/// "Detection against size"), seeds of that measurement, none in the CI cases: a creep named
+/// `hysteresis` at ×1 (seed 12), ×4 and ×8 (seed 3); a creep named with `drift` (×4) and with
+/// `drift` and `rate` (×8) beside it (seed 10); a saturation ×4 (seed 2) named, then its
+/// channel left `ambiguous` between `gain_drift` and `drift`; a random-walk and a cycling gain
+/// ×0.5 (seed 9) left `ambiguous` between `drift` and `creep`. Not fixed; fails today.
+#[test]
+#[ignore = "fails: wrong names found by the detection measurement, not fixed"]
+fn the_detection_measurements_wrong_names_are_not_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let found = [
+        (Effect::Creep, 1.0, 12),
+        (Effect::Creep, 4.0, 3),
+        (Effect::Creep, 8.0, 3),
+        (Effect::Creep, 4.0, 10),
+        (Effect::Creep, 8.0, 10),
+        (Effect::Saturation, 4.0, 2),
+        (Effect::GainWalk, 0.5, 9),
+        (Effect::GainCycle, 0.5, 9),
+    ];
+    let wrong: Vec<(String, Vec<String>)> = found
+        .par_iter()
+        .map(|&(effect, size, seed)| {
+            let case = Case {
+                design: "joint-a.toml",
+                effect: Some((effect, Size(size), 1)),
+                seed,
+            };
+            let j = judge(&run(dir.path(), &case), &case.truth());
+            (case.name(), j.wrong)
+        })
+        .filter(|(_, w)| !w.is_empty())
+        .collect();
+    assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
+}
+
+/// A cycling gain at ×8 (amplitude 0.4, a physical size; Joint A, seed 3): `dlw discover`
+/// exits with an error (the `gain_drift` it named fades 26.9 /h, outside the scenario's ±10 /h)
+/// instead of a report that names or flags it. Found by the detection measurement of
+/// 2026-11-27; not fixed; fails today.
+#[test]
+#[ignore = "fails: discover errors on a large cycling gain, not fixed"]
+fn a_large_cycling_gain_gets_a_report_not_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = Case {
+        design: "joint-a.toml",
+        effect: Some((Effect::GainCycle, Size(8.0), 1)),
+        seed: 3,
+    };
+    let json = try_run(dir.path(), &case).unwrap_or_else(|e| panic!("{}: {e}", case.name()));
+    let j = judge(&json, &case.truth());
+    assert!(
+        j.right && j.wrong.is_empty(),
+        "{}: {}",
+        case.name(),
+        said(&json)
+    );
+}
+
 fn run_cases() -> Summary {
     let full = std::env::var("DLW_DISCOVER_FULL").is_ok();
     let mut cases: Vec<Case> = Vec::new();
     if full {
         for seed in 0..3u64 {
             for (i, effect) in Effect::ALL.into_iter().enumerate() {
-                for (j, size) in Size::ALL.into_iter().enumerate() {
+                // Joint A also at the larger sizes where they are physical; Joint C's are
+                // already ×4 the constants.
+                for (j, size) in Size::ALL.into_iter().chain(Size::LARGE).enumerate() {
                     let s = 10_000 + 100 * seed + 10 * i as u64 + j as u64;
-                    cases.push(Case {
-                        design: "joint-a.toml",
-                        effect: Some((effect, size, 1)),
-                        seed: s,
-                    });
+                    if size.0 <= effect.largest_physical(false) {
+                        cases.push(Case {
+                            design: "joint-a.toml",
+                            effect: Some((effect, size, 1)),
+                            seed: s,
+                        });
+                    }
+                    if j >= Size::ALL.len() {
+                        continue;
+                    }
                     cases.push(Case {
                         design: "joint-c.toml",
                         effect: Some((effect, size, 1 + (i + j + seed as usize) % 2)),
@@ -250,7 +348,11 @@ fn run_cases() -> Summary {
         }
     } else {
         for (i, effect) in Effect::ALL.into_iter().enumerate() {
-            for size in [Size(1.0), Size(2.0)] {
+            // ×1, and ×2 or the effect's detection size when it has one (measured on other
+            // seeds), so the detection figures are asserted on a case.
+            let d = detection("joint-a.toml", effect);
+            let larger = Size(if d.is_finite() { d.max(2.0) } else { 2.0 });
+            for size in [Size(1.0), larger] {
                 cases.push(Case {
                     design: "joint-a.toml",
                     effect: Some((effect, size, 1)),
@@ -282,19 +384,7 @@ fn run_cases() -> Summary {
         .map(|case| {
             let json = run(dir.path(), case);
             let j = judge(&json, &case.truth());
-            let said = format!(
-                "named {:?}, ambiguous {}, unexplained {}",
-                common::discovery::named(&json),
-                json["ambiguous"],
-                json["unexplained"]
-                    .as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|u| u["channel"].as_str().unwrap())
-                    .collect::<Vec<_>>()
-                    .join(",")
-            );
-            (*case, j, said)
+            (*case, j, said(&json))
         })
         .collect();
     let mut wrong = Vec::new();
@@ -401,5 +491,204 @@ fn write_samples() {
                 &dir.join(case.name()),
             );
         }
+    }
+}
+
+/// What a report named, left ambiguous and flagged, in one line.
+fn said(json: &serde_json::Value) -> String {
+    let ambiguous: Vec<String> = json["ambiguous"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| {
+            let contenders: Vec<String> = a["contenders"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|c| format!("{} {:.1}", c[0].as_str().unwrap(), c[1].as_f64().unwrap()))
+                .collect();
+            format!(
+                "{} [{}]",
+                a["channel"].as_str().unwrap(),
+                contenders.join(", ")
+            )
+        })
+        .collect();
+    format!(
+        "named {:?}, ambiguous [{}], unexplained {}",
+        common::discovery::named(json),
+        ambiguous.join("; "),
+        json["unexplained"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|u| u["channel"].as_str().unwrap())
+            .collect::<Vec<_>>()
+            .join(",")
+    )
+}
+
+/// A list of numbers from the environment: `1-6`, `1,3,5` or `20000-20099`.
+fn env_list(key: &str, default: &str) -> Vec<f64> {
+    let text = std::env::var(key).unwrap_or_else(|_| default.to_owned());
+    text.split(',')
+        .flat_map(|part| match part.split_once('-') {
+            Some((a, b)) => {
+                let (a, b): (u64, u64) = (a.trim().parse().unwrap(), b.trim().parse().unwrap());
+                (a..=b).map(|k| k as f64).collect::<Vec<_>>()
+            }
+            None => vec![part.trim().parse().unwrap()],
+        })
+        .collect()
+}
+
+/// Measures detection against size (docs/discovery.md, "Detection against size"): each effect
+/// of `THIRD_EFFECTS` (tags, comma-separated, `clean` for clean recordings; default every
+/// effect) at each size of `THIRD_SIZES` (default `0.5,1,2,4,8`) on the seeds `THIRD_SEEDS`
+/// (default `1-6`), on `THIRD_JOINT` (default `joint-a.toml`), sensor `THIRD_SENSOR` (default 1
+/// on Joint A, 2 on Joint C, as `write_samples` puts them). Prints a line per case as it ends,
+/// then per effect and size the cases right and wrong, and the smallest size from which every
+/// larger size measured was right on every seed:
+/// `nice -n 5 cargo test --release --test discover_third_generator -- --ignored
+/// measure_detection --nocapture`.
+#[test]
+#[ignore = "a measurement: minutes on Joint A, hours on Joint C"]
+fn measure_detection() {
+    let design: &'static str = Box::leak(
+        std::env::var("THIRD_JOINT")
+            .unwrap_or_else(|_| "joint-a.toml".to_owned())
+            .into_boxed_str(),
+    );
+    let bsn = design == "joint-c.toml";
+    let sensor =
+        std::env::var("THIRD_SENSOR").map_or(if bsn { 2 } else { 1 }, |s| s.parse().unwrap());
+    let seeds: Vec<u64> = env_list("THIRD_SEEDS", "1-6")
+        .into_iter()
+        .map(|s| s as u64)
+        .collect();
+    let mut sizes: Vec<Size> = env_list("THIRD_SIZES", "0.5,1,2,4,8")
+        .into_iter()
+        .map(Size)
+        .collect();
+    sizes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let wanted = std::env::var("THIRD_EFFECTS").ok();
+    let wants = |tag: &str| {
+        wanted
+            .as_ref()
+            .is_none_or(|w| w.split(',').any(|x| x.trim() == tag))
+    };
+    let mut effects: Vec<Option<Effect>> = Effect::ALL
+        .into_iter()
+        .filter(|e| wants(e.tag()))
+        .map(Some)
+        .collect();
+    if wants("clean") {
+        effects.push(None);
+    }
+    let mut cases = Vec::new();
+    for effect in &effects {
+        for &seed in &seeds {
+            match effect {
+                Some(e) => cases.extend(sizes.iter().map(|&size| Case {
+                    design,
+                    effect: Some((*e, size, sensor)),
+                    seed,
+                })),
+                None => cases.push(Case {
+                    design,
+                    effect: None,
+                    seed,
+                }),
+            }
+        }
+    }
+    eprintln!("measure_detection: {} cases on {design}", cases.len());
+    let dir = tempfile::tempdir().unwrap();
+    // A case whose discovery failed is kept with its error: neither right nor wrong.
+    let results: Vec<(Case, Judgement, bool)> = cases
+        .par_iter()
+        .map(|case| {
+            let start = std::time::Instant::now();
+            let past = case
+                .effect
+                .filter(|(e, s, _)| s.0 > e.largest_physical(bsn))
+                .map_or("", |_| " (past physical)");
+            let json = match try_run(dir.path(), case) {
+                Ok(json) => json,
+                Err(e) => {
+                    eprintln!(
+                        "{}{past}: ERROR in {:.1} s: {e}",
+                        case.name(),
+                        start.elapsed().as_secs_f64()
+                    );
+                    return (*case, Judgement::default(), true);
+                }
+            };
+            let j = judge(&json, &case.truth());
+            eprintln!(
+                "{}{past}: {} in {:.1} s: {}{}",
+                case.name(),
+                if j.right { "right" } else { "missed" },
+                start.elapsed().as_secs_f64(),
+                said(&json),
+                if j.wrong.is_empty() {
+                    String::new()
+                } else {
+                    format!("  WRONG {:?}", j.wrong)
+                }
+            );
+            (*case, j, false)
+        })
+        .collect();
+    for effect in &effects {
+        let mine: Vec<&(Case, Judgement, bool)> = results
+            .iter()
+            .filter(|(c, ..)| c.effect.map(|(e, ..)| e) == *effect)
+            .collect();
+        let errors = |at: &[&(Case, Judgement, bool)]| at.iter().filter(|r| r.2).count();
+        let Some(e) = effect else {
+            let alarms: Vec<String> = mine
+                .iter()
+                .filter(|(_, j, _)| j.alarm)
+                .map(|(c, ..)| c.name())
+                .collect();
+            eprintln!(
+                "clean on {design}: {} of {} named or flagged {alarms:?}, {} failed",
+                alarms.len(),
+                mine.len(),
+                errors(&mine)
+            );
+            continue;
+        };
+        // Per size: (right, wrong, failed, cases).
+        let rows: Vec<(f64, usize, usize, usize, usize)> = sizes
+            .iter()
+            .map(|size| {
+                let at: Vec<&(Case, Judgement, bool)> = mine
+                    .iter()
+                    .filter(|(c, ..)| c.effect.is_some_and(|(_, s, _)| s == *size))
+                    .copied()
+                    .collect();
+                let right = at.iter().filter(|(_, j, _)| j.right && j.wrong.is_empty());
+                let wrong = at.iter().filter(|(_, j, _)| !j.wrong.is_empty());
+                (size.0, right.count(), wrong.count(), errors(&at), at.len())
+            })
+            .collect();
+        let detection = rows
+            .iter()
+            .enumerate()
+            .find(|(k, _)| rows[*k..].iter().all(|r| r.1 == r.4))
+            .map_or(f64::INFINITY, |(_, r)| r.0);
+        let cells: Vec<String> = rows
+            .iter()
+            .map(|(s, right, wrong, failed, n)| {
+                format!("×{s} {right}/{n} (wrong {wrong}, failed {failed})")
+            })
+            .collect();
+        eprintln!(
+            "{} on {design} sensor {sensor}: {}; detection size ×{detection}",
+            e.tag(),
+            cells.join(", ")
+        );
     }
 }

@@ -5,6 +5,16 @@ use std::path::Path;
 
 /// Runs `dlw discover --design DESIGN REC -o OUT --json`, asserts success, returns the JSON.
 pub fn discover_json(design: &str, rec: &Path, out: &Path) -> serde_json::Value {
+    try_discover_json(design, rec, out)
+        .unwrap_or_else(|e| panic!("discover {} failed: {e}", rec.display()))
+}
+
+/// Runs `dlw discover --design DESIGN REC -o OUT --json`: the JSON, or the error it printed.
+pub fn try_discover_json(
+    design: &str,
+    rec: &Path,
+    out: &Path,
+) -> Result<serde_json::Value, String> {
     let o = super::dlw(&[
         "discover".as_ref(),
         "--design".as_ref(),
@@ -14,13 +24,11 @@ pub fn discover_json(design: &str, rec: &Path, out: &Path) -> serde_json::Value 
         out.as_os_str(),
         "--json".as_ref(),
     ]);
-    assert!(
-        o.status.success(),
-        "discover {} failed: {}",
-        rec.display(),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    serde_json::from_slice(&o.stdout).expect("discover --json prints JSON")
+    if o.status.success() {
+        Ok(serde_json::from_slice(&o.stdout).expect("discover --json prints JSON"))
+    } else {
+        Err(String::from_utf8_lossy(&o.stderr).trim().to_owned())
+    }
 }
 
 /// The (effect, channel) pairs a report names, in its order.

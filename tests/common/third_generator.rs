@@ -27,11 +27,27 @@
 //!   over two decades), unlike the others' one AR(1). Wander slower than that, a minute or
 //!   more, is what discovery calls a drift (a baseline that changes over the run), not noise.
 //!
-//! Sizes: every effect has a size [`Size`] (×0.5, ×1, ×2 of the constants below), stated
-//! relative to the sensor's span. Joint C's sensors are about forty times less sensitive than
-//! Joint A's under the same voltage noise, so a BSN sensor's effects are [`BSN_SENSOR_SCALE`]
-//! times larger (×2, ×4, ×8 of the constants), as the matrix's Joint C effects are; the plant's
-//! (the tracker's noise is the same on both) are not.
+//! Sizes: every effect has a size [`Size`] (×0.5, ×1, ×2 of the constants below, and the
+//! larger ×4 and ×8 of [`Size::LARGE`] to find where discovery starts to see an effect),
+//! stated relative to the sensor's span. Joint C's sensors are about forty times less sensitive
+//! than Joint A's under the same voltage noise, so a BSN sensor's effects are
+//! [`BSN_SENSOR_SCALE`] times larger (×2, ×4, ×8 of the constants), as the matrix's Joint C
+//! effects are; the plant's (the tracker's noise is the same on both) are not. A size only
+//! multiplies the constants: ×0.5, ×1 and ×2 give the same recordings whatever larger sizes
+//! exist.
+//!
+//! Where a size stops being physical ([`Effect::largest_physical`], as a multiple of the
+//! constants, before Joint C's ×4): the relaxation at a total fraction of 1 (×10: a hold would
+//! relax the angle past zero); the creep at a fraction of 1 (×10: a creep larger than the
+//! elastic response it follows); the Preisach loop when its height reaches the span (×8.3: a
+//! loop as tall as the whole response); the random-walk gain at ×4 (its excursion's spread is
+//! then 0.24, and the sensitivity reaches zero on about 3 seeds in 100 000; at ×8 on about 4 %
+//! of them); the cycling gain when its amplitude reaches 1 (×20: the sensitivity changes sign).
+//! The saturation (a smaller `ε_s⁺`) and the drift (a wandering baseline, far below `R₀` at
+//! ×8) stay physical. So on Joint A every effect is physical up to ×4, and at ×8 all but the
+//! random-walk gain. On Joint C (×4 the constants already) the random-walk gain is past
+//! physical from ×2 (a size `DLW_DISCOVER_FULL` runs), the creep and the hysteresis from ×4, the
+//! cycling gain at ×8; the relaxation, the saturation and the drift stay physical.
 #![allow(dead_code)]
 
 use std::f64::consts::PI;
@@ -144,6 +160,28 @@ impl Effect {
     pub fn is_plant(self) -> bool {
         self == Effect::Relaxation
     }
+
+    /// The largest size at which the effect is physical on a UAN joint (`bsn = false`) or a
+    /// BSN one, whose sensor effects are [`BSN_SENSOR_SCALE`] times larger (module docs).
+    pub fn largest_physical(self, bsn: bool) -> f64 {
+        let constants = match self {
+            // Total fraction 1.
+            Effect::Relaxation => 1.0 / RELAXATION_FRACTION,
+            Effect::Creep => 1.0 / CREEP_FRACTION,
+            // A loop as tall as the span.
+            Effect::Hysteresis => 0.5 / PREISACH.0,
+            Effect::Saturation | Effect::Drift => f64::INFINITY,
+            // The excursion's spread 0.24: the gain reaches zero on about 3e-5 of seeds.
+            Effect::GainWalk => 0.24 / GAIN_WALK,
+            // An amplitude of 1.
+            Effect::GainCycle => 1.0 / GAIN_CYCLE.0,
+        };
+        if bsn && !self.is_plant() {
+            constants / BSN_SENSOR_SCALE
+        } else {
+            constants
+        }
+    }
 }
 
 /// An effect's size: a multiple of the constants above.
@@ -153,6 +191,9 @@ pub struct Size(pub f64);
 impl Size {
     /// The three sizes of the tests.
     pub const ALL: [Size; 3] = [Size(0.5), Size(1.0), Size(2.0)];
+    /// Two larger sizes, to measure where an effect is first seen (module docs: not every
+    /// effect is physical at ×8).
+    pub const LARGE: [Size; 2] = [Size(4.0), Size(8.0)];
 }
 
 /// What to generate.
