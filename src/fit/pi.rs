@@ -619,7 +619,7 @@ impl Projection {
     /// to stay still through a full loop. A larger radius moves only on the first rise (or a
     /// new extreme), so its weight would be fitted to the recording's start alone.
     fn half_span(&self, l: &[f64; 4], u: &[f64; 4]) -> f64 {
-        let nu = |a: &[f64; 4], x: f64| a[0] * (a[1] * x + a[2]).tanh() + a[3];
+        let nu = super::plays::branch;
         let (x0, x1) = self.x_range;
         let lo = nu(l, x0).min(nu(u, x0));
         let hi = nu(l, x1).max(nu(u, x1));

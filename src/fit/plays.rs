@@ -201,7 +201,7 @@ impl PlayModel {
 
 /// `a·tanh(b·x + c) + d`.
 #[inline]
-fn branch(p: &[f64; 4], x: f64) -> f64 {
+pub(super) fn branch(p: &[f64; 4], x: f64) -> f64 {
     let [a, b, c, d] = *p;
     a * (b * x + c).tanh() + d
 }

@@ -502,16 +502,18 @@ pub fn moved_text(moved: &[Moved]) -> String {
         went.join("; ")
     );
     if !stayed.is_empty() {
-        text += &format!(
-            " At the ideal bench's value: {}.",
-            stayed
-                .iter()
-                .map(|m| m.name.as_str())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
+        text += &format!(" At the ideal bench's value: {}.", names(&stayed));
     }
     text
+}
+
+/// The parameters' names, comma-separated.
+pub fn names(moved: &[&Moved]) -> String {
+    moved
+        .iter()
+        .map(|m| m.name.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 #[cfg(test)]

@@ -127,11 +127,7 @@ fn agreement_section(page: &mut Page, r: &Reproduction, at: Placement<'_>) {
         } else {
             format!(
                 "; at the ideal bench's value: {}",
-                stayed
-                    .iter()
-                    .map(|m| m.name.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                super::agreement::names(&stayed)
             )
         }
     ));
