@@ -244,14 +244,15 @@ fn a_wandering_baseline_or_gain_is_never_named_another_effect() {
 }
 
 /// The wrong names the detection measurement of 2026-11-27 found on Joint A (docs/discovery.md,
-/// "Detection against size"), seeds of that measurement, none in the CI cases: a creep named
-/// `hysteresis` at ×1 (seed 12), ×4 and ×8 (seed 3); a creep named with `drift` (×4) and with
-/// `drift` and `rate` (×8) beside it (seed 10); a saturation ×4 (seed 2) named, then its
-/// channel left `ambiguous` between `gain_drift` and `drift`; a random-walk and a cycling gain
-/// ×0.5 (seed 9) left `ambiguous` between `drift` and `creep`. Not fixed; fails today.
+/// "Detection against size"), seeds of that measurement, none in the CI cases, that are now
+/// fixed: a creep with a spread of time constants named `hysteresis` at ×1 (seed 12), ×4 and
+/// ×8 (seed 3), and named right and then followed by `drift` (×4) and by `drift` and `rate`
+/// (×8, seed 10). Fixed 2026-11-27 by a creep's richer form (a Prony series, `Term::flexible`)
+/// that a later name must beat and that a rival is simulated in, and by rivals under the
+/// screen simulated for every name (docs/discovery.md, "A creep of many time constants"). On
+/// the code before, all five are wrong.
 #[test]
-#[ignore = "fails: wrong names found by the detection measurement, not fixed"]
-fn the_detection_measurements_wrong_names_are_not_given() {
+fn a_creep_of_many_time_constants_gets_no_wrong_name() {
     let dir = tempfile::tempdir().unwrap();
     let found = [
         (Effect::Creep, 1.0, 12),
@@ -259,11 +260,30 @@ fn the_detection_measurements_wrong_names_are_not_given() {
         (Effect::Creep, 8.0, 3),
         (Effect::Creep, 4.0, 10),
         (Effect::Creep, 8.0, 10),
+    ];
+    let wrong = wrong_names(dir.path(), &found);
+    assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
+}
+
+/// The wrong names of that measurement not fixed: a saturation ×4 (seed 2) named right, then
+/// its channel left `ambiguous` between `gain_drift`, `drift` and `hysteresis`; a random-walk
+/// and a cycling gain ×0.5 (seed 9) left `ambiguous` between `drift` and `creep`. Fails today.
+#[test]
+#[ignore = "fails: wrong names found by the detection measurement, not fixed"]
+fn the_detection_measurements_other_wrong_names_are_not_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let found = [
         (Effect::Saturation, 4.0, 2),
         (Effect::GainWalk, 0.5, 9),
         (Effect::GainCycle, 0.5, 9),
     ];
-    let wrong: Vec<(String, Vec<String>)> = found
+    let wrong = wrong_names(dir.path(), &found);
+    assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
+}
+
+/// The wrong names `dlw discover` gives on Joint A's sensor 1 for each `(effect, size, seed)`.
+fn wrong_names(dir: &Path, found: &[(Effect, f64, u64)]) -> Vec<(String, Vec<String>)> {
+    found
         .par_iter()
         .map(|&(effect, size, seed)| {
             let case = Case {
@@ -271,20 +291,20 @@ fn the_detection_measurements_wrong_names_are_not_given() {
                 effect: Some((effect, Size(size), 1)),
                 seed,
             };
-            let j = judge(&run(dir.path(), &case), &case.truth());
+            let j = judge(&run(dir, &case), &case.truth());
             (case.name(), j.wrong)
         })
         .filter(|(_, w)| !w.is_empty())
-        .collect();
-    assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
+        .collect()
 }
 
 /// A cycling gain at ×8 (amplitude 0.4, a physical size; Joint A, seed 3): `dlw discover`
-/// exits with an error (the `gain_drift` it named fades 26.9 /h, outside the scenario's ±10 /h)
-/// instead of a report that names or flags it. Found by the detection measurement of
-/// 2026-11-27; not fixed; fails today.
+/// exited with an error (the `gain_drift` it named fades 26.9 /h, outside the scenario's
+/// ±10 /h) instead of a report. Found by the detection measurement of 2026-11-27; fixed the
+/// same day: a fitted value the simulator refuses declines the name (`declined`, with the value
+/// and the limit), and the channel is tested for what the library cannot explain, which flags
+/// it. Fails on the code before (the error).
 #[test]
-#[ignore = "fails: discover errors on a large cycling gain, not fixed"]
 fn a_large_cycling_gain_gets_a_report_not_an_error() {
     let dir = tempfile::tempdir().unwrap();
     let case = Case {
@@ -299,6 +319,13 @@ fn a_large_cycling_gain_gets_a_report_not_an_error() {
         "{}: {}",
         case.name(),
         said(&json)
+    );
+    let declined = json["declined"].as_array().unwrap();
+    assert!(
+        declined.iter().any(|d| d["effect"] == "gain_drift"
+            && d["out_of_range"]["key"] == "gain_drift.fade_per_hour"),
+        "{}: declined {declined:?}",
+        case.name()
     );
 }
 
@@ -448,7 +475,8 @@ fn run_cases() -> Summary {
 /// Writes one recording per effect and size (Joint A; Joint C's sensor 2) and a clean one
 /// into `$THIRD_DIR`, to look at: `THIRD_DIR=/tmp/third cargo test --test
 /// discover_third_generator -- --ignored write_samples` (`THIRD_SEED`, `THIRD_JOINTS` =
-/// `joint-a.toml,joint-c.toml`, `THIRD_ONLY` = a part of the case names).
+/// `joint-a.toml,joint-c.toml`, `THIRD_SIZES` = `0.5,1,2` by default, `THIRD_ONLY` = a part of
+/// the case names).
 #[test]
 #[ignore = "writes sample recordings for inspection"]
 fn write_samples() {
@@ -463,7 +491,8 @@ fn write_samples() {
     for design in joints {
         let mut effects: Vec<Option<(Effect, Size, usize)>> = vec![None];
         for e in Effect::ALL {
-            for s in Size::ALL {
+            for s in env_list("THIRD_SIZES", "0.5,1,2") {
+                let s = Size(s);
                 effects.push(Some((e, s, if design == "joint-c.toml" { 2 } else { 1 })));
             }
         }

@@ -118,19 +118,20 @@ impl StageSearch<'_, '_> {
             return Pick::Declined(top.clone(), null, None);
         }
         let mut excluded: Vec<Effect> = Vec::new();
-        // The screen is for speed, not a rule: a rival of the time family under it that beats
-        // the null can produce what the name explains (a random-walk drift's `drift`, 17.7
-        // nats, under its `gain_drift`'s 24.7), and is simulated as one.
+        // The screen is for speed, not a rule: a rival under it that beats the null can
+        // produce what the name explains (a random-walk drift's `drift`, 17.7 nats, under its
+        // `gain_drift`'s 24.7; a creep of six time constants' `creep`, 16.4, under the
+        // `hysteresis`, 27.0, its lags drew), and is simulated as one.
         let quiet: Vec<&Candidate> = scored
             .iter()
             .filter(|c| {
                 let e = observed_of(c.effect);
-                TIME_RIVALS.contains(&c.effect)
-                    && e < SCREEN_NATS
-                    && e > RIVAL_SCREEN_NATS
-                    && e > null.bound_or_inf()
+                e < SCREEN_NATS && e > RIVAL_SCREEN_NATS && e > null.bound_or_inf()
             })
             .collect();
+        // The rivals that excluded a credible candidate: contenders of the ambiguity when
+        // every credible one is excluded.
+        let mut excluders: Vec<Effect> = Vec::new();
         let settle = Settle {
             scored: &scored,
             credible: &credible,
@@ -144,7 +145,7 @@ impl StageSearch<'_, '_> {
                 continue;
             }
             match self.settle(a, &settle, &excluded) {
-                Some(pick) => match self.against_time_all(pick, &scored, round) {
+                Ok(pick) => match self.against_time_all(pick, &scored, round) {
                     Ok(pick) => return pick,
                     // A change in time the library lacks explains the name: no other name is
                     // tried on this channel around it (a gain that fades, refused as
@@ -157,7 +158,10 @@ impl StageSearch<'_, '_> {
                         return Pick::Declined(c, calibration, Some(t));
                     }
                 },
-                None => excluded.push(a.effect),
+                Err(by) => {
+                    excluded.push(a.effect);
+                    excluders.extend(by);
+                }
             }
         }
         // Every credible candidate was excluded by another: the data shows something none of
@@ -166,7 +170,7 @@ impl StageSearch<'_, '_> {
             channel: self.channel,
             contenders: credible
                 .iter()
-                .chain(quiet.iter())
+                .chain(quiet.iter().filter(|c| excluders.contains(&c.effect)))
                 .map(|c| (c.effect, c.evidence))
                 .collect(),
             separate: Vec::new(),
@@ -251,18 +255,19 @@ impl StageSearch<'_, '_> {
             .collect()
     }
 
-    /// Candidate `a` tested against its credible rivals not yet excluded: the verdict it
-    /// settles (clear, or ambiguous with what would separate them), or `None` when a rival
-    /// excludes it.
-    fn settle(&self, a: &Candidate, settle: &Settle, excluded: &[Effect]) -> Option<Pick> {
-        let quiet = settle
-            .quiet
-            .iter()
-            .filter(|_| TIME_RIVALS.contains(&a.effect));
+    /// Candidate `a` tested against its rivals not yet excluded (the credible ones and those
+    /// under the screen that beat the null): the verdict it settles (clear, or ambiguous with
+    /// what would separate them), or `Err` with the rivals that exclude it.
+    fn settle(
+        &self,
+        a: &Candidate,
+        settle: &Settle,
+        excluded: &[Effect],
+    ) -> Result<Pick, Vec<Effect>> {
         let rivals: Vec<&Candidate> = settle
             .credible
             .iter()
-            .chain(quiet)
+            .chain(settle.quiet.iter())
             .filter(|b| b.effect != a.effect && !excluded.contains(&b.effect))
             .take(MAX_RIVALS)
             .copied()
@@ -272,8 +277,13 @@ impl StageSearch<'_, '_> {
             .iter()
             .filter_map(|b| self.rival(a, &a_shapes, b, settle.round))
             .collect();
-        if tests.iter().any(|t| t.verdict == Verdict::Rival) {
-            return None;
+        let by: Vec<Effect> = tests
+            .iter()
+            .filter(|t| t.verdict == Verdict::Rival)
+            .map(|t| t.rival)
+            .collect();
+        if !by.is_empty() {
+            return Err(by);
         }
         let calibration = Calibration::of(
             (settle.observed_of)(a.effect),
@@ -295,7 +305,7 @@ impl StageSearch<'_, '_> {
                 )
             });
         if ties.is_empty() || (only_bends && a.effect == Effect::Saturation) {
-            return Some(Pick::Clear(
+            return Ok(Pick::Clear(
                 (*a).clone(),
                 runner_up(settle.scored, a),
                 Some(Calibrated {
@@ -313,7 +323,7 @@ impl StageSearch<'_, '_> {
                 .iter()
                 .find(|c| c.effect == Effect::Saturation)
             {
-                return Some(Pick::Clear(
+                return Ok(Pick::Clear(
                     (*sat).clone(),
                     runner_up(settle.scored, sat),
                     Some(Calibrated {
@@ -345,7 +355,7 @@ impl StageSearch<'_, '_> {
                     .cloned()
                     .collect();
                 all.extend(again);
-                return Some(Pick::Clear(
+                return Ok(Pick::Clear(
                     two.clone(),
                     runner_up(settle.scored, a),
                     Some(Calibrated {
@@ -362,7 +372,7 @@ impl StageSearch<'_, '_> {
         };
         let mut contenders = vec![(a.effect, a.evidence)];
         contenders.extend(ties.iter().map(|t| (t.rival, t.rival_evidence)));
-        Some(Pick::Ambiguous(Ambiguity {
+        Ok(Pick::Ambiguous(Ambiguity {
             channel: self.channel,
             contenders,
             separate: ties
@@ -406,7 +416,12 @@ impl StageSearch<'_, '_> {
         round: usize,
     ) -> Option<Rivalry> {
         let span = self.search.span_of(self.channel);
-        let with_b = self.model.with(b.term.clone());
+        // The rival in its richer form where it has one ([`Term::flexible`]): a name stands
+        // only when the rival cannot produce what was seen in any of its forms (a creep of
+        // one time constant could not draw the loop a creep of six drew, and `hysteresis`
+        // was named for it).
+        let b_term = b.term.flexible(span).unwrap_or_else(|| b.term.clone());
+        let with_b = self.model.with(b_term.clone());
         let with_a = self.model.with(a.term.clone());
         let both = with_b.with(a.term.clone());
         let observed = self.observed_target();
@@ -438,7 +453,10 @@ impl StageSearch<'_, '_> {
                 verdict: Verdict::Named,
             });
         }
-        let b_shapes = Term::grid(b.effect, span);
+        let b_shapes = match b.term.flexible(span) {
+            Some(rich) => vec![rich],
+            None => Term::grid(b.effect, span),
+        };
         let b_after_a = beyond(&with_a, &b_shapes)?;
         let beyond_effect = if b_after_a > RIVAL_SCREEN_NATS {
             self.bootstrap(

@@ -238,11 +238,16 @@ pub struct Declined {
     pub channel: Stage,
     /// The round.
     pub round: usize,
-    /// Its calibration.
-    pub calibration: Calibration,
+    /// Its calibration (absent with `--fast`, where only a fitted value out of range
+    /// declines).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub calibration: Option<Calibration>,
     /// The test against a change in time that refused it, when that is why.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub time: Option<TimeRivalry>,
+    /// The fitted value the simulator does not accept, when that is why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub out_of_range: Option<scenario::OutOfRange>,
 }
 
 /// The held-out RMSE (channel unit) of a channel's model with a named effect in the library's
@@ -490,8 +495,9 @@ impl StageSearch<'_, '_> {
                         effect: top.effect,
                         channel: top.channel,
                         round,
-                        calibration,
+                        calibration: Some(calibration),
                         time,
+                        out_of_range: None,
                     });
                     break;
                 }
@@ -502,9 +508,25 @@ impl StageSearch<'_, '_> {
             });
             let winner = self.refine(winner);
             let form = self.form_fit(&winner);
-            let Some((fitted, rmse)) = self.add(&winner) else {
+            let Some((updated, fitted, rmse)) = self.extended(&winner) else {
                 break;
             };
+            let parameters = scenario::parameters(&winner.term, &fitted);
+            // A fitted value the simulator refuses: the library's form is not what was seen
+            // (a gain cycling at ×8 fitted as a fade of 26.9 per hour). Declined, and the
+            // channel goes to the `unexplained` test.
+            if let Some(out) = scenario::out_of_range(&winner.term, &parameters) {
+                run.declined.push(Declined {
+                    effect: winner.effect,
+                    channel: winner.channel,
+                    round,
+                    calibration,
+                    time,
+                    out_of_range: Some(out),
+                });
+                break;
+            }
+            self.model = updated;
             run.steps.push((winner.effect, rmse));
             run.named.push((
                 round,
@@ -513,7 +535,7 @@ impl StageSearch<'_, '_> {
                     channel: winner.channel,
                     evidence: winner.evidence,
                     runner_up,
-                    parameters: scenario::parameters(&winner.term, &fitted),
+                    parameters,
                     form,
                     calibration,
                     rivals,

@@ -171,6 +171,12 @@ fn term_columns(
                 labels.push("creep_fast");
             }
         }
+        Term::Prony { taus_s } => {
+            for tau in taus_s {
+                columns.push(low_pass(driver, *tau, data.dt_s));
+                labels.push("prony");
+            }
+        }
         Term::Hysteresis {
             radii,
             center,

@@ -16,6 +16,7 @@ pub fn add_sections(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     intro_section(page, outcome);
     result_section(page, outcome, at);
     calibration_section(page, outcome, at);
+    out_of_range_text(page, outcome);
     unexplained_section(page, outcome, at);
     gap_section(page, outcome, at);
     noise_section(page, outcome, at);
@@ -207,6 +208,22 @@ fn candidates_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     );
 }
 
+/// A sentence for each candidate declined because a fitted value is outside the simulator's
+/// range.
+fn out_of_range_text(page: &mut Page, outcome: &Outcome) {
+    for d in &outcome.declined {
+        if let Some(r) = &d.out_of_range {
+            page.text(format!(
+                "{} on {} was not named: {}. The channel was tested for what the library cannot \
+                 explain instead.",
+                d.effect.name(),
+                d.channel.name(),
+                r.sentence()
+            ));
+        }
+    }
+}
+
 /// Each name's calibration (and each declined candidate's): the evidence observed against the
 /// copies simulated without it, the rival tests, and a figure of both.
 fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
@@ -223,12 +240,21 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
                 true,
             ))
         })
-        .chain(outcome.declined.iter().map(|d| {
-            (
-                format!("{} on {} (not named)", d.effect.name(), d.channel.name()),
-                &d.calibration,
+        .chain(outcome.declined.iter().filter_map(|d| {
+            Some((
+                format!(
+                    "{} on {} (not named{})",
+                    d.effect.name(),
+                    d.channel.name(),
+                    if d.out_of_range.is_some() {
+                        ": a fitted value out of range"
+                    } else {
+                        ""
+                    }
+                ),
+                d.calibration.as_ref()?,
                 false,
-            )
+            ))
         }))
         .collect();
     if tests.is_empty() {

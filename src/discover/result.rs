@@ -98,12 +98,16 @@ impl Analysis for DiscoverResult {
             }
         }
         for x in &o.declined {
+            let why = match (&x.out_of_range, &x.calibration) {
+                (Some(r), _) => r.sentence(),
+                (None, Some(c)) => c.sentence(),
+                (None, None) => "not calibrated".to_owned(),
+            };
             let _ = writeln!(
                 out,
-                "not named: {} on {} ({})",
+                "not named: {} on {} ({why})",
                 x.effect.name(),
                 x.channel.name(),
-                x.calibration.sentence()
             );
             if let Some(t) = &x.time {
                 let _ = writeln!(out, "  against a change in time: {}", t.sentence());

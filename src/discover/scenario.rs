@@ -13,7 +13,67 @@ use super::{Known, Outcome, StageReport};
 use crate::fit::{fit_sensor, FitOptions, ModelKind, PlayOrder};
 use crate::sensor::Sensor;
 use crate::signal::Prefilter;
-use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams};
+use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams, MAX_FADE_PER_HOUR};
+
+/// A fitted parameter the simulator does not accept: the effect cannot be written as the
+/// library's, so it is not named (`dlw discover` declines it and tests the channel for what the
+/// library cannot explain).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct OutOfRange {
+    /// The scenario key, without its channel's table (`gain_drift.fade_per_hour`).
+    pub key: String,
+    /// The fitted value.
+    pub value: f64,
+    /// The simulator's limit, in words.
+    pub limit: &'static str,
+}
+
+impl OutOfRange {
+    /// One sentence, from its numbers.
+    pub fn sentence(&self) -> String {
+        format!(
+            "its fitted {} = {:.4} is outside the simulator's range ({}), so the library's form \
+             cannot be what was seen",
+            self.key, self.value, self.limit
+        )
+    }
+}
+
+/// The first of `term`'s fitted `parameters` (from [`parameters`]) the simulator's scenario
+/// would refuse (`Scenario::validate`'s limits on fitted values: a finite value, a relaxation
+/// fraction in [0, 1), a gain drift's fade at most [`MAX_FADE_PER_HOUR`] per hour); `None` when
+/// every one is accepted.
+pub fn out_of_range(term: &Term, parameters: &BTreeMap<String, f64>) -> Option<OutOfRange> {
+    let prefix = match term.effect() {
+        Effect::GainDrift => "gain_drift",
+        Effect::Drift => "drift",
+        Effect::Creep => "creep",
+        Effect::Rate => "rate",
+        Effect::Saturation => "saturation",
+        Effect::Hysteresis => "pi",
+        Effect::Backlash => "backlash",
+        Effect::Relaxation => "relaxation",
+    };
+    let out = |key: &str, value: f64, limit: &'static str| OutOfRange {
+        key: format!("{prefix}.{key}"),
+        value,
+        limit,
+    };
+    if let Some((key, &value)) = parameters.iter().find(|(_, v)| !v.is_finite()) {
+        return Some(out(key, value, "finite"));
+    }
+    match term {
+        Term::GainDrift => parameters
+            .get("fade_per_hour")
+            .filter(|v| v.abs() > MAX_FADE_PER_HOUR)
+            .map(|&v| out("fade_per_hour", v, "|fade_per_hour| at most 10 per hour")),
+        Term::Relaxation { .. } => parameters
+            .get("fraction")
+            .filter(|v| !(0.0..1.0).contains(*v))
+            .map(|&v| out("fraction", v, "in [0, 1)")),
+        _ => None,
+    }
+}
 
 /// The named effect's parameters in the scenario's units, from the fitted coefficients.
 pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
@@ -49,6 +109,8 @@ pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
         Term::Saturation { strain } => {
             p.insert("strain".into(), *strain);
         }
+        // The richer form of a creep, never named: no parameters.
+        Term::Prony { .. } => {}
         Term::GainDrift => {
             p.insert(
                 "fade_per_hour".into(),
@@ -283,7 +345,8 @@ fn write_sensor(sensor: &mut SensorParams, ch: &StageReport) -> Result<(), Strin
                 sensor.gain_drift.enabled = true;
                 sensor.gain_drift.fade_per_hour = -f.get("gain_drift").unwrap_or(0.0) / b * 3600.0;
             }
-            Term::Backlash { .. } | Term::Relaxation { .. } => {}
+            // The plant's, written elsewhere; the richer creep is never named.
+            Term::Backlash { .. } | Term::Relaxation { .. } | Term::Prony { .. } => {}
         }
     }
     Ok(())

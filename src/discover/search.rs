@@ -6,7 +6,8 @@
 //! 3. each channel is then searched on its own ([`Search::channel`], a [`StageSearch`]): each
 //!    round, [`StageSearch::score`] scores every candidate and [`StageSearch::pick`] names
 //!    its clear winner, leaves it ambiguous, or finds nothing; [`StageSearch::refine`] refines
-//!    the winner's shape and [`StageSearch::add`] puts it in the channel's model. No channel
+//!    the winner's shape and [`StageSearch::extended`] fits the channel's model with it, which
+//!    the run keeps once the fitted values are in the simulator's range. No channel
 //!    reads another's model, so a sensor's candidates, evidence and verdict are the same
 //!    whatever the plant model holds;
 //! 4. [`Search::measure`] measures the held-out gaps and tests what is left on each channel.
@@ -607,14 +608,14 @@ impl StageSearch<'_, '_> {
         })
     }
 
-    /// Puts `winner` into the channel's model, and returns the model's fit and held-out RMSE.
-    /// `None` when the extended model cannot be fitted (the search stops).
-    pub(super) fn add(&mut self, winner: &Candidate) -> Option<(Fitted, f64)> {
+    /// The channel's model with `winner` added, its fit and its held-out RMSE, for the run to
+    /// put in place once the fitted values are checked. `None` when the extended model cannot
+    /// be fitted (the search stops).
+    pub(super) fn extended(&self, winner: &Candidate) -> Option<(StageModel, Fitted, f64)> {
         let s = self.search;
         let updated = self.model.with(winner.term.clone());
         let (fitted, _, rmse, _) = s.evaluate(&updated, &s.noises[&self.channel])?;
-        self.model = updated;
-        Some((fitted, rmse))
+        Some((updated, fitted, rmse))
     }
 }
 

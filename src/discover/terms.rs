@@ -111,6 +111,12 @@ const _: () = assert!(CREEP_SLOW_TAUS_S[0] >= 6.0 * CREEP_FAST_TAUS_S[1] * (1.0 
 /// the candidate's three and four more between and beyond them.
 pub const FLEXIBLE_RADII: [f64; 7] = [0.02, 0.05, 0.1, 0.15, 0.22, 0.3, 0.4];
 
+/// Time constants (s) of a creep's richer form ([`Term::flexible`]), a Prony series: a factor
+/// of 2 apart from the signed rate's slowest lag's third to past the one-term grid's slowest
+/// by a factor of 3, so that a material that creeps with a spread of time constants (the third
+/// generator's six, 2 s to 200 s) leaves no lag for another name.
+pub const CREEP_SPREAD_TAUS_S: [f64; 9] = [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0, 256.0];
+
 /// Reference strain rate of the log form (1/s), the simulator's default.
 pub const LOG_REFERENCE_RATE: f64 = 1e-3;
 
@@ -165,6 +171,14 @@ pub enum Term {
         /// of two terms.
         fast_tau_s: Option<f64>,
     },
+    /// `Σ LP_τk(x)` with a free weight for each `τk`: a creep with a spread of time constants
+    /// (a Prony series). Never a candidate or a name: the richer form of a creep
+    /// ([`Term::flexible`]), against which a later candidate, or a rival, must still show its
+    /// evidence.
+    Prony {
+        /// The time constants (s).
+        taus_s: Vec<f64>,
+    },
     /// `x·(t − t₀)`: the sensitivity changing linearly over the run.
     GainDrift,
     /// `t − t₀` (linear), or `1 − e^(−(t − t₀)/τ)` (settling).
@@ -183,7 +197,7 @@ impl Term {
             Term::Hysteresis { .. } => Effect::Hysteresis,
             Term::Saturation { .. } => Effect::Saturation,
             Term::Rate { .. } => Effect::Rate,
-            Term::Creep { .. } => Effect::Creep,
+            Term::Creep { .. } | Term::Prony { .. } => Effect::Creep,
             Term::Drift { .. } => Effect::Drift,
             Term::GainDrift => Effect::GainDrift,
         }
@@ -274,8 +288,9 @@ impl Term {
     /// A richer form of the same effect, against which a later candidate must still show
     /// evidence, so that it is not named for the named effect's misfit: a hysteresis with more
     /// plays and a memoryless curve of any shape beside its tanh ([`FLEXIBLE_RADII`],
-    /// [`Term::static_knots`]); a saturation as a memoryless curve of any shape. `None` for the
-    /// others, whose forms the library already varies (time constants, settling).
+    /// [`Term::static_knots`]); a saturation as a memoryless curve of any shape; a creep as a
+    /// Prony series of [`CREEP_SPREAD_TAUS_S`]. `None` for the others, whose forms the library
+    /// already varies (time constants, settling).
     pub fn flexible(&self, span: f64) -> Option<Term> {
         match self {
             Term::Hysteresis { center, width, .. } => Some(Term::Hysteresis {
@@ -292,6 +307,9 @@ impl Term {
                 memory: false,
                 knots: Term::static_knots(span),
             }),
+            Term::Creep { .. } => Some(Term::Prony {
+                taus_s: CREEP_SPREAD_TAUS_S.to_vec(),
+            }),
             _ => None,
         }
     }
@@ -307,7 +325,7 @@ impl Term {
             }
             Term::Saturation { strain } => Some(strain),
             Term::Drift { settle_tau_s } => settle_tau_s,
-            Term::Hysteresis { .. } | Term::GainDrift => None,
+            Term::Hysteresis { .. } | Term::Prony { .. } | Term::GainDrift => None,
         }
     }
 
@@ -323,7 +341,10 @@ impl Term {
             Term::Drift {
                 settle_tau_s: Some(v),
             } => *v = value,
-            Term::Drift { settle_tau_s: None } | Term::Hysteresis { .. } | Term::GainDrift => {}
+            Term::Drift { settle_tau_s: None }
+            | Term::Hysteresis { .. }
+            | Term::Prony { .. }
+            | Term::GainDrift => {}
         }
         t
     }
@@ -388,6 +409,7 @@ impl Term {
                 tau_s,
                 fast_tau_s: Some(f),
             } => format!("τ = {tau_s} s and {f} s"),
+            Term::Prony { taus_s } => format!("{} time constants", taus_s.len()),
             Term::Drift { settle_tau_s: None } => "linear in time".to_owned(),
             Term::GainDrift => "sensitivity linear in time".to_owned(),
             Term::Drift {

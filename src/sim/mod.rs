@@ -84,7 +84,7 @@ pub use scenario::{
     AdcCorrelated, AdcParams, Backlash, Creep, Drift, NotchLimit, Overrides, PlantParams,
     RateDependence, RateForm, Relaxation, Saturation, Scenario, ScenarioError, SensorModelKind,
     SensorNoise, SensorParams, Temperature, TrackerCorrelated, TrackerParams, DEFAULT_TCR_PER_K,
-    MAX_SENSOR_NOISE_PPM, MAX_TCR_PER_K, SIGNED_RATE_LEAD_S,
+    MAX_FADE_PER_HOUR, MAX_SENSOR_NOISE_PPM, MAX_TCR_PER_K, SIGNED_RATE_LEAD_S,
 };
 /// Strain → resistance with saturation, drift, rate dependence and creep.
 pub use sensor::Sensor;
