@@ -9,7 +9,10 @@
 //!    evidence beats that null by the rule; the best must be, or nothing is named (the
 //!    calibration is kept for the report).
 //! 3. **Rivals**: each credible candidate `A`, best first, against every other credible `B`
-//!    (at most [`MAX_RIVALS`]): `B`'s world (the model with `B`, fitted) is simulated and
+//!    and every candidate under the screen that beats the null and imitates it
+//!    ([`quiet_rival`]; at most [`MAX_RIVALS`]):
+//!    `B`'s world (the model with `B`, fitted; a creep against a hysteresis or a saturation as
+//!    a Prony series, on either side) is simulated and
 //!    the evidence of `A` added after `B` measured on each copy. When the recording's exceeds it
 //!    by the rule, `B` cannot produce what was seen. When it does not, `A`'s world is simulated
 //!    for the evidence of `B` after `A`: if `A` cannot produce what was seen, `B` is the better
@@ -58,8 +61,8 @@ pub(super) struct Calibrated {
 struct Settle<'a> {
     scored: &'a [Candidate],
     credible: &'a [&'a Candidate],
-    /// Candidates a change in time imitates that beat the null under the screen: rivals of
-    /// the others of [`TIME_RIVALS`], never names themselves.
+    /// Candidates that beat the null under the screen: rivals of the names they imitate
+    /// ([`quiet_rival`]), never names themselves.
     quiet: &'a [&'a Candidate],
     observed_of: &'a dyn Fn(Effect) -> f64,
     null: &'a Calibration,
@@ -264,10 +267,14 @@ impl StageSearch<'_, '_> {
         settle: &Settle,
         excluded: &[Effect],
     ) -> Result<Pick, Vec<Effect>> {
+        let quiet = settle
+            .quiet
+            .iter()
+            .filter(|b| quiet_rival(a.effect, b.effect));
         let rivals: Vec<&Candidate> = settle
             .credible
             .iter()
-            .chain(settle.quiet.iter())
+            .chain(quiet)
             .filter(|b| b.effect != a.effect && !excluded.contains(&b.effect))
             .take(MAX_RIVALS)
             .copied()
@@ -416,19 +423,19 @@ impl StageSearch<'_, '_> {
         round: usize,
     ) -> Option<Rivalry> {
         let span = self.search.span_of(self.channel);
-        // The rival in its richer form where it has one ([`Term::flexible`]): a name stands
-        // only when the rival cannot produce what was seen in any of its forms (a creep of
-        // one time constant could not draw the loop a creep of six drew, and `hysteresis`
-        // was named for it).
-        // Between two names a change in time imitates (`drift`, `gain_drift`, `creep`) the
-        // library's own forms are the rivals: a Prony series of lags on a strain of positive
-        // mean also draws a linear drift (it took 101.5 of a simulated drift's 102.6 nats), and
-        // the time test ([`super::time_rival`]) is what tells those names from a change in time.
-        let rich = !(TIME_RIVALS.contains(&a.effect) && TIME_RIVALS.contains(&b.effect));
-        let b_rich = b.term.flexible(span).filter(|_| rich);
-        let b_term = b_rich.clone().unwrap_or_else(|| b.term.clone());
-        let with_b = self.model.with(b_term.clone());
-        let with_a = self.model.with(a.term.clone());
+        // A creep against a hysteresis or a saturation is simulated as a Prony series
+        // ([`Term::flexible`], [`creep_against_curve`]): the other is added after the series,
+        // so a curve or a loop stands only when no creep, of one time constant or many, can
+        // produce what was seen, and a creep (scored in its own form) only when it explains
+        // what no curve or loop does.
+        let world = |c: &Candidate, other: &Candidate| {
+            c.term
+                .flexible(span)
+                .filter(|_| creep_against_curve(c.effect, other.effect))
+                .unwrap_or_else(|| c.term.clone())
+        };
+        let with_b = self.model.with(world(b, a));
+        let with_a = self.model.with(world(a, b));
         let both = with_b.with(a.term.clone());
         let observed = self.observed_target();
         let beyond = |from: &super::model::StageModel, shapes: &[Term]| -> Option<f64> {
@@ -459,10 +466,7 @@ impl StageSearch<'_, '_> {
                 verdict: Verdict::Named,
             });
         }
-        let b_shapes = match b_rich {
-            Some(rich) => vec![rich],
-            None => Term::grid(b.effect, span),
-        };
+        let b_shapes = Term::grid(b.effect, span);
         let b_after_a = beyond(&with_a, &b_shapes)?;
         let beyond_effect = if b_after_a > RIVAL_SCREEN_NATS {
             self.bootstrap(
@@ -491,6 +495,27 @@ impl StageSearch<'_, '_> {
             verdict,
         })
     }
+}
+
+/// Whether `creep` is a creep and `other` a hysteresis or a saturation: then the creep's world
+/// is a Prony series ([`Term::flexible`]) in their rivalry. A creep of several time
+/// constants draws a loop on a cycling strain: the third generator's creep of six (2 s to
+/// 200 s) was named `hysteresis` (×1 seed 12, ×4 and ×8 seed 3) against a creep of one. Not
+/// against the lags or the drifts: the series' fast terms are the signed rate's lags
+/// ([`Term::same_family`]), and its slow ones on a strain of positive mean draw a drift (a
+/// simulated linear drift kept 1.1 of its 102.6 nats after one).
+fn creep_against_curve(creep: Effect, other: Effect) -> bool {
+    creep == Effect::Creep && matches!(other, Effect::Hysteresis | Effect::Saturation)
+}
+
+/// Whether a candidate `b` under the screen that beats the null is simulated as a rival of
+/// `a`: between names a change in time imitates (`drift`, `gain_drift`, `creep`), and a creep
+/// against a hysteresis or a saturation ([`creep_against_curve`]). Other pairs under the
+/// screen were tried as rivals of every name and left true names `ambiguous` (a power-law
+/// saturation against a `gain_drift` of 19.8 nats whose nested evidence was negative both
+/// ways).
+fn quiet_rival(a: Effect, b: Effect) -> bool {
+    (TIME_RIVALS.contains(&a) && TIME_RIVALS.contains(&b)) || creep_against_curve(b, a)
 }
 
 /// The best candidate other than `a`, for the report.

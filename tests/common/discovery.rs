@@ -25,6 +25,14 @@ pub fn try_discover_json(
         "--json".as_ref(),
     ]);
     if o.status.success() {
+        // `DLW_KEEP_JSON=DIR`: each report is also written to DIR, named by its recording, to
+        // look at after a run.
+        if let Ok(keep) = std::env::var("DLW_KEEP_JSON") {
+            let name = rec
+                .file_name()
+                .map_or("report".into(), |n| n.to_string_lossy());
+            let _ = std::fs::write(Path::new(&keep).join(format!("{name}.json")), &o.stdout);
+        }
         Ok(serde_json::from_slice(&o.stdout).expect("discover --json prints JSON"))
     } else {
         Err(String::from_utf8_lossy(&o.stderr).trim().to_owned())
