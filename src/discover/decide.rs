@@ -114,11 +114,16 @@ impl StageSearch<'_, '_> {
             seed(round, 1, top.effect, top.effect),
         );
         if !null.passed {
-            return Pick::Declined(top.clone(), null, None);
+            return Pick::Declined(top.clone(), null, None, None);
         }
         let credible = self.credible(&scored, &observed_of, &null);
         if credible.is_empty() {
-            return Pick::Declined(top.clone(), null, None);
+            // The top beat its copies but not over a named effect's richer form: what it
+            // explains is that form's misfit.
+            let richer = self
+                .flexible_model()
+                .and_then(|m| self.search.gain(&m, &top.term));
+            return Pick::Declined(top.clone(), null, None, richer);
         }
         let mut excluded: Vec<Effect> = Vec::new();
         // The screen is for speed, not a rule: a rival under it that beats the null can
@@ -158,7 +163,7 @@ impl StageSearch<'_, '_> {
                         let (c, t) = *refusal;
                         let calibration =
                             Calibration::of(observed_of(c.effect), null.null.clone(), SCREEN_NATS);
-                        return Pick::Declined(c, calibration, Some(t));
+                        return Pick::Declined(c, calibration, Some(t), None);
                     }
                 },
                 Err(by) => {
@@ -185,7 +190,7 @@ impl StageSearch<'_, '_> {
                 let (c, t) = *refusal;
                 let calibration =
                     Calibration::of(observed_of(c.effect), null.null.clone(), SCREEN_NATS);
-                Pick::Declined(c, calibration, Some(t))
+                Pick::Declined(c, calibration, Some(t), None)
             }
         }
     }

@@ -248,6 +248,11 @@ pub struct Declined {
     /// The fitted value the simulator does not accept, when that is why.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub out_of_range: Option<scenario::OutOfRange>,
+    /// When it beat its copies but not over the richer form of an effect already named on
+    /// the channel ([`terms::Term::flexible`]): its evidence over that form (nats), short of
+    /// the screen or of the copies' bound.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub over_richer: Option<f64>,
 }
 
 /// The held-out RMSE (channel unit) of a channel's model with a named effect in the library's
@@ -490,7 +495,7 @@ impl StageSearch<'_, '_> {
                     run.ambiguous = Some(a);
                     break;
                 }
-                Pick::Declined(top, calibration, time) => {
+                Pick::Declined(top, calibration, time, over_richer) => {
                     run.declined.push(Declined {
                         effect: top.effect,
                         channel: top.channel,
@@ -498,6 +503,7 @@ impl StageSearch<'_, '_> {
                         calibration: Some(calibration),
                         time,
                         out_of_range: None,
+                        over_richer,
                     });
                     break;
                 }
@@ -523,6 +529,7 @@ impl StageSearch<'_, '_> {
                     calibration,
                     time,
                     out_of_range: Some(out),
+                    over_richer: None,
                 });
                 break;
             }

@@ -246,10 +246,12 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
                     "{} on {} (not named{})",
                     d.effect.name(),
                     d.channel.name(),
-                    if d.out_of_range.is_some() {
-                        ": a fitted value out of range"
-                    } else {
-                        ""
+                    match (&d.out_of_range, d.over_richer) {
+                        (Some(_), _) => ": a fitted value out of range".to_owned(),
+                        (None, Some(v)) => format!(
+                            ": {v:.1} nats over the richer form of the effect named before it"
+                        ),
+                        (None, None) => String::new(),
                     }
                 ),
                 d.calibration.as_ref()?,

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 
 use serde::Serialize;
 
+use super::calibrate::SCREEN_NATS;
 use super::{report, scenario_text, DiscoverySummary, Outcome};
 use crate::analysis::{Analysis, Placement};
 use crate::design::Design;
@@ -98,10 +99,16 @@ impl Analysis for DiscoverResult {
             }
         }
         for x in &o.declined {
-            let why = match (&x.out_of_range, &x.calibration) {
-                (Some(r), _) => r.sentence(),
-                (None, Some(c)) => c.sentence(),
-                (None, None) => "not calibrated".to_owned(),
+            let why = match (&x.out_of_range, &x.calibration, x.over_richer) {
+                (Some(r), ..) => r.sentence(),
+                (None, Some(c), Some(richer)) => format!(
+                    "{}; but over the richer form of the effect named before it, {richer:.1} \
+                     nats, short of the {SCREEN_NATS}-nat screen or of the bound: it explains \
+                     that form's misfit",
+                    c.sentence()
+                ),
+                (None, Some(c), None) => c.sentence(),
+                (None, None, _) => "not calibrated".to_owned(),
             };
             let _ = writeln!(
                 out,

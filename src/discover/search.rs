@@ -42,9 +42,15 @@ pub(super) enum Pick {
     /// Contenders too close to tell apart: the channel is closed.
     Ambiguous(Ambiguity),
     /// The best candidate cleared the screen but not its calibration, or a smooth change in
-    /// time can produce what it explains and it cannot produce the change (the test, given):
-    /// nothing is named.
-    Declined(Candidate, Calibration, Option<super::TimeRivalry>),
+    /// time can produce what it explains and it cannot produce the change (the test, given),
+    /// or it beat its copies but not over a named effect's richer form (its evidence there,
+    /// given): nothing is named.
+    Declined(
+        Candidate,
+        Calibration,
+        Option<super::TimeRivalry>,
+        Option<f64>,
+    ),
 }
 
 /// Per channel: the held-out gaps, what is left unexplained, and the report's view.
