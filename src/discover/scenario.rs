@@ -374,3 +374,35 @@ fn fit_pi(recording: &Recording, joint: &Joint, sensor: Sensor) -> Result<PiConf
 pub fn effects(terms: &[Term]) -> Vec<Effect> {
     terms.iter().map(Term::effect).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn params(pairs: &[(&str, f64)]) -> BTreeMap<String, f64> {
+        pairs.iter().map(|(k, v)| ((*k).to_owned(), *v)).collect()
+    }
+
+    /// The fitted values the simulator refuses are found, with the key, the value and the
+    /// limit; the ones it accepts are not (the limits are the scenario's: a fade of exactly
+    /// 10 per hour and a relaxation fraction of 0 are accepted).
+    #[test]
+    fn fitted_values_out_of_the_simulators_range_are_found() {
+        let fade = out_of_range(&Term::GainDrift, &params(&[("fade_per_hour", -26.9)])).unwrap();
+        assert_eq!(fade.key, "gain_drift.fade_per_hour");
+        assert_eq!(fade.value, -26.9);
+        assert!(fade.sentence().contains("-26.9000"), "{}", fade.sentence());
+        assert!(out_of_range(&Term::GainDrift, &params(&[("fade_per_hour", 10.0)])).is_none());
+        let relax = Term::Relaxation { tau_s: 4.0 };
+        let r = out_of_range(&relax, &params(&[("fraction", 1.2), ("tau_s", 4.0)])).unwrap();
+        assert_eq!((r.key.as_str(), r.value), ("relaxation.fraction", 1.2));
+        assert!(out_of_range(&relax, &params(&[("fraction", 0.0), ("tau_s", 4.0)])).is_none());
+        let creep = Term::Creep {
+            tau_s: 20.0,
+            fast_tau_s: None,
+        };
+        let nan = out_of_range(&creep, &params(&[("fraction", f64::NAN)])).unwrap();
+        assert_eq!(nan.key, "creep.fraction");
+        assert!(out_of_range(&creep, &params(&[("fraction", 3.0), ("tau_s", 20.0)])).is_none());
+    }
+}
