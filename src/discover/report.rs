@@ -57,10 +57,16 @@ fn intro_section(page: &mut Page, outcome: &Outcome) {
 fn result_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
     page.heading(at.titled("Result"));
     if outcome.discovered.is_empty() {
-        page.text(if outcome.ambiguous.is_empty() {
+        page.text(if !outcome.ambiguous.is_empty() {
+            "Nothing named clearly.".to_owned()
+        } else if outcome.declined.is_empty() {
             "Nothing named: no candidate buys enough held-out evidence.".to_owned()
         } else {
-            "Nothing named clearly.".to_owned()
+            format!(
+                "Nothing named: {} candidate(s) cleared the screen and were declined (under \
+                 Calibration of each name).",
+                outcome.declined.len()
+            )
         });
     }
     let mut named = Table::new([
