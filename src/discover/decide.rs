@@ -116,6 +116,14 @@ impl StageSearch<'_, '_> {
         if !null.passed {
             return Pick::Declined(top.clone(), null, None, None);
         }
+        // A name a change in time can produce, and whose world cannot produce the change, is
+        // declined with that test.
+        let refused = |refusal: Box<(Candidate, TimeRivalry)>| {
+            let (c, t) = *refusal;
+            let calibration =
+                Calibration::of(observed_of(c.effect), null.null.clone(), SCREEN_NATS);
+            Pick::Declined(c, calibration, Some(t), None)
+        };
         let credible = self.credible(&scored, &observed_of, &null);
         if credible.is_empty() {
             // The top beat its copies but not over a named effect's richer form: what it
@@ -159,12 +167,7 @@ impl StageSearch<'_, '_> {
                     // tried on this channel around it (a gain that fades, refused as
                     // `gain_drift`, was then named `hysteresis`); the `unexplained` test
                     // follows.
-                    Err(refusal) => {
-                        let (c, t) = *refusal;
-                        let calibration =
-                            Calibration::of(observed_of(c.effect), null.null.clone(), SCREEN_NATS);
-                        return Pick::Declined(c, calibration, Some(t), None);
-                    }
+                    Err(refusal) => return refused(refusal),
                 },
                 Err(by) => {
                     excluded.push(a.effect);
@@ -184,15 +187,8 @@ impl StageSearch<'_, '_> {
             separate: Vec::new(),
             rivals: Vec::new(),
         });
-        match self.against_time_all(ambiguity, &scored, round) {
-            Ok(pick) => pick,
-            Err(refusal) => {
-                let (c, t) = *refusal;
-                let calibration =
-                    Calibration::of(observed_of(c.effect), null.null.clone(), SCREEN_NATS);
-                Pick::Declined(c, calibration, Some(t), None)
-            }
-        }
+        self.against_time_all(ambiguity, &scored, round)
+            .unwrap_or_else(refused)
     }
 
     /// A verdict's names against a smooth change in time ([`super::time_rival`]): a name
@@ -350,33 +346,8 @@ impl StageSearch<'_, '_> {
                 ));
             }
         }
-        // A one-term creep: its two-term form may settle what one term cannot.
-        if let Some(two) = self.two_term(a) {
-            let shapes = Term::two_term_creeps();
-            let again: Vec<Rivalry> = ties
-                .iter()
-                .filter_map(|t| {
-                    let b = rivals.iter().find(|b| b.effect == t.rival)?;
-                    self.rival(&two, &shapes, b, settle.round)
-                })
-                .collect();
-            if again.iter().all(|t| t.verdict == Verdict::Named) {
-                let mut all: Vec<Rivalry> = tests
-                    .iter()
-                    .filter(|t| t.verdict != Verdict::Neither)
-                    .cloned()
-                    .collect();
-                all.extend(again);
-                return Ok(Pick::Clear(
-                    two.clone(),
-                    runner_up(settle.scored, a),
-                    Some(Calibrated {
-                        calibration,
-                        rivals: all,
-                        time: None,
-                    }),
-                ));
-            }
+        if let Some(pick) = self.settle_two_term(a, &ties, &rivals, &tests, &calibration, settle) {
+            return Ok(pick);
         }
         let tau = match a.term {
             Term::Creep { tau_s, .. } => Some(tau_s),
@@ -393,6 +364,47 @@ impl StageSearch<'_, '_> {
                 .collect(),
             rivals: ties.into_iter().cloned().collect(),
         }))
+    }
+
+    /// A one-term creep `a` left tied with `ties`: its best two-term form, tested again against
+    /// those rivals, named when it wins every one (two terms may settle what one cannot);
+    /// `None` for other candidates or when a tie remains.
+    fn settle_two_term(
+        &self,
+        a: &Candidate,
+        ties: &[&Rivalry],
+        rivals: &[&Candidate],
+        tests: &[Rivalry],
+        calibration: &Calibration,
+        settle: &Settle,
+    ) -> Option<Pick> {
+        let two = self.two_term(a)?;
+        let shapes = Term::two_term_creeps();
+        let again: Vec<Rivalry> = ties
+            .iter()
+            .filter_map(|t| {
+                let b = rivals.iter().find(|b| b.effect == t.rival)?;
+                self.rival(&two, &shapes, b, settle.round)
+            })
+            .collect();
+        if !again.iter().all(|t| t.verdict == Verdict::Named) {
+            return None;
+        }
+        let mut all: Vec<Rivalry> = tests
+            .iter()
+            .filter(|t| t.verdict != Verdict::Neither)
+            .cloned()
+            .collect();
+        all.extend(again);
+        Some(Pick::Clear(
+            two,
+            runner_up(settle.scored, a),
+            Some(Calibrated {
+                calibration: calibration.clone(),
+                rivals: all,
+                time: None,
+            }),
+        ))
     }
 
     /// The channel's model with each named effect that has a richer form ([`Term::flexible`])
