@@ -238,6 +238,30 @@ fn discover_meets_the_acceptance_figures_on_other_functional_forms() {
     assert!(median >= 0.5, "median gap shrink {median}");
 }
 
+/// The wrong name the five-seed run (`DLW_DISCOVER_FULL=1`, 2026-11-27, the first on the issue-31
+/// code) found: Joint A's hysteresis, seed 502, is named `creep` (31.7 nats) and then
+/// `hysteresis` (562.8). In round 0 the hysteresis had 897.1 nats but its memory test (the
+/// plays over a memoryless curve of any shape) gave −249.9, so it was left out of the round
+/// and the creep won it; in round 1 its memory was 810.9. The binary of the last stop gives
+/// the same. Not fixed; fails today.
+#[test]
+#[ignore = "fails: a wrong name found by the five-seed run, not fixed"]
+fn a_hysteresis_whose_memory_test_fails_gets_no_creep() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = Case {
+        design: "joint-a.toml",
+        effect: Some((Effect::Hysteresis, 1)),
+        seed: 502,
+    };
+    let seen = seen(dir.path(), &case);
+    assert!(
+        seen.judged.wrong.is_empty(),
+        "{}: {:?}",
+        case.name(),
+        seen.judged.wrong
+    );
+}
+
 /// Writes one recording per effect (Joint A; the sensor effects also on Joint C's sensor 2) and
 /// a clean one into `$OTHER_FORMS_DIR`, to look at:
 /// `OTHER_FORMS_DIR=/tmp/of cargo test --test discover_other_forms -- --ignored write_samples`.
