@@ -137,7 +137,8 @@ impl StageSearch<'_, '_> {
         // The screen is for speed, not a rule: a rival under it that beats the null can
         // produce what the name explains (a random-walk drift's `drift`, 17.7 nats, under its
         // `gain_drift`'s 24.7; a creep of six time constants' `creep`, 16.4, under the
-        // `hysteresis`, 27.0, its lags drew), and is simulated as one.
+        // `hysteresis`, 27.0, its lags drew), and is simulated as one against the names it
+        // imitates ([`quiet_rival`], in `settle`).
         let quiet: Vec<&Candidate> = scored
             .iter()
             .filter(|c| {

@@ -63,8 +63,8 @@ fn result_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
             "Nothing named: no candidate buys enough held-out evidence.".to_owned()
         } else {
             format!(
-                "Nothing named: {} candidate(s) cleared the screen and were declined (under \
-                 Calibration of each name).",
+                "Nothing named: {} candidate(s) cleared the screen and were declined; why is \
+                 given below.",
                 outcome.declined.len()
             )
         });

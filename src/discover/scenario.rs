@@ -25,7 +25,7 @@ pub struct OutOfRange {
     /// The fitted value.
     pub value: f64,
     /// The simulator's limit, in words.
-    pub limit: &'static str,
+    pub limit: String,
 }
 
 impl OutOfRange {
@@ -54,23 +54,26 @@ pub fn out_of_range(term: &Term, parameters: &BTreeMap<String, f64>) -> Option<O
         Effect::Backlash => "backlash",
         Effect::Relaxation => "relaxation",
     };
-    let out = |key: &str, value: f64, limit: &'static str| OutOfRange {
+    let out = |key: &str, value: f64, limit: String| OutOfRange {
         key: format!("{prefix}.{key}"),
         value,
         limit,
     };
     if let Some((key, &value)) = parameters.iter().find(|(_, v)| !v.is_finite()) {
-        return Some(out(key, value, "finite"));
+        return Some(out(key, value, "finite".to_owned()));
     }
     match term {
         Term::GainDrift => parameters
             .get("fade_per_hour")
             .filter(|v| v.abs() > MAX_FADE_PER_HOUR)
-            .map(|&v| out("fade_per_hour", v, "|fade_per_hour| at most 10 per hour")),
+            .map(|&v| {
+                let limit = format!("|fade_per_hour| at most {MAX_FADE_PER_HOUR} per hour");
+                out("fade_per_hour", v, limit)
+            }),
         Term::Relaxation { .. } => parameters
             .get("fraction")
             .filter(|v| !(0.0..1.0).contains(*v))
-            .map(|&v| out("fraction", v, "in [0, 1)")),
+            .map(|&v| out("fraction", v, "in [0, 1)".to_owned())),
         _ => None,
     }
 }
