@@ -269,18 +269,29 @@ fn a_creep_of_many_time_constants_gets_no_wrong_name() {
     assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
 }
 
-/// The wrong names of that measurement not fixed: a saturation ×4 (seed 2) named right, then
-/// its channel left `ambiguous` between `gain_drift`, `drift` and `hysteresis`; a random-walk
-/// and a cycling gain ×0.5 (seed 9) left `ambiguous` between `drift` and `creep`. Fails today.
+/// A saturation that is not odd, at ×4 (seed 2): named right, then its channel was left
+/// `ambiguous` between `gain_drift`, `drift` and `hysteresis`, a wrong verdict, found by the
+/// detection measurement of 2026-11-27. The hysteresis's test against the gain drift read
+/// −3907 nats: the memoryless curve of any shape was drawn with hats, which share the offset
+/// and lose it where a held-out block's strain leaves the training blocks' range. With hinges
+/// (`terms::hinges`) the `gain_drift` is declined (it does not beat the null over the
+/// saturation's richer form) and the channel is flagged `unexplained` (curve), which is what
+/// a saturation the library's tanh does not draw is. Fails on the code before.
+#[test]
+fn a_saturation_that_is_not_odd_gets_no_wrong_name_after_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let wrong = wrong_names(dir.path(), &[(Effect::Saturation, 4.0, 2)]);
+    assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
+}
+
+/// The wrong names of that measurement not fixed: a random-walk and a cycling gain ×0.5
+/// (seed 9, under the size where either is detected) left `ambiguous` between `drift` and
+/// `creep`. Fails today.
 #[test]
 #[ignore = "fails: wrong names found by the detection measurement, not fixed"]
 fn the_detection_measurements_other_wrong_names_are_not_given() {
     let dir = tempfile::tempdir().unwrap();
-    let found = [
-        (Effect::Saturation, 4.0, 2),
-        (Effect::GainWalk, 0.5, 9),
-        (Effect::GainCycle, 0.5, 9),
-    ];
+    let found = [(Effect::GainWalk, 0.5, 9), (Effect::GainCycle, 0.5, 9)];
     let wrong = wrong_names(dir.path(), &found);
     assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
 }

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::data::Data;
 use super::noise::ArNoise;
-use super::terms::{hats, low_pass, play, rate, Term, LOG_REFERENCE_RATE};
+use super::terms::{hinges, low_pass, play, rate, Term, LOG_REFERENCE_RATE};
 use crate::sensor::Sensor;
 
 /// Which stage of the bench's chain a model explains: the plant (stroke → angle) or a sensor
@@ -190,8 +190,8 @@ fn term_columns(
                 .collect();
             columns.push(nu.clone());
             labels.push("curve");
-            for hat in hats(driver, knots) {
-                columns.push(hat);
+            for hinge in hinges(driver, knots) {
+                columns.push(hinge);
                 labels.push("static");
             }
             if !memory {
