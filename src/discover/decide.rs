@@ -7,7 +7,10 @@
 //! 2. **Null**: the current model is simulated ([`StageSearch::bootstrap`]); on each copy every
 //!    candidate is scored, and the largest evidence kept. A candidate is *credible* when its
 //!    evidence beats that null by the rule; the best must be, or nothing is named (the
-//!    calibration is kept for the report).
+//!    calibration is kept for the report). After a named effect with a richer form it must
+//!    beat it over that form too ([`Term::flexible`]; for `drift` and `gain_drift`, a change
+//!    in time of any smooth form, the `unexplained` test's time spline), so that it does not
+//!    take the named form's misfit.
 //! 3. **Rivals**: each credible candidate `A`, best first, against every other credible `B`
 //!    and every candidate under the screen that beats the null and imitates it
 //!    ([`quiet_rival`]; at most [`MAX_RIVALS`]):
@@ -128,9 +131,19 @@ impl StageSearch<'_, '_> {
         if credible.is_empty() {
             // The top beat its copies but not over a named effect's richer form: what it
             // explains is that form's misfit.
-            let richer = self
+            // Over the richer forms named before it, the smaller evidence: the one it fell
+            // short over.
+            let over_flexible = self
                 .flexible_model()
                 .and_then(|m| self.search.gain(&m, &top.term));
+            let over_time = self
+                .time_named()
+                .then(|| self.over_time(top, None).map(|(e, _)| e))
+                .flatten();
+            let richer = over_flexible
+                .into_iter()
+                .chain(over_time)
+                .min_by(f64::total_cmp);
             return Pick::Declined(top.clone(), null, None, richer);
         }
         let mut excluded: Vec<Effect> = Vec::new();
@@ -233,7 +246,8 @@ impl StageSearch<'_, '_> {
     }
 
     /// The candidates whose evidence on the observed data clears the screen and the null's
-    /// bound; after a named hysteresis or saturation, over that effect's richer form too.
+    /// bound; after a named hysteresis, saturation or creep, over that effect's richer form
+    /// too; after a named drift or gain drift, over a change in time of any smooth form.
     fn credible<'c>(
         &self,
         scored: &'c [Candidate],
@@ -241,6 +255,7 @@ impl StageSearch<'_, '_> {
         null: &Calibration,
     ) -> Vec<&'c Candidate> {
         let flexible = self.flexible_model();
+        let time_named = self.time_named();
         scored
             .iter()
             .filter(|c| {
@@ -256,6 +271,15 @@ impl StageSearch<'_, '_> {
                         .gain(m, &c.term)
                         .is_some_and(|e| e >= SCREEN_NATS && e > null.bound_or_inf())
                 })
+            })
+            // After a named drift or gain drift, over a change in time of any smooth form (the
+            // time spline): a gain cycling in time, named `gain_drift`, left a misfit that a
+            // hysteresis's plays drew (third generator, seed 2, ×2 and ×4).
+            .filter(|c| {
+                !time_named
+                    || self
+                        .over_time(c, None)
+                        .is_some_and(|(e, _)| e >= SCREEN_NATS && e > null.bound_or_inf())
             })
             .collect()
     }

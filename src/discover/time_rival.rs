@@ -153,6 +153,16 @@ impl StageSearch<'_, '_> {
     /// Step 1: `a`'s evidence (its best grid shape) over the model with the time spline,
     /// against copies of that model.
     fn beyond_time(&self, a: &Candidate, round: usize) -> Option<Calibration> {
+        self.over_time(a, Some(round)).and_then(|(_, c)| c)
+    }
+
+    /// `a`'s evidence (its best grid shape) over the model with the time spline, on the
+    /// recording; with a `round`, also calibrated against copies of that model.
+    pub(super) fn over_time(
+        &self,
+        a: &Candidate,
+        round: Option<usize>,
+    ) -> Option<(f64, Option<Calibration>)> {
         let s = self.search;
         let shapes = match a.term {
             Term::Creep {
@@ -184,7 +194,10 @@ impl StageSearch<'_, '_> {
         let prepared = g.prepare_sets()?;
         let alternatives: Vec<usize> = (1..prepared.len()).collect();
         let (e, _, world, fuller) = g.nested(&prepared, 0, &alternatives, &g.observed())?;
-        Some(if e > RIVAL_SCREEN_NATS {
+        let Some(round) = round else {
+            return Some((e, None));
+        };
+        let calibration = if e > RIVAL_SCREEN_NATS {
             g.calibrate_by(
                 &world,
                 &fuller,
@@ -198,6 +211,17 @@ impl StageSearch<'_, '_> {
             )
         } else {
             Calibration::of(e, Vec::new(), RIVAL_SCREEN_NATS)
+        };
+        Some((e, Some(calibration)))
+    }
+
+    /// Whether a `drift` or a `gain_drift` is named on the channel: a change in time of any
+    /// smooth form (the time spline) is then their richer form, over which a later candidate
+    /// must show its evidence ([`super::decide`]).
+    pub(super) fn time_named(&self) -> bool {
+        let base = &self.search.base_models[&self.channel];
+        self.model.terms.iter().any(|t| {
+            matches!(t.effect(), Effect::Drift | Effect::GainDrift) && !base.terms.contains(t)
         })
     }
 
