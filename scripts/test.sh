@@ -20,12 +20,14 @@ fi
 # checkout by maturin (PEP 517; an abi3 wheel, docs/python.md). Rebuilt every run, so the tests
 # see the current source. The wheel's release build runs in the background, beside the
 # workspace's build below (each has its own target folder; on two cores the one fills the
-# other's single-threaded stretches), and is waited for before the Python tests.
+# other's single-threaded stretches), and is waited for before the Python tests. It runs at a
+# lower priority: the workspace's build and tests are on the way to the end, the wheel only at
+# the end.
 python3 -m pip install --quiet --disable-pip-version-check pytest numpy
 mkdir -p target
 wheel_log="target/python-wheel-build.log"
 echo "building and installing the dlw Python package in the background (pip install ./crates/python, log: $wheel_log)"
-python3 -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps ./crates/python \
+nice -n 10 python3 -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps ./crates/python \
   >"$wheel_log" 2>&1 &
 wheel_pid=$!
 trap 'kill "$wheel_pid" 2>/dev/null || true' EXIT

@@ -8,8 +8,8 @@
 //! X motion, the rotary speed on a pure rotation. Coordinates are read at the program's full
 //! precision (A with 6 decimals).
 
-mod canon;
-mod common;
+use crate::canon;
+use crate::common;
 use common::designs as common_designs;
 use common::dlw;
 

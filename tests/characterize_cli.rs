@@ -5,7 +5,7 @@
 //! is BSN), and bad input (the wrong kind for a recording, no config, no holds) refused with a
 //! clear message and nothing written.
 
-mod common;
+use crate::common;
 use common::shipped_design;
 
 use std::path::{Path, PathBuf};

@@ -3,7 +3,7 @@
 //! power-law curve, AR(1) noise and a relaxing joint that undershoots after every unloading.
 //! None of these is the simulator's form, and none is a rate effect.
 
-mod common;
+use crate::common;
 use common::second_generator::{self, Path as GenPath, RATE_REPEATS, RATE_RISES_S};
 use common::shipped_design;
 

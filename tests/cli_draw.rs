@@ -1,7 +1,7 @@
 //! `dlw inspect` and `dlw draw` on the shipped designs and on designs outside the paper, through
 //! the real binary.
 
-mod common;
+use crate::common;
 use common::dlw;
 
 use common::designs as common_designs;

@@ -2,7 +2,7 @@
 //! sensor config makes closed loop worse (the estimator is in the loop), the outputs are
 //! complete and consistent, and bad input is refused with a clear error and no output.
 
-mod common;
+use crate::common;
 use common::{dlw, shipped_design};
 
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! (see its README: 47 TDMS files from LabVIEW 2010 with what npTDMS 1.13 reads from each, and
 //! 7 LVM files). The tests skip, saying so, when the folder is absent.
 
-mod common;
+use crate::common;
 use common::{arg, dlw};
 
 use serde_json::Value;

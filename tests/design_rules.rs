@@ -1,7 +1,7 @@
 //! Every design rule refuses a bad design through the real binary: non-zero exit, the rule's
 //! message (parameter, value, limit), and no output file.
 
-mod common;
+use crate::common;
 use common::dlw as run;
 
 use std::path::Path;

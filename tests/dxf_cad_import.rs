@@ -8,8 +8,8 @@
 //! Needs `python3` with `ezdxf` and `rs274` (both installed by `scripts/test.sh`); without them
 //! these tests fail.
 
-mod canon;
-mod common;
+use crate::canon;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

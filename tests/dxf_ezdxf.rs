@@ -3,7 +3,7 @@
 //!
 //! Needs `python3` with `ezdxf` (installed by `scripts/test.sh`); without them these tests fail.
 
-mod common;
+use crate::common;
 use common::designs as common_designs;
 
 use std::path::{Path, PathBuf};

@@ -1,6 +1,6 @@
 //! DXF round trip: export, import, same layout to 1e-9 mm; and the import's refusals.
 
-mod common;
+use crate::common;
 use common::designs as common_designs;
 
 use dlw::design::{Design, DesignFile};

@@ -1,7 +1,7 @@
 //! `dlw estimate --precision N`: estimates.csv to N decimals (enough to compare the C and Python
 //! estimators to 1e-9), and a refused N names the value and the limit, writing nothing.
 
-mod common;
+use crate::common;
 use common::shipped_design as design_path;
 
 use std::process::{Command, Output};

@@ -1,7 +1,7 @@
 //! `dlw estimator-config` through the binary: TOML or JSON by extension, the design's geometry,
 //! and clear refusals that write nothing.
 
-mod common;
+use crate::common;
 use common::{dlw, shipped_design as design};
 
 use std::path::Path;

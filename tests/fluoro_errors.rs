@@ -2,7 +2,7 @@
 //! names the value and the limit, a non-zero exit, and no output file or folder (not even a
 //! partial one or a staging folder).
 
-mod common;
+use crate::common;
 use common::dlw;
 
 use std::path::Path;

@@ -8,7 +8,7 @@
 //! by the pin fit's error (and, smoothed, by the moving average's rounding of the corners), so
 //! by the triangle inequality the two RMSEs differ by at most `RMSE(g − θ)` at the frame times.
 
-mod common;
+use crate::common;
 use common::{dlw, shipped_design};
 
 use std::path::Path;

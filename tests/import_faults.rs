@@ -6,7 +6,7 @@
 //! either recover the angle to the bench's accuracy or refuse, saying where and by how much,
 //! with nothing written.
 
-mod common;
+use crate::common;
 use common::bench::*;
 use common::{arg, dlw};
 

@@ -5,7 +5,7 @@
 //! not the recording's design. Each refusal names the value and the limit, exits non-zero and
 //! writes nothing.
 
-mod common;
+use crate::common;
 use common::{arg, dlw, dlw_ok, shipped_design};
 
 use std::path::Path;

@@ -3,7 +3,7 @@
 //! output; and `--json` never prints `null` for a NaN or an infinity (`dlw::finite`, unit
 //! tested there).
 
-mod common;
+use crate::common;
 use common::{arg, dlw, dlw_ok, shipped_design};
 
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! every output case, asserting what is refused, what is written, and that nothing else in the
 //! surrounding folder changed. Adding a command is one row in [`commands`].
 
-mod common;
+use crate::common;
 use common::{arg, dlw, shipped_design};
 
 use std::collections::BTreeMap;

@@ -1,7 +1,7 @@
 //! `dlw program` and `dlw build` through the binary: what they write, and that bad input gets a
 //! clear error, a non-zero exit and no file.
 
-mod common;
+use crate::common;
 use common::dlw;
 
 use common::designs as common_designs;

@@ -1,7 +1,7 @@
 //! Bad recordings given to `dlw estimate`: each fails with a message naming the line and the
 //! value, a non-zero exit, and no estimates file.
 
-mod common;
+use crate::common;
 use common::dlw;
 
 use std::path::Path;

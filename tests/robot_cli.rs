@@ -5,7 +5,7 @@
 //! The DXF is checked with ezdxf (audit, and the crosstalk recomputed from the drawing's traces
 //! in Python), the program with LinuxCNC's `rs274 -g` (`tests/robot_rs274.rs`).
 
-mod common;
+use crate::common;
 use common::{arg, dlw, dlw_ok};
 
 use std::path::{Path, PathBuf};

@@ -5,8 +5,8 @@
 //! joint cut where the robot's layout draws it, every written point on a drawn line, the parting
 //! cut all the way round. rs274 must be installed (`scripts/test.sh`); without it this fails.
 
-mod canon;
-mod common;
+use crate::canon;
+use crate::common;
 use common::designs as common_designs;
 use common::{arg, dlw_ok};
 

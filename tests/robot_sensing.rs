@@ -5,7 +5,7 @@
 // Index loops over joints and sensors read as the matrix formulas they check.
 #![allow(clippy::needless_range_loop)]
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

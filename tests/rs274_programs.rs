@@ -9,10 +9,10 @@
 //!
 //! The checks and their tolerances are in `canon/checks.rs`.
 
-mod common;
+use crate::common;
 use common::dlw;
 
-mod canon;
+use crate::canon;
 use common::designs as common_designs;
 
 use std::collections::BTreeMap;

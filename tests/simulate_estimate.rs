@@ -2,7 +2,7 @@
 //! ADC and tracker noise, the nominal linear config recovers the angle to within the noise; with
 //! a sensor effect switched on, the same config is measurably worse.
 
-mod common;
+use crate::common;
 use common::shipped_design as design_path;
 
 use std::path::Path;

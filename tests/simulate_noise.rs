@@ -3,7 +3,7 @@
 //! autocorrelation, follows the seed, is off unless asked for, and a recording made with it is
 //! reproduced byte for byte from its own `rig.toml`.
 
-mod common;
+use crate::common;
 use common::{dlw, shipped_design as design};
 
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! `dlw simulate` through the binary: every protocol writes a recording folder in the bench
 //! format, runs are deterministic per seed, and failures leave nothing behind.
 
-mod common;
+use crate::common;
 use common::{dlw, shipped_design as design};
 
 use std::path::{Path, PathBuf};

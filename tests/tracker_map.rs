@@ -9,7 +9,7 @@
 //! 2 ms, drift within 30 ppm, angle RMSE under 0.3°, the linear sensor's gauge factor within
 //! 1 %.
 
-mod common;
+use crate::common;
 use common::bench::*;
 use common::{arg, dlw, shipped_design};
 

@@ -4,7 +4,7 @@
 //! `angle_deg` holds there, the true angle or garbage (a recording's writer may put anything
 //! there; the importer writes 0).
 
-mod common;
+use crate::common;
 use common::{arg, dlw_ok, shipped_design};
 
 use std::path::{Path, PathBuf};
