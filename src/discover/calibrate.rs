@@ -64,10 +64,14 @@ pub const FALSE_NAME_RATE: f64 = 0.01;
 /// The fast first screen (nats): a candidate below it is not calibrated, and not named. The
 /// fixed threshold of the uncalibrated rule ([`super::THRESHOLD_NATS`]).
 pub const SCREEN_NATS: f64 = super::THRESHOLD_NATS;
-/// The screen of a rival test (nats): evidence added after the rival that is not positive
-/// is something the rival's world produces without a simulation (its copies' evidence is
-/// centred near zero); above it, only the calibrated bound decides.
-pub const RIVAL_SCREEN_NATS: f64 = 0.0;
+/// The screen of a rival test (nats): evidence added after the rival under one nat (a
+/// likelihood ratio under e, "not worth more than a bare mention" on Kass and Raftery's scale,
+/// 1995) is something the rival's world produces without a simulation (its copies' evidence
+/// is centred near zero); above it, only the calibrated bound decides. At zero, a name nested
+/// in its rival passed on rounding: `gain_drift` after the time spline, which holds every
+/// sensitivity linear in time, read 0.0004 nats against copies whose bound was 0.00007, and
+/// the report said a change in time could not produce what was seen.
+pub const RIVAL_SCREEN_NATS: f64 = 1.0;
 
 /// The bootstrap of one test: the evidence observed on the recording against the evidence on
 /// copies simulated without the effect. A test under the screen is not simulated: its copies
@@ -895,6 +899,20 @@ pub fn separating_data(a: Effect, b: Effect, creep_tau_s: Option<f64>) -> String
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A name nested in its rival (`gain_drift` in the time spline, which holds every
+    /// sensitivity linear in time) adds nothing after it but rounding: the recording's 0.0004
+    /// nats against copies of about 0.00001 must not pass a rival test. It did at a screen of 0.
+    #[test]
+    fn rounding_never_passes_a_rival_test() {
+        let null: Vec<f64> = (0..COPIES)
+            .map(|i| 1e-5 * (f64::from(i as u32) - 9.5))
+            .collect();
+        let nested = Calibration::of(3.6e-4, null.clone(), RIVAL_SCREEN_NATS);
+        assert!(!nested.passed, "{nested:?}");
+        // A nat and more against the same copies does.
+        assert!(Calibration::of(1.5, null, RIVAL_SCREEN_NATS).passed);
+    }
 
     #[test]
     fn quantiles_match_the_tables() {
