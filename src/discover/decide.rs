@@ -131,20 +131,7 @@ impl StageSearch<'_, '_> {
         if credible.is_empty() {
             // The top beat its copies but not over a named effect's richer form: what it
             // explains is that form's misfit.
-            // Over the richer forms named before it, the smaller evidence: the one it fell
-            // short over.
-            let over_flexible = self
-                .flexible_model()
-                .and_then(|m| self.search.gain(&m, &top.term));
-            let over_time = self
-                .time_named()
-                .then(|| self.over_time(top, None).map(|(e, _)| e))
-                .flatten();
-            let richer = over_flexible
-                .into_iter()
-                .chain(over_time)
-                .min_by(f64::total_cmp);
-            return Pick::Declined(top.clone(), null, None, richer);
+            return Pick::Declined(top.clone(), null, None, self.over_richer(top));
         }
         let mut excluded: Vec<Effect> = Vec::new();
         // The screen is for speed, not a rule: a rival under it that beats the null can
@@ -203,6 +190,22 @@ impl StageSearch<'_, '_> {
         });
         self.against_time_all(ambiguity, &scored, round)
             .unwrap_or_else(refused)
+    }
+
+    /// A candidate's evidence over the richer forms of the effects named before it: the
+    /// smaller, the one it fell short over; `None` when none is named.
+    fn over_richer(&self, c: &Candidate) -> Option<f64> {
+        let over_flexible = self
+            .flexible_model()
+            .and_then(|m| self.search.gain(&m, &c.term));
+        let over_time = self
+            .time_named()
+            .then(|| self.over_time(c, None).map(|(e, _)| e))
+            .flatten();
+        over_flexible
+            .into_iter()
+            .chain(over_time)
+            .min_by(f64::total_cmp)
     }
 
     /// A verdict's names against a smooth change in time ([`super::time_rival`]): a name
