@@ -439,16 +439,9 @@ impl StageSearch<'_, '_> {
     /// in that form; `None` when none has.
     fn flexible_model(&self) -> Option<super::model::StageModel> {
         let span = self.search.span_of(self.channel);
-        let base = &self.search.base_models[&self.channel];
-        let named: Vec<&Term> = self
-            .model
-            .terms
-            .iter()
-            .filter(|t| !base.terms.contains(t))
-            .collect();
         let mut m = self.model.clone();
         let mut changed = false;
-        for t in named {
+        for t in self.named_terms() {
             if let Some(f) = t.flexible(span) {
                 m.terms.retain(|x| x != t);
                 m.terms.push(f);

@@ -249,8 +249,9 @@ pub struct Declined {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub out_of_range: Option<scenario::OutOfRange>,
     /// When it beat its copies but not over the richer form of an effect already named on
-    /// the channel ([`terms::Term::flexible`]): its evidence over that form (nats), short of
-    /// the screen or of the copies' bound.
+    /// the channel ([`terms::Term::flexible`]; for a `drift` or a `gain_drift`, a change in time
+    /// of any smooth form): its evidence over that form (nats; over two such forms, the
+    /// smaller), short of the screen or of the copies' bound.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub over_richer: Option<f64>,
 }

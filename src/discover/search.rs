@@ -430,6 +430,16 @@ impl<'a> Search<'a> {
 }
 
 impl StageSearch<'_, '_> {
+    /// The terms named on this channel so far: the model's, less its base model's.
+    pub(super) fn named_terms(&self) -> Vec<&Term> {
+        let base = &self.search.base_models[&self.channel];
+        self.model
+            .terms
+            .iter()
+            .filter(|t| !base.terms.contains(t))
+            .collect()
+    }
+
     /// Every candidate effect of the channel not yet in its model, each at the grid shape that
     /// fits the training samples best, scored on the held-out ones; best first. `None` when the
     /// channel's model cannot be evaluated.

@@ -219,10 +219,9 @@ impl StageSearch<'_, '_> {
     /// smooth form (the time spline) is then their richer form, over which a later candidate
     /// must show its evidence ([`super::decide`]).
     pub(super) fn time_named(&self) -> bool {
-        let base = &self.search.base_models[&self.channel];
-        self.model.terms.iter().any(|t| {
-            matches!(t.effect(), Effect::Drift | Effect::GainDrift) && !base.terms.contains(t)
-        })
+        self.named_terms()
+            .iter()
+            .any(|t| matches!(t.effect(), Effect::Drift | Effect::GainDrift))
     }
 
     /// Step 2: the time spline's evidence over the model with `a`, against copies of that
