@@ -304,22 +304,37 @@ fn a_cycling_gain_named_gain_drift_gets_no_hysteresis_after_it() {
     assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
 }
 
-/// The wrong names of the detection measurement not fixed: a random-walk and a cycling gain
-/// ×0.5 (seed 9, under the size where either is detected) left `ambiguous` between `drift` and
-/// `creep`; the cycling gain ×1 of seed 2 named `gain_drift` and then left `ambiguous`
-/// between `hysteresis` (22.2 nats) and `creep` (7.2): what is left after a linear gain drift
-/// differs between loading and unloading, and the time spline, its smoothing chosen by
-/// cross-validation, does not take it. The last appeared with the hinges, which ended the
-/// hats' step that had hidden the plays' evidence. Fails today.
+/// A wrong name of the detection measurement (2026-11-27): the cycling gain ×0.5 of seed 9
+/// (under its detection size) was left `ambiguous` between `drift` and `creep`, neither its
+/// name. Neither beats a sensitivity changing in time of any smooth form (the time spline times
+/// the input: drift −78.0 nats over it; creep 2.9 nats, its world's bound 8.4), so the
+/// ambiguity is now declined and the channel flagged `unexplained` (time). Fails on the code
+/// before (the ambiguity).
+#[test]
+fn a_gain_left_ambiguous_between_drift_and_creep_is_flagged_instead() {
+    let dir = tempfile::tempdir().unwrap();
+    let wrong = wrong_names(dir.path(), &[(Effect::GainCycle, 0.5, 9)]);
+    assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
+}
+
+/// The wrong names of the detection measurement not fixed:
+/// - the random-walk gain ×0.5 of seed 9 is left `ambiguous` between `drift` (33.3 nats) and
+///   `creep` (20.7): the drift beats the sensitivity spline there;
+/// - the cycling gain ×1 of seed 2 is named `gain_drift` and then left `ambiguous` between
+///   `hysteresis` (22.2 nats) and `creep` (7.2).
+///
+/// Both go through the time spline, which runs into the last block, held out, and extrapolates
+/// its curvature there: for the cycling gain it loses 16.4 nats in that block alone while
+/// gaining in every other held-out block. Held flat past the last training sample, the spline
+/// fixes both, but then the cycling gain ×2 of the same seed gets a `hysteresis` after its
+/// `gain_drift`: in that world the flat spline loses up to 271 nats in the last block. The fix
+/// is a split whose last block trains (docs/discovery.md, "The last held-out block").
+/// Fails today.
 #[test]
 #[ignore = "fails: wrong names found by the detection measurement, not fixed"]
 fn the_detection_measurements_other_wrong_names_are_not_given() {
     let dir = tempfile::tempdir().unwrap();
-    let found = [
-        (Effect::GainWalk, 0.5, 9),
-        (Effect::GainCycle, 0.5, 9),
-        (Effect::GainCycle, 1.0, 2),
-    ];
+    let found = [(Effect::GainWalk, 0.5, 9), (Effect::GainCycle, 1.0, 2)];
     let wrong = wrong_names(dir.path(), &found);
     assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
 }
@@ -700,7 +715,11 @@ fn measure_detection() {
             eprintln!(
                 "{}{past}: {} in {:.1} s: {}{}",
                 case.name(),
-                if j.right { "right" } else { "missed" },
+                match (j.right, j.wrong.is_empty()) {
+                    (_, false) => "wrong",
+                    (true, true) => "right",
+                    (false, true) => "missed",
+                },
                 start.elapsed().as_secs_f64(),
                 said(&json),
                 if j.wrong.is_empty() {

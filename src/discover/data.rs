@@ -21,7 +21,7 @@ pub const MIN_REST_S: f64 = 4.0;
 /// The time before the first motion left out of the rest (s): the stroke may start moving
 /// before it leaves its tolerance.
 pub const REST_MARGIN_S: f64 = 1.0;
-/// Interleaved blocks after the rest: odd ones train, even ones are held out.
+/// Interleaved blocks after the rest: the even ones (from 0) train, the odd ones are held out.
 pub const BLOCKS: usize = 10;
 /// Shortest block (s): a block must span several noise correlation times.
 pub const MIN_BLOCK_S: f64 = 8.0;
@@ -147,6 +147,8 @@ impl Data {
             return Err(DiscoverError::TooShort {
                 moving_s: moving as f64 * self.dt_s,
                 min_s: BLOCKS as f64 * MIN_BLOCK_S,
+                blocks: BLOCKS,
+                block_s: MIN_BLOCK_S,
             });
         }
         let mut train = vec![false; n];

@@ -137,12 +137,16 @@ pub enum DiscoverError {
         needs_s: f64,
     },
     /// Too short to hold out from.
-    #[error("the recording moves for {moving_s:.1} s after its rest; discovery needs at least {min_s} s to hold out half of it in blocks (or give --holdout REC2)")]
+    #[error("the recording moves for {moving_s:.1} s after its rest; discovery needs at least {min_s} s to hold out every other one of its {blocks} blocks of at least {block_s} s (or give --holdout REC2)")]
     TooShort {
         /// Motion (s).
         moving_s: f64,
         /// Needed (s).
         min_s: f64,
+        /// Blocks the motion is cut into ([`data::BLOCKS`]).
+        blocks: usize,
+        /// Shortest block (s, [`data::MIN_BLOCK_S`]).
+        block_s: f64,
     },
     /// Sensor count mismatch.
     #[error("the recording has {columns} voltage column(s) but the design's {style} joint has {sensors} sensor(s)")]

@@ -50,8 +50,17 @@ pub struct TimeRivalry {
     /// model with the candidate, when it was needed.
     pub time_beyond: Option<Calibration>,
     /// `named`: time cannot produce what was seen; `rival`: the candidate cannot, time can
-    /// (the name is refused); `neither`: the simpler library name stands.
+    /// (the name is refused); `neither`: the simpler library name stands, unless the name was
+    /// left ambiguous (`among`).
     pub verdict: Verdict,
+    /// The rival: a change in time of the baseline and the sensitivity ([`GenericKind::Time`]),
+    /// or, for an ambiguity, of the sensitivity alone ([`GenericKind::Sensitivity`]).
+    pub rival: GenericKind,
+    /// When the name was left `ambiguous`, the other contenders, each with its evidence over
+    /// the rival against the rival's world, none beating it: the ambiguity is declined
+    /// ([`super::decide`]); empty otherwise.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub among: Vec<(Effect, Calibration)>,
 }
 
 impl TimeRivalry {
@@ -67,8 +76,12 @@ impl TimeRivalry {
             (Some(max), Some(bound)) => format!("reaches {max:.1} (bound {bound:.1})"),
             _ => format!("not simulated (under the {}-nat screen)", c.screen),
         };
+        let rival = match self.rival {
+            GenericKind::Sensitivity => "a sensitivity changing in time",
+            _ => "a change in time",
+        };
         let first = format!(
-            "{a} after a change in time {:.1} nats, time's world {}",
+            "{a} after {rival} {:.1} nats, its world {}",
             self.beyond_time.observed,
             reach(&self.beyond_time)
         );
@@ -79,6 +92,27 @@ impl TimeRivalry {
                 reach(c)
             )
         });
+        if !self.among.is_empty() {
+            let others: Vec<String> = self
+                .among
+                .iter()
+                .map(|(e, c)| {
+                    format!(
+                        "{} after it {:.1} nats, its world {}",
+                        e.name(),
+                        c.observed,
+                        reach(c)
+                    )
+                })
+                .collect();
+            let names: Vec<&str> = self.among.iter().map(|(e, _)| e.name()).collect();
+            return format!(
+                "{first}; {}: {a} was left ambiguous with {}, and {rival} can produce what \
+                 each of them explains: none is named",
+                others.join("; "),
+                names.join(" and ")
+            );
+        }
         let verdict = match self.verdict {
             Verdict::Named => "a change in time cannot produce what was seen".to_owned(),
             Verdict::Rival => format!("{a} cannot produce what was seen, a change in time can"),
@@ -109,6 +143,8 @@ impl StageSearch<'_, '_> {
                 beyond_time,
                 time_beyond: None,
                 verdict: Verdict::Named,
+                rival: GenericKind::Time,
+                among: Vec::new(),
             });
         }
         // The spline after the name as it would be written: its shape refined, so that what
@@ -126,6 +162,8 @@ impl StageSearch<'_, '_> {
             beyond_time,
             time_beyond: Some(time_beyond),
             verdict,
+            rival: GenericKind::Time,
+            among: Vec::new(),
         })
     }
 
@@ -163,6 +201,24 @@ impl StageSearch<'_, '_> {
         a: &Candidate,
         round: Option<usize>,
     ) -> Option<(f64, Option<Calibration>)> {
+        self.over_kind(a, round, GenericKind::Time)
+    }
+
+    /// `a`'s evidence (its best grid shape) over the model with a sensitivity changing in
+    /// time of any smooth form ([`GenericKind::Sensitivity`]), against copies of that model.
+    pub(super) fn over_sensitivity(&self, a: &Candidate, round: usize) -> Option<Calibration> {
+        self.over_kind(a, Some(round), GenericKind::Sensitivity)
+            .and_then(|(_, c)| c)
+    }
+
+    /// `a`'s evidence (its best grid shape) over the model with the spline of `kind`, on the
+    /// recording; with a `round`, also calibrated against copies of that model.
+    fn over_kind(
+        &self,
+        a: &Candidate,
+        round: Option<usize>,
+        kind: GenericKind,
+    ) -> Option<(f64, Option<Calibration>)> {
         let s = self.search;
         let shapes = match a.term {
             Term::Creep {
@@ -190,7 +246,7 @@ impl StageSearch<'_, '_> {
             .chain((0..shapes.len()).map(|k| vec![0, 1, 2 + k]))
             .collect();
         let r = self.time_test(&from, &from_test);
-        let g = r.generic_of(&[GenericKind::Time], extra, sets)?;
+        let g = r.generic_of(&[kind], extra, sets)?;
         let prepared = g.prepare_sets()?;
         let alternatives: Vec<usize> = (1..prepared.len()).collect();
         let (e, _, world, fuller) = g.nested(&prepared, 0, &alternatives, &g.observed())?;
@@ -203,7 +259,15 @@ impl StageSearch<'_, '_> {
                 &fuller,
                 e,
                 RIVAL_SCREEN_NATS,
-                seed(round, 4, a.effect) ^ channel_seed(self),
+                seed(
+                    round,
+                    if kind == GenericKind::Sensitivity {
+                        6
+                    } else {
+                        4
+                    },
+                    a.effect,
+                ) ^ channel_seed(self),
                 &|copy| {
                     g.nested(&prepared, 0, &alternatives, copy)
                         .map_or(f64::NAN, |x| x.0)

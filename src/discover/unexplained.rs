@@ -75,6 +75,11 @@ pub enum GenericKind {
     /// A penalized spline in time, alone and times the input: a baseline or a sensitivity that
     /// changes over the run in any smooth way ([`TIME_KNOT_S`]).
     Time,
+    /// The same spline times the input only: a sensitivity that changes over the run in any
+    /// smooth way, and no baseline. Not one of the `unexplained` test's kinds ([`Self::ALL`]):
+    /// the rival an ambiguity among names a change in time imitates is told from
+    /// ([`super::decide`]).
+    Sensitivity,
 }
 
 impl GenericKind {
@@ -95,6 +100,7 @@ impl GenericKind {
             GenericKind::Memory => "at reversals: loading and unloading differ",
             GenericKind::History => "during holds and after changes: the channel lags its input",
             GenericKind::Time => "over the run: the baseline or the sensitivity changes with time",
+            GenericKind::Sensitivity => "over the run: the sensitivity changes with time",
         }
     }
 }
@@ -271,6 +277,12 @@ impl Residuals<'_> {
                     .collect(),
                 Vec::new(),
             ),
+            GenericKind::Sensitivity => {
+                let (mut cols, _) = self.columns(GenericKind::Time, x, smooth, data);
+                let gain = cols.split_off(cols.len() / 2);
+                let m = gain.len();
+                (gain, vec![(0, m)])
+            }
             GenericKind::Time => {
                 let moving: Vec<f64> = data.time_s[data.rest.min(data.len())..].to_vec();
                 let lo = moving.first().copied().unwrap_or(0.0);
