@@ -344,7 +344,7 @@ fn rival_table(page: &mut Page, outcome: &Outcome) {
             ]);
         }
         for (name, t) in &in_time {
-            table.row([name.clone(), "a change in time".to_owned(), t.sentence()]);
+            table.row([name.clone(), t.rival_name().to_owned(), t.sentence()]);
         }
         page.table(table);
     }

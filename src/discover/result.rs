@@ -117,7 +117,7 @@ impl Analysis for DiscoverResult {
                 x.channel.name(),
             );
             if let Some(t) = &x.time {
-                let _ = writeln!(out, "  against a change in time: {}", t.sentence());
+                let _ = writeln!(out, "  against {}: {}", t.rival_name(), t.sentence());
             }
         }
         for a in &o.ambiguous {

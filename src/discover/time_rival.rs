@@ -69,6 +69,14 @@ impl TimeRivalry {
         self.verdict == Verdict::Rival
     }
 
+    /// The rival, in words.
+    pub fn rival_name(&self) -> &'static str {
+        match self.rival {
+            GenericKind::Sensitivity => "a sensitivity changing in time",
+            _ => "a change in time",
+        }
+    }
+
     /// The rivalry in one sentence, from its numbers.
     pub fn sentence(&self) -> String {
         let a = self.effect.name();
@@ -76,10 +84,7 @@ impl TimeRivalry {
             (Some(max), Some(bound)) => format!("reaches {max:.1} (bound {bound:.1})"),
             _ => format!("not simulated (under the {}-nat screen)", c.screen),
         };
-        let rival = match self.rival {
-            GenericKind::Sensitivity => "a sensitivity changing in time",
-            _ => "a change in time",
-        };
+        let rival = self.rival_name();
         let first = format!(
             "{a} after {rival} {:.1} nats, its world {}",
             self.beyond_time.observed,
