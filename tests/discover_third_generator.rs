@@ -327,8 +327,9 @@ fn a_gain_left_ambiguous_between_drift_and_creep_is_flagged_instead() {
 /// its curvature there: for the cycling gain it loses 16.4 nats in that block alone while
 /// gaining in every other held-out block. Held flat past the last training sample, the spline
 /// fixes both, but then the cycling gain ×2 of the same seed gets a `hysteresis` after its
-/// `gain_drift`: in that world the flat spline loses up to 271 nats in the last block. The fix
-/// is a split whose last block trains (docs/discovery.md, "The last held-out block").
+/// `gain_drift`: on copies of that world the flat spline's evidence runs down to −271 nats, and
+/// the copies' prediction bound rose to 119.8. The likely fix is a split whose last block trains
+/// (docs/discovery.md, "The last held-out block").
 /// Fails today.
 #[test]
 #[ignore = "fails: wrong names found by the detection measurement, not fixed"]
