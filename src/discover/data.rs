@@ -212,6 +212,43 @@ fn fill_unmeasured(values: &mut [f64], measured: &[bool]) {
 mod tests {
     use super::*;
 
+    fn data(n: usize, rest: usize) -> Data {
+        Data {
+            time_s: (0..n).map(|i| i as f64 * 0.04).collect(),
+            stroke_mm: vec![0.0; n],
+            angle_deg: vec![0.0; n],
+            strain: vec![0.0; n],
+            ohm: Vec::new(),
+            rest,
+            measured: vec![true; n],
+            dt_s: 0.04,
+        }
+    }
+
+    /// Every held-out sample lies between two training samples, at any length and rest, so
+    /// that no term in time (`drift`, `gain_drift`, the time spline) is judged on how it
+    /// extrapolates past the last training sample. Fails: with an even [`BLOCKS`] the last
+    /// block is held out (docs/discovery.md, "The last held-out block"; an odd number was
+    /// measured and not shipped).
+    #[test]
+    #[ignore = "fails: the last block is held out (BLOCKS is even)"]
+    fn every_held_out_block_lies_between_training_blocks() {
+        for n in [2500, 2501, 2517, 7500, 7517, 75_000] {
+            for rest in [100, 137, 250] {
+                let (train, test) = data(n, rest).split().unwrap();
+                let first = train.iter().position(|t| *t).unwrap();
+                let last = train.iter().rposition(|t| *t).unwrap();
+                let held: Vec<usize> = (0..n).filter(|&i| test[i]).collect();
+                assert!(!held.is_empty());
+                assert!(
+                    held.iter().all(|&i| i > first && i < last),
+                    "n {n}, rest {rest}: held out up to sample {}, training ends at {last}",
+                    held[held.len() - 1]
+                );
+            }
+        }
+    }
+
     #[test]
     fn unmeasured_samples_are_interpolated_and_held_at_the_ends() {
         let mut v = [9.0, 1.0, 9.0, 9.0, 4.0, 9.0];
