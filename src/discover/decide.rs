@@ -212,8 +212,8 @@ impl StageSearch<'_, '_> {
 
     /// A verdict's names against a smooth change in time ([`super::time_rival`]): a name
     /// about to be given keeps its test, or is refused; an ambiguity whose every contender a
-    /// change in time imitates, none of them beating a sensitivity changing in time, is
-    /// refused. `Err` holds the first refused
+    /// change in time imitates is refused when a change in time refuses every contender, or
+    /// when none of them beats a sensitivity changing in time. `Err` holds the first refused
     /// candidate and its test (boxed: it is large).
     fn against_time_all(
         &self,
@@ -236,16 +236,37 @@ impl StageSearch<'_, '_> {
             // was left `ambiguous` between `drift` and `creep` (third generator, ×0.5, seed
             // 9). Declined, with each contender's test, and the channel goes to the
             // `unexplained` test. (Against the baseline's change in time too, a linear drift
-            // would never stand: the spline holds it.)
+            // would never stand: the spline holds it.) An ambiguity whose every name a change
+            // in time refuses is declined first, as a name is.
             Pick::Ambiguous(a)
                 if !a.contenders.is_empty()
                     && a.contenders.iter().all(|(e, _)| TIME_RIVALS.contains(e)) =>
             {
+                let Some(contenders) = a
+                    .contenders
+                    .iter()
+                    .map(|(e, _)| scored.iter().find(|c| c.effect == *e))
+                    .collect::<Option<Vec<&Candidate>>>()
+                else {
+                    return Ok(Pick::Ambiguous(a));
+                };
+                // Every contender refused by a change in time (its world cannot produce the
+                // spline's evidence): declined with the first refusal.
+                let refusals: Vec<(Candidate, TimeRivalry)> = contenders
+                    .iter()
+                    .map_while(|c| {
+                        self.against_time(c, round)
+                            .filter(TimeRivalry::refuses)
+                            .map(|t| ((*c).clone(), t))
+                    })
+                    .collect();
+                if refusals.len() == contenders.len() {
+                    if let Some(first) = refusals.into_iter().next() {
+                        return Err(Box::new(first));
+                    }
+                }
                 let mut tests = Vec::new();
-                for (e, _) in &a.contenders {
-                    let Some(c) = scored.iter().find(|c| c.effect == *e) else {
-                        return Ok(Pick::Ambiguous(a));
-                    };
+                for c in contenders {
                     match self.over_sensitivity(c, round) {
                         Some(t) if !t.passed => tests.push((c.clone(), t)),
                         _ => return Ok(Pick::Ambiguous(a)),
