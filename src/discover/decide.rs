@@ -28,9 +28,10 @@
 //!    (`drift`, `gain_drift`, `creep`), about to be given or left ambiguous, is tested against
 //!    the `unexplained` test's time spline, both ways. A name the spline's world produces and
 //!    whose own world cannot produce the spline's evidence is refused. An ambiguity among such
-//!    names stands only when one of them shows what a sensitivity changing in time (the
-//!    spline times the input) cannot produce; otherwise nothing is named (`declined`, with
-//!    each contender's test) and the channel is left to the `unexplained` test.
+//!    names is declined when every one of them is refused so, and otherwise stands only when
+//!    one of them shows what a sensitivity changing in time (the spline times the input)
+//!    cannot produce; when it does not stand nothing is named (`declined`, with the test, or
+//!    each contender's) and the channel is left to the `unexplained` test.
 
 use super::calibrate::{
     separating_data, Calibration, Rivalry, Verdict, RIVAL_SCREEN_NATS, SCREEN_NATS,

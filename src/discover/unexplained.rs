@@ -152,6 +152,24 @@ pub fn time_splines(t: &[f64], lo: f64, hi: f64, intervals: usize) -> Vec<Vec<f6
     cols
 }
 
+/// The time kind's B-splines over `data`: knots every [`TIME_KNOT_S`] over the motion, at
+/// least [`MIN_TIME_INTERVALS`] intervals.
+fn time_splines_of(data: &Data) -> Vec<Vec<f64>> {
+    let moving = &data.time_s[data.rest.min(data.len())..];
+    let lo = moving.first().copied().unwrap_or(0.0);
+    let hi = moving.last().copied().unwrap_or(lo);
+    let intervals = (((hi - lo) / TIME_KNOT_S).round() as usize).max(MIN_TIME_INTERVALS);
+    time_splines(&data.time_s, lo, hi, intervals)
+}
+
+/// Each spline times the input `x`: a sensitivity that changes in time.
+fn time_gain(splines: &[Vec<f64>], x: &[f64]) -> Vec<Vec<f64>> {
+    splines
+        .iter()
+        .map(|b| x.iter().zip(b).map(|(x, b)| x * b).collect())
+        .collect()
+}
+
 /// The second-difference penalty `DᵀD` of `m` spline coefficients.
 fn second_difference(m: usize) -> DMatrix<f64> {
     let mut p = DMatrix::zeros(m, m);
@@ -278,22 +296,13 @@ impl Residuals<'_> {
                 Vec::new(),
             ),
             GenericKind::Sensitivity => {
-                let (mut cols, _) = self.columns(GenericKind::Time, x, smooth, data);
-                let gain = cols.split_off(cols.len() / 2);
+                let gain = time_gain(&time_splines_of(data), x);
                 let m = gain.len();
                 (gain, vec![(0, m)])
             }
             GenericKind::Time => {
-                let moving: Vec<f64> = data.time_s[data.rest.min(data.len())..].to_vec();
-                let lo = moving.first().copied().unwrap_or(0.0);
-                let hi = moving.last().copied().unwrap_or(lo);
-                let intervals =
-                    (((hi - lo) / TIME_KNOT_S).round() as usize).max(MIN_TIME_INTERVALS);
-                let offset = time_splines(&data.time_s, lo, hi, intervals);
-                let gain: Vec<Vec<f64>> = offset
-                    .iter()
-                    .map(|b| x.iter().zip(b).map(|(x, b)| x * b).collect())
-                    .collect();
+                let offset = time_splines_of(data);
+                let gain = time_gain(&offset, x);
                 let m = offset.len();
                 (
                     offset.into_iter().chain(gain).collect(),
