@@ -117,6 +117,9 @@ fn each_plant_effect() -> Vec<Known> {
             Term::Backlash { half_mm: 0.01 },
             Term::Relaxation { tau_s: 4.0 },
         ]),
+        forced(&[Term::RelaxationSpread {
+            taus_s: vec![0.5, 2.0, 8.0, 32.0, 128.0],
+        }]),
     ]
 }
 

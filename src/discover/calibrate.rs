@@ -575,7 +575,9 @@ impl StageSearch<'_, '_> {
     }
 
     /// For each target, the evidence of each group of shapes over `from` (the best shape of
-    /// the group on the training samples, scored on the held-out ones): `[target][group]`.
+    /// the group on the training samples, scored on the held-out ones; a spread form in the
+    /// group, [`Term::spread`], scored beside it and kept when it has more, as
+    /// `Search::best_shape` chooses): `[target][group]`.
     pub(super) fn evidences(
         &self,
         from: &StageModel,
@@ -591,9 +593,9 @@ impl StageSearch<'_, '_> {
         drop(base);
         let mut out = vec![vec![f64::NAN; groups.len()]; targets.len()];
         for (g, shapes) in groups.iter().enumerate() {
-            let prepared: Vec<Prepared> = shapes
+            let prepared: Vec<(bool, Prepared)> = shapes
                 .par_iter()
-                .filter_map(|t| self.prepare(&from.with(t.clone())))
+                .filter_map(|t| Some((t.is_spread(), self.prepare(&from.with(t.clone()))?)))
                 .collect();
             if prepared.is_empty() {
                 continue;
@@ -602,15 +604,23 @@ impl StageSearch<'_, '_> {
                 .par_iter()
                 .zip(&from_ss)
                 .map(|(target, &from_ss)| {
-                    let best = prepared
-                        .iter()
-                        .map(|p| (p, self.train_ss(p, target)))
-                        .min_by(|a, b| a.1.total_cmp(&b.1))
-                        .map(|(p, _)| p);
-                    best.map_or(f64::NAN, |p| {
+                    let evidence = |p: &Prepared| {
                         let sc = self.scored(p, target);
                         super::evidence(n, from_ss, sc.test_ss, sc.tau)
-                    })
+                    };
+                    let best = prepared
+                        .iter()
+                        .filter(|(spread, _)| !spread)
+                        .map(|(_, p)| (p, self.train_ss(p, target)))
+                        .min_by(|a, b| a.1.total_cmp(&b.1))
+                        .map(|(p, _)| evidence(p));
+                    prepared
+                        .iter()
+                        .filter(|(spread, _)| *spread)
+                        .map(|(_, p)| evidence(p))
+                        .chain(best)
+                        .filter(|e| !e.is_nan())
+                        .fold(f64::NAN, f64::max)
                 })
                 .collect();
             for (row, e) in out.iter_mut().zip(column) {
@@ -743,7 +753,7 @@ impl StageSearch<'_, '_> {
         super::search::Search::effects(self.channel)
             .iter()
             .filter(|e| !self.model.terms.iter().any(|t| t.effect() == **e))
-            .map(|&e| (e, Term::grid(e, s.span_of(self.channel))))
+            .map(|&e| (e, Term::shapes(e, s.span_of(self.channel))))
             .collect()
     }
 }

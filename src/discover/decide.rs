@@ -350,7 +350,7 @@ impl StageSearch<'_, '_> {
             .take(MAX_RIVALS)
             .copied()
             .collect();
-        let a_shapes = Term::grid(a.effect, self.search.span_of(self.channel));
+        let a_shapes = Term::shapes(a.effect, self.search.span_of(self.channel));
         let tests: Vec<Rivalry> = rivals
             .iter()
             .filter_map(|b| self.rival(a, &a_shapes, b, settle.round))
@@ -546,7 +546,7 @@ impl StageSearch<'_, '_> {
                 verdict: Verdict::Named,
             });
         }
-        let b_shapes = Term::grid(b.effect, span);
+        let b_shapes = Term::shapes(b.effect, span);
         let b_after_a = beyond(&with_a, &b_shapes)?;
         let beyond_effect = if b_after_a > RIVAL_SCREEN_NATS {
             self.bootstrap(

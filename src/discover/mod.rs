@@ -18,6 +18,7 @@ pub mod report;
 mod result;
 pub mod scenario;
 mod search;
+mod signed;
 pub mod smooth;
 mod summary;
 pub mod terms;

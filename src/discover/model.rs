@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use super::data::Data;
 use super::noise::ArNoise;
+use super::signed::{self, Sign};
 use super::terms::{hinges, low_pass, play, rate, Term, LOG_REFERENCE_RATE};
 use crate::sensor::Sensor;
 
@@ -177,6 +178,12 @@ fn term_columns(
                 labels.push("prony");
             }
         }
+        Term::RelaxationSpread { taus_s } => {
+            for tau in taus_s {
+                columns.push(low_pass(driver, *tau, data.dt_s));
+                labels.push("relaxation_term");
+            }
+        }
         Term::Hysteresis {
             radii,
             center,
@@ -289,7 +296,10 @@ pub fn fit(design: &Design, noise: &ArNoise, train: &[bool]) -> Option<Fitted> {
         .collect();
     let x = DMatrix::from_fn(rows.len(), p, |r, c| white_cols[c][rows[r]] / scales[c]);
     let y = DVector::from_iterator(rows.len(), rows.iter().map(|&i| white_y[i]));
-    let solution = x.clone().svd(true, true).solve(&y, 1e-10).ok()?;
+    let mut solution = x.clone().svd(true, true).solve(&y, 1e-10).ok()?;
+    if let Some(signs) = relaxation_signs(&design.labels, &solution) {
+        solution = signed::least_squares(&x, &y, &signs)?;
+    }
     let coef: Vec<f64> = solution.iter().zip(&scales).map(|(b, s)| b / s).collect();
     if !coef.iter().all(|c| c.is_finite()) {
         return None;
@@ -299,6 +309,30 @@ pub fn fit(design: &Design, noise: &ArNoise, train: &[bool]) -> Option<Fitted> {
         coef,
         labels: design.labels.clone(),
         train_ss: residual.norm_squared(),
+    })
+}
+
+/// The signs a relaxation's spread must have ([`Term::RelaxationSpread`]), when its free fit
+/// breaks them: each term's share of the elastic angle at least zero, so each coefficient of
+/// the sign opposite to the gain's (`θ = g·u − Σ fₖ·g·LP_τk(u)`). `None` when the design has
+/// no spread or the free fit already keeps them.
+fn relaxation_signs(labels: &[&'static str], free: &DVector<f64>) -> Option<Vec<Sign>> {
+    let gain = labels.iter().position(|l| *l == "gain").map(|j| free[j])?;
+    let held = if gain >= 0.0 {
+        Sign::NonPositive
+    } else {
+        Sign::NonNegative
+    };
+    let spread = |l: &&str| *l == "relaxation_term";
+    let broken = labels
+        .iter()
+        .zip(free.iter())
+        .any(|(l, c)| spread(l) && c * gain > 0.0);
+    broken.then(|| {
+        labels
+            .iter()
+            .map(|l| if spread(l) { held } else { Sign::Free })
+            .collect()
     })
 }
 

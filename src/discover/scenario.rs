@@ -13,7 +13,9 @@ use super::{Known, Outcome, StageReport};
 use crate::fit::{fit_sensor, FitOptions, ModelKind, PlayOrder};
 use crate::sensor::Sensor;
 use crate::signal::Prefilter;
-use crate::sim::{RateForm, Recording, Scenario, SensorModelKind, SensorParams, MAX_FADE_PER_HOUR};
+use crate::sim::{
+    RateForm, Recording, RelaxationTerm, Scenario, SensorModelKind, SensorParams, MAX_FADE_PER_HOUR,
+};
 
 /// A fitted parameter the simulator does not accept: the effect cannot be written as the
 /// library's, so it is not named (`dlw discover` declines it and tests the channel for what the
@@ -70,10 +72,16 @@ pub fn out_of_range(term: &Term, parameters: &BTreeMap<String, f64>) -> Option<O
                 let limit = format!("|fade_per_hour| at most {MAX_FADE_PER_HOUR} per hour");
                 out("fade_per_hour", v, limit)
             }),
-        Term::Relaxation { .. } => parameters
+        Term::Relaxation { .. } | Term::RelaxationSpread { .. } => parameters
             .get("fraction")
             .filter(|v| !(0.0..1.0).contains(*v))
-            .map(|&v| out("fraction", v, "in [0, 1)".to_owned())),
+            .map(|&v| out("fraction", v, "in [0, 1)".to_owned()))
+            .or_else(|| {
+                parameters
+                    .iter()
+                    .find(|(k, v)| k.starts_with("fraction_") && v.abs() >= 1.0)
+                    .map(|(k, &v)| out(k, v, "in (-1, 1)".to_owned()))
+            }),
         _ => None,
     }
 }
@@ -114,6 +122,14 @@ pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
         }
         // The richer form of a creep, never named: no parameters.
         Term::Prony { .. } => {}
+        Term::RelaxationSpread { taus_s } => {
+            let weights = fitted.all("relaxation_term");
+            p.insert("fraction".into(), -weights.iter().sum::<f64>() / gain);
+            for (i, (tau, c)) in taus_s.iter().zip(weights).enumerate() {
+                p.insert(format!("tau_{}_s", i + 1), *tau);
+                p.insert(format!("fraction_{}", i + 1), -c / gain);
+            }
+        }
         Term::GainDrift => {
             p.insert(
                 "fade_per_hour".into(),
@@ -171,12 +187,16 @@ pub fn known(scenario: &Scenario) -> Known {
         ));
     }
     if plant.relaxation.enabled {
-        k.push((
-            Stage::Plant,
+        let relaxation = if plant.relaxation.terms.is_empty() {
             Term::Relaxation {
                 tau_s: plant.relaxation.tau_s,
-            },
-        ));
+            }
+        } else {
+            Term::RelaxationSpread {
+                taus_s: plant.relaxation.terms.iter().map(|t| t.tau_s).collect(),
+            }
+        };
+        k.push((Stage::Plant, relaxation));
     }
     for (s, &sensor) in scenario.sensors().zip(&Sensor::ALL) {
         let ch = Stage::Sensor(sensor);
@@ -268,6 +288,20 @@ pub fn scenario(
                             s.plant.relaxation.enabled = true;
                             s.plant.relaxation.fraction = f.clamp(0.0, 0.9);
                             s.plant.relaxation.tau_s = *tau_s;
+                            s.plant.relaxation.terms.clear();
+                        }
+                        Term::RelaxationSpread { taus_s } => {
+                            // A named spread passed `out_of_range`: its weights lie in (−1, 1)
+                            // and sum to [0, 1), as the scenario asks.
+                            s.plant.relaxation.enabled = true;
+                            s.plant.relaxation.terms = taus_s
+                                .iter()
+                                .zip(ch.fitted.all("relaxation_term"))
+                                .map(|(&tau_s, c)| RelaxationTerm {
+                                    fraction: -c / gain,
+                                    tau_s,
+                                })
+                                .collect();
                         }
                         _ => {}
                     }
@@ -349,7 +383,10 @@ fn write_sensor(sensor: &mut SensorParams, ch: &StageReport) -> Result<(), Strin
                 sensor.gain_drift.fade_per_hour = -f.get("gain_drift").unwrap_or(0.0) / b * 3600.0;
             }
             // The plant's, written elsewhere; the richer creep is never named.
-            Term::Backlash { .. } | Term::Relaxation { .. } | Term::Prony { .. } => {}
+            Term::Backlash { .. }
+            | Term::Relaxation { .. }
+            | Term::RelaxationSpread { .. }
+            | Term::Prony { .. } => {}
         }
     }
     Ok(())
@@ -407,5 +444,21 @@ mod tests {
         let nan = out_of_range(&creep, &params(&[("fraction", f64::NAN)])).unwrap();
         assert_eq!(nan.key, "creep.fraction");
         assert!(out_of_range(&creep, &params(&[("fraction", 3.0), ("tau_s", 20.0)])).is_none());
+        // A spread: its total in [0, 1) and each weight in (−1, 1), as the scenario asks.
+        let spread = Term::RelaxationSpread {
+            taus_s: vec![1.0, 10.0],
+        };
+        let ok = params(&[("fraction", 0.3), ("fraction_1", -0.2), ("fraction_2", 0.5)]);
+        assert!(out_of_range(&spread, &ok).is_none());
+        let weight = params(&[("fraction", 0.3), ("fraction_1", -1.2), ("fraction_2", 1.5)]);
+        let w = out_of_range(&spread, &weight).unwrap();
+        assert_eq!((w.key.as_str(), w.value), ("relaxation.fraction_1", -1.2));
+        let total = params(&[
+            ("fraction", -0.1),
+            ("fraction_1", -0.2),
+            ("fraction_2", 0.1),
+        ]);
+        let t = out_of_range(&spread, &total).unwrap();
+        assert_eq!((t.key.as_str(), t.value), ("relaxation.fraction", -0.1));
     }
 }

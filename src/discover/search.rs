@@ -302,13 +302,27 @@ impl<'a> Search<'a> {
         }
     }
 
-    /// The grid point of `effect` that fits `m` best on the training samples.
+    /// The grid point of `effect` that fits `m` best on the training samples; or the effect's
+    /// spread form ([`Term::spread`]) when that has more held-out evidence than it (the spread
+    /// always fits the training samples better, having more coefficients, so the training
+    /// samples cannot choose between the two).
     pub(super) fn best_shape(&self, m: &StageModel, effect: Effect) -> Option<Term> {
-        Term::grid(effect, self.span_of(m.channel))
+        let best = Term::grid(effect, self.span_of(m.channel))
             .into_iter()
             .filter_map(|term| Some((term.clone(), self.train_ss(m, &term)?)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(t, _)| t)
+            .map(|(t, _)| t);
+        let Some(spread) = Term::spread(effect) else {
+            return best;
+        };
+        let Some(best) = best else {
+            return Some(spread);
+        };
+        match (self.gain(m, &spread), self.gain(m, &best)) {
+            (Some(a), Some(b)) if a > b => Some(spread),
+            (Some(_), None) => Some(spread),
+            _ => Some(best),
+        }
     }
 
     /// Hysteresis is memory: the evidence of a hysteresis term's plays over a memoryless curve
@@ -587,7 +601,11 @@ impl StageSearch<'_, '_> {
                 ..c
             }
         };
-        let one = refined(winner);
+        let one = if winner.term.is_spread() {
+            self.spread_or_one(winner)
+        } else {
+            refined(winner)
+        };
         match self.two_term(&one) {
             Some(two)
                 if s.gain(&m.with(one.term.clone()), &two.term)
@@ -596,6 +614,30 @@ impl StageSearch<'_, '_> {
                 refined(two)
             }
             _ => one,
+        }
+    }
+
+    /// A spread form named ([`Term::spread`]) was chosen over the grid's best point; refined,
+    /// one time constant may predict the held-out samples as well (a relaxation that is one
+    /// standard linear solid, between two grid points), and is then what is written: the
+    /// simpler form, whose parameters are the simulator's own.
+    fn spread_or_one(&self, spread: Candidate) -> Candidate {
+        let s = self.search;
+        let m = &self.model;
+        let grid = Term::grid(spread.effect, s.span_of(spread.channel));
+        let one = grid
+            .iter()
+            .filter_map(|t| Some((t, s.train_ss(m, t)?)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(t, ss)| refine(t.clone(), ss, &grid, &|t| s.train_ss(m, t)));
+        let Some(one) = one else { return spread };
+        match (s.gain(m, &one), s.gain(m, &spread.term)) {
+            (Some(a), Some(b)) if a >= b => Candidate {
+                shape: one.describe(),
+                term: one,
+                ..spread
+            },
+            _ => spread,
         }
     }
 

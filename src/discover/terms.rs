@@ -79,6 +79,10 @@ pub const STATIC_KNOT_GRADING: f64 = 2.0;
 pub const BACKLASH_HALF_FRACTIONS: [f64; 7] = [0.004, 0.008, 0.015, 0.025, 0.04, 0.06, 0.09];
 /// Time constants (s) of the plant's `relaxation`.
 pub const RELAXATION_TAUS_S: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0];
+/// Time constants (s) of a relaxation with a spread of time constants
+/// ([`Term::RelaxationSpread`]), a factor of 2 apart.
+pub const RELAXATION_SPREAD_TAUS_S: [f64; 10] =
+    [0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0, 256.0];
 /// Centres of a hysteresis candidate's input curve, as fractions of the peak |felt strain|.
 pub const HYSTERESIS_CENTER_FRACTIONS: [f64; 3] = [0.25, 0.5, 0.75];
 /// Widths of a hysteresis candidate's input curve, as fractions of the peak |felt strain|.
@@ -180,6 +184,12 @@ pub enum Term {
         /// The time constants (s).
         taus_s: Vec<f64>,
     },
+    /// `Σ LP_τk(u)` with a free weight for each `τk`: a relaxation with a spread of time
+    /// constants (a Prony series, [`RELAXATION_SPREAD_TAUS_S`]).
+    RelaxationSpread {
+        /// The time constants (s).
+        taus_s: Vec<f64>,
+    },
     /// `x·(t − t₀)`: the sensitivity changing linearly over the run.
     GainDrift,
     /// `t − t₀` (linear), or `1 − e^(−(t − t₀)/τ)` (settling).
@@ -194,7 +204,7 @@ impl Term {
     pub fn effect(&self) -> Effect {
         match self {
             Term::Backlash { .. } => Effect::Backlash,
-            Term::Relaxation { .. } => Effect::Relaxation,
+            Term::Relaxation { .. } | Term::RelaxationSpread { .. } => Effect::Relaxation,
             Term::Hysteresis { .. } => Effect::Hysteresis,
             Term::Saturation { .. } => Effect::Saturation,
             Term::Rate { .. } => Effect::Rate,
@@ -273,6 +283,31 @@ impl Term {
         }
     }
 
+    /// The effect's form with a spread of time constants, a candidate beside its grid
+    /// ([`Term::grid`]) that the held-out samples choose between: a relaxation as a
+    /// generalized Maxwell solid ([`Term::RelaxationSpread`], [`RELAXATION_SPREAD_TAUS_S`]).
+    /// `None` for the others (a creep's spread is its richer form, [`Term::flexible`], never a
+    /// name: its slow lags fit a warm-up drift).
+    pub fn spread(effect: Effect) -> Option<Term> {
+        (effect == Effect::Relaxation).then(|| Term::RelaxationSpread {
+            taus_s: RELAXATION_SPREAD_TAUS_S.to_vec(),
+        })
+    }
+
+    /// Every shape `effect` is scored in: its grid ([`Term::grid`]) and its spread form
+    /// ([`Term::spread`]), if any.
+    pub fn shapes(effect: Effect, span: f64) -> Vec<Term> {
+        let mut shapes = Term::grid(effect, span);
+        shapes.extend(Term::spread(effect));
+        shapes
+    }
+
+    /// Whether the term is a spread form ([`Term::spread`]), which the held-out samples choose
+    /// against the grid's best on the training ones.
+    pub fn is_spread(&self) -> bool {
+        matches!(self, Term::RelaxationSpread { .. })
+    }
+
     /// Knots of the memoryless curve against which a hysteresis candidate's memory is scored:
     /// [`STATIC_KNOTS_PER_SIDE`] intervals on each side of zero strain, out to `span` (the peak
     /// |felt strain|), graded finer toward zero ([`STATIC_KNOT_GRADING`]); ascending.
@@ -326,7 +361,10 @@ impl Term {
             }
             Term::Saturation { strain } => Some(strain),
             Term::Drift { settle_tau_s } => settle_tau_s,
-            Term::Hysteresis { .. } | Term::Prony { .. } | Term::GainDrift => None,
+            Term::Hysteresis { .. }
+            | Term::Prony { .. }
+            | Term::RelaxationSpread { .. }
+            | Term::GainDrift => None,
         }
     }
 
@@ -345,6 +383,7 @@ impl Term {
             Term::Drift { settle_tau_s: None }
             | Term::Hysteresis { .. }
             | Term::Prony { .. }
+            | Term::RelaxationSpread { .. }
             | Term::GainDrift => {}
         }
         t
@@ -411,6 +450,12 @@ impl Term {
                 fast_tau_s: Some(f),
             } => format!("τ = {tau_s} s and {f} s"),
             Term::Prony { taus_s } => format!("{} time constants", taus_s.len()),
+            Term::RelaxationSpread { taus_s } => match (taus_s.first(), taus_s.last()) {
+                (Some(a), Some(b)) => {
+                    format!("a spread: {} time constants, {a} s to {b} s", taus_s.len())
+                }
+                _ => "a spread of no time constants".to_owned(),
+            },
             Term::Drift { settle_tau_s: None } => "linear in time".to_owned(),
             Term::GainDrift => "sensitivity linear in time".to_owned(),
             Term::Drift {

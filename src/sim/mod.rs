@@ -82,9 +82,10 @@ pub use rng::{streams, Stream};
 /// The scenario file: every effect, switchable, with documented defaults.
 pub use scenario::{
     AdcCorrelated, AdcParams, Backlash, Creep, Drift, NotchLimit, Overrides, PlantParams,
-    RateDependence, RateForm, Relaxation, Saturation, Scenario, ScenarioError, SensorModelKind,
-    SensorNoise, SensorParams, Temperature, TrackerCorrelated, TrackerParams, DEFAULT_TCR_PER_K,
-    MAX_FADE_PER_HOUR, MAX_SENSOR_NOISE_PPM, MAX_TCR_PER_K, SIGNED_RATE_LEAD_S,
+    RateDependence, RateForm, Relaxation, RelaxationTerm, Saturation, Scenario, ScenarioError,
+    SensorModelKind, SensorNoise, SensorParams, Temperature, TrackerCorrelated, TrackerParams,
+    DEFAULT_TCR_PER_K, MAX_FADE_PER_HOUR, MAX_RELAXATION_TERMS, MAX_SENSOR_NOISE_PPM,
+    MAX_TCR_PER_K, SIGNED_RATE_LEAD_S,
 };
 /// Strain → resistance with saturation, drift, rate dependence and creep.
 pub use sensor::Sensor;

@@ -10,6 +10,8 @@
 //!    `δ`, which follows `fraction·θₑ` with time constant `τ`:
 //!    `δ ← δ + (fraction·θₑ − δ)·(1 − e^(−Δt/τ))` (exact for a held stroke). Under a hold the
 //!    angle decays from `θₑ` to `(1 − fraction)·θₑ`, as in the paper's relaxation experiment (Section IV-A3).
+//!    With a Prony series (`[[plant.relaxation.terms]]`), one such `δₖ` per term, and the angle
+//!    loses their sum.
 //! 3. **Notch-closing limit**: the angle stops at `Joint::closing_angle_rad` (UAN: positive
 //!    angles only, since a negative angle opens the notches; BSN: both ways).
 
@@ -23,8 +25,8 @@ use super::scenario::PlantParams;
 pub struct Plant {
     gain_rad_per_mm: f64,
     backlash: Option<PlayOperator>,
-    relax: Option<(f64, f64)>,
-    relaxed_rad: f64,
+    /// Each relaxation term's `(fraction, 1 − e^(−Δt/τ))` and the angle it has relaxed (rad).
+    relax: Vec<(f64, f64, f64)>,
     limits_rad: (f64, f64),
 }
 
@@ -44,11 +46,16 @@ impl Plant {
                 .backlash
                 .enabled
                 .then(|| PlayOperator::new(params.backlash.width_mm / 2.0, 0.0)),
-            relax: params.relaxation.enabled.then(|| {
-                let r = &params.relaxation;
-                (r.fraction, 1.0 - (-dt_s / r.tau_s).exp())
-            }),
-            relaxed_rad: 0.0,
+            relax: if params.relaxation.enabled {
+                params
+                    .relaxation
+                    .series()
+                    .into_iter()
+                    .map(|(fraction, tau_s)| (fraction, 1.0 - (-dt_s / tau_s).exp(), 0.0))
+                    .collect()
+            } else {
+                Vec::new()
+            },
             limits_rad,
         }
     }
@@ -61,13 +68,11 @@ impl Plant {
             None => stroke_mm,
         };
         let elastic = self.gain_rad_per_mm * s;
-        let angle = match self.relax {
-            Some((fraction, alpha)) => {
-                self.relaxed_rad += (fraction * elastic - self.relaxed_rad) * alpha;
-                elastic - self.relaxed_rad
-            }
-            None => elastic,
-        };
+        let mut angle = elastic;
+        for (fraction, alpha, relaxed) in &mut self.relax {
+            *relaxed += (*fraction * elastic - *relaxed) * *alpha;
+            angle -= *relaxed;
+        }
         angle.clamp(self.limits_rad.0, self.limits_rad.1)
     }
 }
@@ -89,6 +94,36 @@ mod tests {
         let mut p = Plant::new(&PlantParams::default(), &joint_d(), 0.002);
         assert_relative_eq!(p.step(1.0).to_degrees(), 35.49, epsilon = 1e-12);
         assert_relative_eq!(p.step(-0.5).to_degrees(), -17.745, epsilon = 1e-12);
+    }
+
+    /// A Prony series of two terms is the sum of two standard linear solids: under a held
+    /// stroke from rest, `θ = θₑ·(1 − Σ fₖ·(1 − e^(−t/τₖ)))` at the step's sample times.
+    #[test]
+    fn a_prony_series_relaxes_as_the_sum_of_its_terms() {
+        use crate::sim::scenario::RelaxationTerm;
+        let mut params = PlantParams::default();
+        params.relaxation.enabled = true;
+        params.relaxation.terms = vec![
+            RelaxationTerm {
+                fraction: 0.1,
+                tau_s: 2.0,
+            },
+            RelaxationTerm {
+                fraction: 0.05,
+                tau_s: 50.0,
+            },
+        ];
+        let dt = 0.01;
+        let mut p = Plant::new(&params, &joint_d(), dt);
+        let elastic = 35.49f64.to_radians();
+        let mut angle = 0.0;
+        for _ in 0..1000 {
+            angle = p.step(1.0);
+        }
+        // The discrete update relaxes by 1 − (1 − α)^n with α = 1 − e^(−Δt/τ): exactly e^(−t/τ).
+        let t = 1000.0 * dt;
+        let lost = 0.1 * (1.0 - (-t / 2.0f64).exp()) + 0.05 * (1.0 - (-t / 50.0f64).exp());
+        assert_relative_eq!(angle, elastic * (1.0 - lost), epsilon = 1e-12);
     }
 
     #[test]

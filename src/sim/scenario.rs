@@ -225,7 +225,9 @@ impl Default for Backlash {
 }
 
 /// Viscoelastic relaxation (`[plant.relaxation]`), a standard linear solid: under a held stroke
-/// the angle decays by `fraction` of its elastic value with time constant `tau_s`.
+/// the angle decays by `fraction` of its elastic value with time constant `tau_s`. With
+/// `[[plant.relaxation.terms]]`, a generalized Maxwell solid (a Prony series) instead: the sum of
+/// such relaxations, one per term, and `fraction` and `tau_s` are not used.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Relaxation {
@@ -236,6 +238,10 @@ pub struct Relaxation {
     pub fraction: f64,
     /// Time constant (s).
     pub tau_s: f64,
+    /// A spread of time constants (at most [`MAX_RELAXATION_TERMS`]): when not empty, the
+    /// relaxation is their sum. `discover` writes them when it names a relaxation in that form.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub terms: Vec<RelaxationTerm>,
 }
 
 impl Default for Relaxation {
@@ -244,6 +250,32 @@ impl Default for Relaxation {
             enabled: false,
             fraction: 0.05,
             tau_s: 20.0,
+            terms: Vec::new(),
+        }
+    }
+}
+
+/// Most terms a relaxation's Prony series may have.
+pub const MAX_RELAXATION_TERMS: usize = 32;
+
+/// One term of a relaxation's Prony series (`[[plant.relaxation.terms]]`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RelaxationTerm {
+    /// Share of the elastic angle this term loses once fully relaxed, in `(−1, 1)`: the weights
+    /// of a fitted series may differ in sign; their sum, the whole share lost, lies in `[0, 1)`.
+    pub fraction: f64,
+    /// Time constant (s).
+    pub tau_s: f64,
+}
+
+impl Relaxation {
+    /// The relaxation's terms, `(fraction, tau_s)`: its Prony series, or its one term.
+    pub fn series(&self) -> Vec<(f64, f64)> {
+        if self.terms.is_empty() {
+            vec![(self.fraction, self.tau_s)]
+        } else {
+            self.terms.iter().map(|t| (t.fraction, t.tau_s)).collect()
         }
     }
 }
@@ -865,6 +897,24 @@ impl Scenario {
         c.positive("plant.backlash.width_mm", p.backlash.width_mm);
         c.fraction("plant.relaxation.fraction", p.relaxation.fraction);
         c.positive("plant.relaxation.tau_s", p.relaxation.tau_s);
+        let terms = &p.relaxation.terms;
+        c.at_most(
+            "plant.relaxation.terms (count)",
+            terms.len() as f64,
+            MAX_RELAXATION_TERMS as f64,
+            "at most 32 terms",
+        );
+        for (i, t) in terms.iter().enumerate() {
+            let k = |name: &str| format!("plant.relaxation.terms[{i}].{name}");
+            c.positive(&k("tau_s"), t.tau_s);
+            if !(t.fraction.is_finite() && t.fraction.abs() < 1.0) {
+                c.fail(k("fraction"), t.fraction, "must lie in (-1, 1)");
+            }
+        }
+        if !terms.is_empty() {
+            let total: f64 = terms.iter().map(|t| t.fraction).sum();
+            c.fraction("plant.relaxation.terms (sum of fractions)", total);
+        }
         for (i, s) in self.sensors().enumerate() {
             let k = |name: &str| format!("sensor{}.{name}", i + 1);
             c.finite(&k("gauge_factor"), s.gauge_factor.unwrap_or(f64::NAN));
@@ -1091,6 +1141,16 @@ mod tests {
             back.clone().resolve(&test_design(NotchStyle::Bsn)).unwrap(),
             r
         );
+        // A relaxation's Prony series too, as `discover` writes it.
+        let s: Scenario = toml::from_str(
+            "[[plant.relaxation.terms]]\nfraction = 0.2\ntau_s = 2.0\n[[plant.relaxation.terms]]\nfraction = -0.05\ntau_s = 64.0\n",
+        )
+        .unwrap();
+        let r = s.resolve(&test_design(NotchStyle::Uan)).unwrap();
+        assert!(r.plant.relaxation.enabled);
+        assert_eq!(r.plant.relaxation.series(), vec![(0.2, 2.0), (-0.05, 64.0)]);
+        let back: Scenario = toml::from_str(&toml::to_string(&r).unwrap()).unwrap();
+        assert_eq!(back, r);
     }
 
     #[test]
@@ -1136,6 +1196,18 @@ mod tests {
             ),
             ("[sensor1.noise]\ntau_s = 0.0", "sensor1.noise.tau_s"),
             ("[sensor1]\ntcr_per_k = nan", "sensor1.tcr_per_k"),
+            (
+                "[[plant.relaxation.terms]]\nfraction = 0.1\ntau_s = 0.0",
+                "plant.relaxation.terms[0].tau_s",
+            ),
+            (
+                "[[plant.relaxation.terms]]\nfraction = 0.1\ntau_s = 1.0\n[[plant.relaxation.terms]]\nfraction = -1.0\ntau_s = 9.0",
+                "plant.relaxation.terms[1].fraction",
+            ),
+            (
+                "[[plant.relaxation.terms]]\nfraction = 0.6\ntau_s = 1.0\n[[plant.relaxation.terms]]\nfraction = 0.5\ntau_s = 9.0",
+                "plant.relaxation.terms (sum of fractions)",
+            ),
         ];
         for (text, key) in table {
             let s: Scenario = toml::from_str(text).unwrap();
