@@ -48,8 +48,9 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::data::Data;
-use super::model::{correlation_time_white, fit, Stage, StageModel};
+use super::model::{correlation_time_white, fit, relaxation_signs, Stage, StageModel};
 use super::search::StageSearch;
+use super::signed;
 use super::terms::{Effect, Term};
 use super::time_rival::TIME_RIVALS;
 use super::unexplained::{time_splines, MIN_TIME_INTERVALS, TIME_KNOT_S};
@@ -457,6 +458,17 @@ pub(super) struct Prepared {
     test_cols: Option<Vec<Vec<f64>>>,
     /// `p × n_train`: coefficients of the whitened columns from the whitened training target.
     pinv: DMatrix<f64>,
+    /// A design with a relaxation's spread: its scaled training rows, the scales and the
+    /// labels, to refit under the spread's signs when the free fit breaks them (as
+    /// [`super::model::fit`] does).
+    signed: Option<SignedRows>,
+}
+
+/// What refitting a design under a relaxation's signs needs.
+pub(super) struct SignedRows {
+    x: DMatrix<f64>,
+    scales: Vec<f64>,
+    labels: Vec<&'static str>,
 }
 
 /// A model fitted to one target: its training and held-out whitened sums of squares and the
@@ -504,6 +516,14 @@ impl StageSearch<'_, '_> {
             })
             .collect();
         let x = DMatrix::from_fn(rows.len(), p, |r, c| cols[c][rows[r]] / scales[c]);
+        let signed = design
+            .labels
+            .contains(&"relaxation_term")
+            .then(|| SignedRows {
+                x: x.clone(),
+                scales: scales.clone(),
+                labels: design.labels.clone(),
+            });
         let mut pinv = x.svd(true, true).pseudo_inverse(1e-10).ok()?;
         for (c, scale) in scales.iter().enumerate() {
             pinv.row_mut(c).scale_mut(1.0 / scale);
@@ -515,6 +535,7 @@ impl StageSearch<'_, '_> {
             cols,
             test_cols,
             pinv,
+            signed,
         })
     }
 
@@ -523,7 +544,17 @@ impl StageSearch<'_, '_> {
     fn residuals(&self, prepared: &Prepared, target: &Target) -> (Vec<f64>, Option<Vec<f64>>) {
         let rows = self.rows();
         let y = DVector::from_iterator(rows.len(), rows.iter().map(|&i| target.white[i]));
-        let beta = &prepared.pinv * y;
+        let mut beta = &prepared.pinv * &y;
+        if let Some(sr) = &prepared.signed {
+            let held = relaxation_signs(&sr.labels, &beta)
+                .and_then(|signs| signed::least_squares(&sr.x, &y, &signs));
+            if let Some(b) = held {
+                beta = DVector::from_iterator(
+                    b.len(),
+                    b.iter().zip(&sr.scales).map(|(b, scale)| b / scale),
+                );
+            }
+        }
         let residual = |cols: &[Vec<f64>], white: &[f64]| -> Vec<f64> {
             let mut r = white.to_vec();
             for (c, b) in cols.iter().zip(beta.iter()) {

@@ -316,7 +316,7 @@ pub fn fit(design: &Design, noise: &ArNoise, train: &[bool]) -> Option<Fitted> {
 /// breaks them: each term's share of the elastic angle at least zero, so each coefficient of
 /// the sign opposite to the gain's (`θ = g·u − Σ fₖ·g·LP_τk(u)`). `None` when the design has
 /// no spread or the free fit already keeps them.
-fn relaxation_signs(labels: &[&'static str], free: &DVector<f64>) -> Option<Vec<Sign>> {
+pub(super) fn relaxation_signs(labels: &[&'static str], free: &DVector<f64>) -> Option<Vec<Sign>> {
     let gain = labels.iter().position(|l| *l == "gain").map(|j| free[j])?;
     let held = if gain >= 0.0 {
         Sign::NonPositive
