@@ -175,7 +175,7 @@ fn bad_input_is_refused_and_nothing_is_written() {
     check(
         discover("joint-a.toml", &short, &out, &[]),
         &out,
-        &["moves for", "at least 80 s"],
+        &["moves for", "at least 88 s"],
     );
     // A holdout on another rig.
     let other = d.join("other-rig");

@@ -45,8 +45,7 @@ const DETECTION: [(Effect, f64, f64); 7] = [
     // Joint C: 3/3 at each size after it too.
     // Joint C: right at every size from ×0.5 to ×8 (seeds 1-3; seeds 4-6 at ×0.5-×2 too).
     (Effect::Relaxation, 1.0, 0.5),
-    // Joint A: 11/12 at ×2 and ×4, 10/12 at ×8, none wrong (seed 3 flagged at ×2 and left
-    // `ambiguous` between `hysteresis` and `creep` at ×4 and ×8; seed 4 flagged at ×8).
+    // Joint A: 9/12 at ×2 (11/12 with 10 blocks), 11/12 at ×4, 10/12 at ×8, none wrong.
     // Joint C: at ×2 9/9 (seeds 1-6 on sensor 2, 1-3 on sensor 1; ×2.5 is the largest
     // physical size there); at ×1 8/9 (seed 6 on sensor 2 flagged, not named).
     (Effect::Creep, f64::INFINITY, 2.0),
@@ -56,9 +55,9 @@ const DETECTION: [(Effect, f64, f64); 7] = [
     // Joint A: 12/12 at ×1 to ×8 (at ×4 one wrong `ambiguous` before the hinges). Joint C:
     // sensor 2 2/3 at ×1, 1/3 at ×2, 0/3 at ×4 and ×8.
     (Effect::Saturation, 1.0, f64::INFINITY),
-    // Joint A: 3/12 at ×2, ×4 and ×8.
+    // Joint A: 1/12 at ×0.5 to ×4, 2/12 at ×8 (3/12 at ×2 to ×8 with 10 blocks).
     (Effect::Drift, f64::INFINITY, f64::INFINITY),
-    // Joint A: 9/12 at ×4, the largest physical size.
+    // Joint A: 10/12 at ×2 and ×4, the largest physical size (9/12 with 10 blocks).
     (Effect::GainWalk, f64::INFINITY, f64::INFINITY),
     // Joint A: 12/12 at ×2, ×4 and ×8 (on the way, seed 2 was named `hysteresis` after its
     // `gain_drift` at ×2 and ×4, until the change-in-time rule and the one-nat rival screen).
@@ -319,25 +318,27 @@ fn a_gain_left_ambiguous_between_drift_and_creep_is_flagged_instead() {
     assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
 }
 
-/// The wrong names of the detection measurement not fixed:
-/// - the random-walk gain ×0.5 of seed 9 is left `ambiguous` between `drift` (33.3 nats) and
-///   `creep` (20.7): the drift beats the sensitivity spline there;
-/// - the cycling gain ×1 of seed 2 is named `gain_drift` and then left `ambiguous` between
+/// The wrong names of the detection measurement that the 10-block split gave:
+/// - the random-walk gain ×0.5 of seed 9 was left `ambiguous` between `drift` (33.3 nats) and
+///   `creep` (20.7): the drift beat the sensitivity spline there;
+/// - the cycling gain ×1 of seed 2 was named `gain_drift` and then left `ambiguous` between
 ///   `hysteresis` (22.2 nats) and `creep` (7.2).
 ///
-/// Both go through the time spline, which runs into the last block, held out, and extrapolates
-/// its curvature there: for the cycling gain it loses 16.4 nats in that block alone while
-/// gaining in every other held-out block. Held flat past the last training sample, the spline
-/// fixes both, but then the cycling gain ×2 of the same seed gets a `hysteresis` after its
-/// `gain_drift`: on copies of that world the flat spline's evidence runs down to −271 nats, and
-/// the copies' prediction bound rose to 119.8. The likely fix is a split whose last block trains
-/// (docs/discovery.md, "The last held-out block").
-/// Fails today.
+/// Both went through the time spline, which ran into the last block, held out, and extrapolated
+/// its curvature there: for the cycling gain it lost 16.4 nats in that block alone while
+/// gaining in every other held-out block. Holding it flat past the last training sample fixed
+/// both but gave the cycling gain ×2 of the same seed a `hysteresis` after its `gain_drift`, so
+/// that case is here too. With 11 blocks (the last trains) the first is flagged `unexplained`,
+/// the second named `gain_drift` alone, the third flagged (docs/discovery.md, "11 blocks, with
+/// the relaxation's spread"). Fails with 10 blocks (the first two).
 #[test]
-#[ignore = "fails: wrong names found by the detection measurement, not fixed"]
-fn the_detection_measurements_other_wrong_names_are_not_given() {
+fn the_last_held_out_blocks_wrong_names_are_not_given() {
     let dir = tempfile::tempdir().unwrap();
-    let found = [(Effect::GainWalk, 0.5, 9), (Effect::GainCycle, 1.0, 2)];
+    let found = [
+        (Effect::GainWalk, 0.5, 9),
+        (Effect::GainCycle, 1.0, 2),
+        (Effect::GainCycle, 2.0, 2),
+    ];
     let wrong = wrong_names(dir.path(), &found);
     assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
 }
@@ -454,7 +455,9 @@ fn a_relaxation_with_a_spread_of_time_constants_is_named_and_simulated() {
 /// ±10 /h) instead of a report. Found by the detection measurement of 2026-11-27; fixed the
 /// same day: a fitted value the simulator refuses declines the name (`declined`, with the value
 /// and the limit), and the channel is tested for what the library cannot explain, which flags
-/// it. Fails on the code before (the error).
+/// it. Fails on the code before (the error). Since the split has 11 blocks (every held-out block
+/// between training ones) the `gain_drift` is refused by the change in time first (185.6 nats
+/// after it), before its range is checked; either decline gives the report.
 #[test]
 fn a_large_cycling_gain_gets_a_report_not_an_error() {
     let dir = tempfile::tempdir().unwrap();
@@ -474,7 +477,8 @@ fn a_large_cycling_gain_gets_a_report_not_an_error() {
     let declined = json["declined"].as_array().unwrap();
     assert!(
         declined.iter().any(|d| d["effect"] == "gain_drift"
-            && d["out_of_range"]["key"] == "gain_drift.fade_per_hour"),
+            && (d["out_of_range"]["key"] == "gain_drift.fade_per_hour"
+                || d["time"]["verdict"] == "rival")),
         "{}: declined {declined:?}",
         case.name()
     );

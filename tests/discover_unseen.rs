@@ -273,13 +273,19 @@ fn drift_is_time_not_history() {
         })
         .collect();
     if got.is_empty() && !declined_ambiguity.is_empty() {
+        // Declined is no verdict: what it left must be the family a change in time imitates
+        // (with 11 blocks, `drift` was refused by the change in time and `gain_drift` and
+        // `creep` declined), and sensor 1, and only it, flagged (history, 148.4 nats).
+        let family = ["drift", "creep", "gain_drift"];
         assert!(
-            drift_and_family(&declined_ambiguity),
+            declined_ambiguity
+                .iter()
+                .all(|c| family.contains(&c.as_str())),
             "rate-and-drift: declined among {declined_ambiguity:?}"
         );
         let flags = report["unexplained"].as_array().unwrap();
         assert!(
-            flags.iter().all(|f| f["channel"] == "sensor1"),
+            !flags.is_empty() && flags.iter().all(|f| f["channel"] == "sensor1"),
             "rate-and-drift: flagged {flags:?}"
         );
     } else if got != want {

@@ -189,8 +189,17 @@ fn set_bench(sc: &mut Scenario, knob: Knob, v: f64) {
 fn set_plant(sc: &mut Scenario, knob: Knob, v: f64) {
     match knob {
         Knob::RelaxationFraction => {
-            sc.plant.relaxation.enabled = v > 0.0;
-            sc.plant.relaxation.fraction = v;
+            let r = &mut sc.plant.relaxation;
+            r.enabled = v > 0.0;
+            r.fraction = v;
+            // A Prony series (`discover`'s spread) keeps its shape: its shares are scaled to
+            // the whole share `v` (`fraction` alone is not used then).
+            let total: f64 = r.terms.iter().map(|t| t.fraction).sum();
+            if total > 0.0 {
+                for t in &mut r.terms {
+                    t.fraction *= v / total;
+                }
+            }
         }
         Knob::BacklashMm => {
             sc.plant.backlash.enabled = v > 0.0;
@@ -484,6 +493,29 @@ impl Space {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The relaxation's whole share is set whichever form the scenario holds it in.
+    #[test]
+    fn the_relaxation_fraction_scales_a_prony_series() {
+        let mut sc = Scenario::default();
+        sc.plant.relaxation.terms = vec![
+            crate::sim::RelaxationTerm {
+                fraction: 0.1,
+                tau_s: 1.0,
+            },
+            crate::sim::RelaxationTerm {
+                fraction: 0.3,
+                tau_s: 30.0,
+            },
+        ];
+        set_plant(&mut sc, Knob::RelaxationFraction, 0.2);
+        let series = sc.plant.relaxation.series();
+        assert!(sc.plant.relaxation.enabled);
+        assert!((series[0].0 - 0.05).abs() < 1e-12 && (series[1].0 - 0.15).abs() < 1e-12);
+        let mut one = Scenario::default();
+        set_plant(&mut one, Knob::RelaxationFraction, 0.2);
+        assert_eq!(one.plant.relaxation.series(), vec![(0.2, 20.0)]);
+    }
 
     #[test]
     fn the_ideal_point_gives_the_ideal_bench() {

@@ -79,8 +79,8 @@ pub fn out_of_range(term: &Term, parameters: &BTreeMap<String, f64>) -> Option<O
             .or_else(|| {
                 parameters
                     .iter()
-                    .find(|(k, v)| k.starts_with("fraction_") && v.abs() >= 1.0)
-                    .map(|(k, &v)| out(k, v, "in (-1, 1)".to_owned()))
+                    .find(|(k, v)| k.starts_with("fraction_") && !(0.0..1.0).contains(*v))
+                    .map(|(k, &v)| out(k, v, "in [0, 1)".to_owned()))
             }),
         _ => None,
     }
@@ -126,8 +126,9 @@ pub fn parameters(term: &Term, fitted: &Fitted) -> BTreeMap<String, f64> {
             let weights = fitted.all("relaxation_term");
             p.insert("fraction".into(), -weights.iter().sum::<f64>() / gain);
             for (i, (tau, c)) in taus_s.iter().zip(weights).enumerate() {
-                p.insert(format!("tau_{}_s", i + 1), *tau);
-                p.insert(format!("fraction_{}", i + 1), -c / gain);
+                // Two digits, so that the parameters list in order.
+                p.insert(format!("tau_{:02}_s", i + 1), *tau);
+                p.insert(format!("fraction_{:02}", i + 1), -c / gain);
             }
         }
         Term::GainDrift => {
@@ -291,8 +292,8 @@ pub fn scenario(
                             s.plant.relaxation.terms.clear();
                         }
                         Term::RelaxationSpread { taus_s } => {
-                            // A named spread passed `out_of_range`: its weights lie in (−1, 1)
-                            // and sum to [0, 1), as the scenario asks.
+                            // A named spread passed `out_of_range`: its shares and their sum
+                            // lie in [0, 1), as the scenario asks.
                             s.plant.relaxation.enabled = true;
                             s.plant.relaxation.terms = taus_s
                                 .iter()
@@ -444,15 +445,23 @@ mod tests {
         let nan = out_of_range(&creep, &params(&[("fraction", f64::NAN)])).unwrap();
         assert_eq!(nan.key, "creep.fraction");
         assert!(out_of_range(&creep, &params(&[("fraction", 3.0), ("tau_s", 20.0)])).is_none());
-        // A spread: its total in [0, 1) and each weight in (−1, 1), as the scenario asks.
+        // A spread: its total and each share in [0, 1), as the scenario asks.
         let spread = Term::RelaxationSpread {
             taus_s: vec![1.0, 10.0],
         };
-        let ok = params(&[("fraction", 0.3), ("fraction_1", -0.2), ("fraction_2", 0.5)]);
+        let ok = params(&[
+            ("fraction", 0.3),
+            ("fraction_01", 0.0),
+            ("fraction_02", 0.3),
+        ]);
         assert!(out_of_range(&spread, &ok).is_none());
-        let weight = params(&[("fraction", 0.3), ("fraction_1", -1.2), ("fraction_2", 1.5)]);
+        let weight = params(&[
+            ("fraction", 0.3),
+            ("fraction_01", -0.2),
+            ("fraction_02", 0.5),
+        ]);
         let w = out_of_range(&spread, &weight).unwrap();
-        assert_eq!((w.key.as_str(), w.value), ("relaxation.fraction_1", -1.2));
+        assert_eq!((w.key.as_str(), w.value), ("relaxation.fraction_01", -0.2));
         let total = params(&[
             ("fraction", -0.1),
             ("fraction_1", -0.2),

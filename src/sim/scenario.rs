@@ -262,8 +262,9 @@ pub const MAX_RELAXATION_TERMS: usize = 32;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RelaxationTerm {
-    /// Share of the elastic angle this term loses once fully relaxed, in `(−1, 1)`: the weights
-    /// of a fitted series may differ in sign; their sum, the whole share lost, lies in `[0, 1)`.
+    /// Share of the elastic angle this term loses once fully relaxed, in `[0, 1)` (a
+    /// generalized Maxwell solid's shares are at least zero); the terms' sum, the whole share
+    /// lost, lies in `[0, 1)` too.
     pub fraction: f64,
     /// Time constant (s).
     pub tau_s: f64,
@@ -907,9 +908,7 @@ impl Scenario {
         for (i, t) in terms.iter().enumerate() {
             let k = |name: &str| format!("plant.relaxation.terms[{i}].{name}");
             c.positive(&k("tau_s"), t.tau_s);
-            if !(t.fraction.is_finite() && t.fraction.abs() < 1.0) {
-                c.fail(k("fraction"), t.fraction, "must lie in (-1, 1)");
-            }
+            c.fraction(&k("fraction"), t.fraction);
         }
         if !terms.is_empty() {
             let total: f64 = terms.iter().map(|t| t.fraction).sum();
@@ -1143,12 +1142,12 @@ mod tests {
         );
         // A relaxation's Prony series too, as `discover` writes it.
         let s: Scenario = toml::from_str(
-            "[[plant.relaxation.terms]]\nfraction = 0.2\ntau_s = 2.0\n[[plant.relaxation.terms]]\nfraction = -0.05\ntau_s = 64.0\n",
+            "[[plant.relaxation.terms]]\nfraction = 0.2\ntau_s = 2.0\n[[plant.relaxation.terms]]\nfraction = 0.05\ntau_s = 64.0\n",
         )
         .unwrap();
         let r = s.resolve(&test_design(NotchStyle::Uan)).unwrap();
         assert!(r.plant.relaxation.enabled);
-        assert_eq!(r.plant.relaxation.series(), vec![(0.2, 2.0), (-0.05, 64.0)]);
+        assert_eq!(r.plant.relaxation.series(), vec![(0.2, 2.0), (0.05, 64.0)]);
         let back: Scenario = toml::from_str(&toml::to_string(&r).unwrap()).unwrap();
         assert_eq!(back, r);
     }
