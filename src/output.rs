@@ -28,6 +28,19 @@ static REPLACEABLE: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
 /// Staging folders and files being written by this process, removed if a signal ends it.
 static STAGING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
+/// Folders this process stages in, noted before anything is made there: a signal may come
+/// between a staging folder's creation and its entry in [`STAGING`], and the handler then finds
+/// it by this process's prefix ([`staging_prefix`]).
+static STAGING_FOLDERS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Notes `folder` in [`STAGING_FOLDERS`].
+fn note_staging_folder(folder: &Path) {
+    let mut folders = lock(&STAGING_FOLDERS);
+    if !folders.iter().any(|f| f == folder) {
+        folders.push(folder.to_path_buf());
+    }
+}
+
 /// Why an output file could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum OutputError {
@@ -359,6 +372,7 @@ pub fn stage_folder(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<StagedFol
     };
     let parent = folder_of(&dir_target);
     sweep_stale(parent);
+    note_staging_folder(parent);
     let staging = Staged::new(
         tempfile::Builder::new()
             .prefix(&staging_prefix())
@@ -452,6 +466,7 @@ impl StagedFolder {
         // rename cannot replace a non-empty folder: move the old one aside first, and back if
         // the new one cannot take its place.
         let parent = folder_of(dir);
+        note_staging_folder(parent);
         let old = Staged::new(
             tempfile::Builder::new()
                 .prefix(&staging_prefix())
@@ -560,18 +575,46 @@ fn process_alive(pid: i32) -> bool {
     r == 0 || std::io::Error::last_os_error().raw_os_error() != Some(libc::ESRCH)
 }
 
+/// How many times the signal handler tries to remove a staging path that is still there.
+const STAGING_REMOVAL_TRIES: usize = 50;
+
 /// Installs (once) a SIGINT/SIGTERM handler that removes this process's staging folders and
 /// files, then exits with 128 + the signal's number as a shell would report.
 fn install_signal_cleanup() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
         let _ = ctrlc::set_handler(|| {
-            for path in lock(&STAGING).iter() {
-                let _ = if path.is_dir() {
-                    std::fs::remove_dir_all(path)
-                } else {
-                    std::fs::remove_file(path)
+            // A staging folder was left behind once under load (the suite's
+            // `sigterm_during_simulate_leaves_no_staging_folder`): one made before its entry in
+            // `STAGING`, or a file made in it
+            // between `remove_dir_all`'s listing and its last `rmdir` by a thread still writing.
+            // So the handler also looks for this process's prefix in every folder it stages
+            // in, and tries a removal again until the path is gone.
+            let mut paths: Vec<PathBuf> = lock(&STAGING).clone();
+            let prefix = staging_prefix();
+            for folder in lock(&STAGING_FOLDERS).iter() {
+                let Ok(entries) = std::fs::read_dir(folder) else {
+                    continue;
                 };
+                paths.extend(
+                    entries
+                        .flatten()
+                        .filter(|e| e.file_name().to_string_lossy().starts_with(&prefix))
+                        .map(|e| e.path()),
+                );
+            }
+            for path in &paths {
+                for _ in 0..STAGING_REMOVAL_TRIES {
+                    let _ = if path.is_dir() {
+                        std::fs::remove_dir_all(path)
+                    } else {
+                        std::fs::remove_file(path)
+                    };
+                    if std::fs::symlink_metadata(path).is_err() {
+                        break;
+                    }
+                    std::thread::sleep(std::time::Duration::from_millis(2));
+                }
             }
             eprintln!("interrupted; removed the partial output");
             std::process::exit(130);
@@ -593,6 +636,7 @@ fn stage(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, OutputErr
         path: path.to_path_buf(),
         source,
     };
+    note_staging_folder(folder_of(path));
     let mut tmp = tempfile::Builder::new()
         .prefix(&staging_prefix())
         .tempfile_in(folder_of(path))
