@@ -4,7 +4,9 @@
 //!
 //! - **Plant** (stroke `s` → angle θ): `θ = c₀ + g·u + …` where `u = s`, or `u = play_h(s)`
 //!   with `backlash` (the simulator's tendon dead band of width `2h`); `relaxation` adds
-//!   `LP_τ(u)` (the standard linear solid: `θ = g·u − f·g·LP_τ(u)`).
+//!   `LP_τ(u)` (the standard linear solid: `θ = g·u − f·g·LP_τ(u)`), or a spread
+//!   `Σ LP_τk(u)` with a share `fₖ ≥ 0` each (a generalized Maxwell solid,
+//!   [`Term::RelaxationSpread`]).
 //! - **Sensor** (tracker angle → resistance): `R = c₀ + b·x + …` where `x` is the felt strain
 //!   (`±ε(θ)`, Eq. 3), or `ε_s·tanh(ε/ε_s)` with `saturation`; `hysteresis` adds plays
 //!   `play_ρ(x)` (a Prandtl-Ishlinskii model); `rate` adds `LP_τ(ẋ)` (signed) or
