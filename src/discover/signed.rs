@@ -1,17 +1,19 @@
-//! Least squares with some coefficients held to one sign: Lawson & Hanson's active-set method
-//! for non-negative least squares (*Solving Least Squares Problems*, 1974, ch. 23, algorithm
-//! NNLS), with the unconstrained coefficients always in the passive set.
+//! Least squares with some coefficients held to one sign, by the project's non-negative least
+//! squares ([`crate::fit::nnls`], Lawson & Hanson's active set on the normal equations) after
+//! the free coefficients are eliminated: with `A = [F C]` (free, constrained), the constrained
+//! ones minimize `‖P⊥(y − C·β_C)‖²`, `P⊥` the projection off `F`'s span, whose normal equations
+//! are the Schur complement `G_CC − G_CF·G_FF⁺·G_FC`, `b_C − G_CF·G_FF⁺·b_F`; then
+//! `β_F = G_FF⁺·(b_F − G_FC·β_C)`.
 //!
 //! It gives a relaxation with a spread of time constants ([`super::terms::Term::RelaxationSpread`])
 //! the weights a generalized Maxwell solid has: each term's share of the elastic angle is at
 //! least zero. Unconstrained, the slow lags of a 300 s recording are nearly collinear and their
 //! weights alternate (0.87, −1.9, 3.6, −4.7, 3.0 on the third generator's relaxation, seed 3),
 //! which predicts as well but is no relaxation a simulator can be given.
-//!
-//! The `nnls` crate was not used: it holds every coefficient non-negative (a model's offset and
-//! gain are free) and works on `ndarray`, a second linear-algebra stack beside `nalgebra`.
 
 use nalgebra::{DMatrix, DVector};
+
+use crate::fit::nnls;
 
 /// How each coefficient is held.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -24,12 +26,8 @@ pub enum Sign {
     NonPositive,
 }
 
-/// Most passes of the outer loop, per coefficient (Lawson & Hanson's bound is finite; this
-/// only guards against a loop on rounding).
-const PASSES_PER_COEFFICIENT: usize = 3;
-
-/// `argmin ‖x·β − y‖` with each `β_j` held as `signs[j]` says; `None` when a subproblem has no
-/// finite solution. `signs` has one entry per column of `x`.
+/// `argmin ‖x·β − y‖` with each `β_j` held as `signs[j]` says; `None` when the free
+/// coefficients' subproblem has no finite solution. `signs` has one entry per column of `x`.
 pub fn least_squares(x: &DMatrix<f64>, y: &DVector<f64>, signs: &[Sign]) -> Option<DVector<f64>> {
     let p = x.ncols();
     if signs.len() != p {
@@ -46,66 +44,33 @@ pub fn least_squares(x: &DMatrix<f64>, y: &DVector<f64>, signs: &[Sign]) -> Opti
             a.column_mut(j).neg_mut();
         }
     }
-    let gram = a.tr_mul(&a);
-    let atb = a.tr_mul(y);
-    let constrained: Vec<bool> = signs.iter().map(|s| *s != Sign::Free).collect();
-    let scale = atb.amax().max(f64::MIN_POSITIVE);
-    let mut passive: Vec<bool> = constrained.iter().map(|c| !c).collect();
-    let mut z = solve_on(&gram, &atb, &passive)?;
-    for _ in 0..PASSES_PER_COEFFICIENT * p.max(1) {
-        // The negative gradient; a constrained coefficient at zero whose gradient points
-        // inward joins the passive set.
-        let w = &atb - &gram * &z;
-        let entering = (0..p)
-            .filter(|&j| constrained[j] && !passive[j])
-            .max_by(|&i, &j| w[i].total_cmp(&w[j]))
-            .filter(|&j| w[j] > 1e-12 * scale);
-        let Some(j) = entering else { break };
-        passive[j] = true;
-        loop {
-            let s = solve_on(&gram, &atb, &passive)?;
-            let infeasible: Vec<usize> = (0..p)
-                .filter(|&k| constrained[k] && passive[k] && s[k] <= 0.0)
-                .collect();
-            if infeasible.is_empty() {
-                z = s;
-                break;
-            }
-            let alpha = infeasible
-                .iter()
-                .map(|&k| z[k] / (z[k] - s[k]))
-                .fold(f64::INFINITY, f64::min)
-                .clamp(0.0, 1.0);
-            z += (&s - &z) * alpha;
-            for k in 0..p {
-                if constrained[k] && passive[k] && z[k] <= 1e-15 * scale {
-                    passive[k] = false;
-                    z[k] = 0.0;
-                }
-            }
-        }
+    let g = a.tr_mul(&a);
+    let b = a.tr_mul(y);
+    let free: Vec<usize> = (0..p).filter(|&j| signs[j] == Sign::Free).collect();
+    let held: Vec<usize> = (0..p).filter(|&j| signs[j] != Sign::Free).collect();
+    let sub = |rows: &[usize], cols: &[usize]| {
+        DMatrix::from_fn(rows.len(), cols.len(), |r, c| g[(rows[r], cols[c])])
+    };
+    let part = |rows: &[usize]| DVector::from_fn(rows.len(), |r, _| b[rows[r]]);
+    let (g_ff, g_fc, g_cc) = (sub(&free, &free), sub(&free, &held), sub(&held, &held));
+    let (b_f, b_c) = (part(&free), part(&held));
+    let g_ff_pinv = g_ff
+        .clone()
+        .pseudo_inverse(1e-13 * g_ff.amax().max(f64::MIN_POSITIVE))
+        .ok()?;
+    let beta_c = nnls(
+        &(&g_cc - g_fc.transpose() * &g_ff_pinv * &g_fc),
+        &(&b_c - g_fc.transpose() * &g_ff_pinv * &b_f),
+    );
+    let beta_f = &g_ff_pinv * (&b_f - &g_fc * &beta_c);
+    let mut beta = DVector::zeros(p);
+    for (k, &j) in free.iter().enumerate() {
+        beta[j] = beta_f[k];
     }
-    let beta = DVector::from_iterator(p, z.iter().zip(&flip).map(|(b, f)| b * f));
-    beta.iter().all(|b| b.is_finite()).then_some(beta)
-}
-
-/// The least-squares solution over the passive columns (from the normal equations), zero
-/// elsewhere.
-fn solve_on(gram: &DMatrix<f64>, atb: &DVector<f64>, passive: &[bool]) -> Option<DVector<f64>> {
-    let idx: Vec<usize> = (0..passive.len()).filter(|&j| passive[j]).collect();
-    let mut full = DVector::zeros(passive.len());
-    if idx.is_empty() {
-        return Some(full);
+    for (k, &j) in held.iter().enumerate() {
+        beta[j] = beta_c[k] * flip[j];
     }
-    let g = DMatrix::from_fn(idx.len(), idx.len(), |r, c| gram[(idx[r], idx[c])]);
-    let b = DVector::from_iterator(idx.len(), idx.iter().map(|&j| atb[j]));
-    let svd = g.svd(true, true);
-    let tol = 1e-13 * svd.singular_values.max();
-    let s = svd.solve(&b, tol).ok()?;
-    for (k, &j) in idx.iter().enumerate() {
-        full[j] = s[k];
-    }
-    full.iter().all(|v| v.is_finite()).then_some(full)
+    beta.iter().all(|v| v.is_finite()).then_some(beta)
 }
 
 #[cfg(test)]
