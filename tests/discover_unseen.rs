@@ -288,6 +288,16 @@ fn drift_is_time_not_history() {
             !flags.is_empty() && flags.iter().all(|f| f["channel"] == "sensor1"),
             "rate-and-drift: flagged {flags:?}"
         );
+    } else if got == expect(&[("drift", "sensor1")]) && !declined_ambiguity.is_empty() {
+        // Since the wandering baseline (2026-11-27, docs/discovery.md "A baseline wandering in
+        // time"): after the declined ambiguity, the baseline wandering in time is tested and
+        // named `drift` (35.0 nats; the held-out gap 1.63° → 1.02°), a right name; the rate
+        // is left to the `unexplained` flag on sensor 1 (history, 58.3 nats), as before.
+        let flags = report["unexplained"].as_array().unwrap();
+        assert!(
+            !flags.is_empty() && flags.iter().all(|f| f["channel"] == "sensor1"),
+            "rate-and-drift: flagged {flags:?}"
+        );
     } else if got != want {
         let ambiguous = report["ambiguous"].as_array().unwrap();
         assert!(

@@ -283,6 +283,7 @@ impl StageSearch<'_, '_> {
                         verdict: Verdict::Neither,
                         rival: GenericKind::Sensitivity,
                         among: tests.into_iter().map(|(c, t)| (c.effect, t)).collect(),
+                        lead: false,
                     },
                 )))
             }

@@ -24,6 +24,7 @@ mod summary;
 pub mod terms;
 pub mod time_rival;
 pub mod unexplained;
+mod wander;
 
 /// The discovery's result as an [`crate::analysis::Analysis`].
 pub use result::{DiscoverResult, Written};
@@ -485,7 +486,9 @@ impl StageSearch<'_, '_> {
             steps: Vec::new(),
             model: self.model.clone(),
         };
+        let mut rounds = 0;
         for round in 0..MAX_EFFECTS {
+            rounds = round + 1;
             let Some(scored) = self.score(round) else {
                 break;
             };
@@ -559,8 +562,53 @@ impl StageSearch<'_, '_> {
                 },
             ));
         }
+        if run.ambiguous.is_none() && run.named.len() < MAX_EFFECTS {
+            self.name_wander(&mut run, rounds, options);
+        }
         run.model = self.model;
         run
+    }
+
+    /// After the rounds: a baseline wandering in time, named `drift` when it passes its tests
+    /// ([`wander`]) and its fitted values are in the scenario's range.
+    fn name_wander(&mut self, run: &mut StageRun, round: usize, options: Options) {
+        let Some(w) = self.wander(round, options.fast) else {
+            return;
+        };
+        let candidate = Candidate {
+            effect: Effect::Drift,
+            channel: self.channel,
+            evidence: w.evidence,
+            round,
+            shape: w.term.describe(),
+            term: w.term,
+            memory: None,
+        };
+        let Some((updated, fitted, rmse)) = self.extended(&candidate) else {
+            return;
+        };
+        let parameters = scenario::parameters(&candidate.term, &fitted);
+        if scenario::out_of_range(&candidate.term, &parameters).is_some() {
+            return;
+        }
+        self.model = updated;
+        run.steps.push((Effect::Drift, rmse));
+        run.candidates.push(candidate.clone());
+        run.named.push((
+            round,
+            Discovery {
+                effect: Effect::Drift,
+                channel: self.channel,
+                evidence: w.evidence,
+                runner_up: None,
+                parameters,
+                form: None,
+                calibration: w.calibration,
+                rivals: Vec::new(),
+                time: Some(w.time),
+                term: candidate.term,
+            },
+        ));
     }
 }
 

@@ -247,6 +247,12 @@ fn term_columns(
             );
             labels.push("drift");
         }
+        Term::Wander { knot_s } => {
+            for c in super::unexplained::wander_splines(data, *knot_s) {
+                columns.push(c);
+                labels.push("wander");
+            }
+        }
         Term::GainDrift => {
             let t0 = data.time_s[0];
             columns.push(

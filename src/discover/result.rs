@@ -95,7 +95,7 @@ impl Analysis for DiscoverResult {
                 let _ = writeln!(out, "  against {}: {}", r.rival.name(), r.sentence());
             }
             if let Some(t) = &d.time {
-                let _ = writeln!(out, "  against a change in time: {}", t.sentence());
+                let _ = writeln!(out, "  against {}: {}", t.rival_name(), t.sentence());
             }
         }
         for x in &o.declined {

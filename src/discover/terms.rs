@@ -199,6 +199,13 @@ pub enum Term {
         /// `None`: linear in time; `Some(τ)`: settling with time constant `τ` (s).
         settle_tau_s: Option<f64>,
     },
+    /// A baseline wandering in time in any smooth form: cubic B-splines in time with knots
+    /// every [`super::unexplained::TIME_KNOT_S`] (the first left out: the offset holds it). A
+    /// `drift` named by [`super::wander`], never a candidate's grid shape.
+    Wander {
+        /// The knots' spacing (s): the motion's length over a whole number of intervals.
+        knot_s: f64,
+    },
 }
 
 impl Term {
@@ -211,7 +218,7 @@ impl Term {
             Term::Saturation { .. } => Effect::Saturation,
             Term::Rate { .. } => Effect::Rate,
             Term::Creep { .. } | Term::Prony { .. } => Effect::Creep,
-            Term::Drift { .. } => Effect::Drift,
+            Term::Drift { .. } | Term::Wander { .. } => Effect::Drift,
             Term::GainDrift => Effect::GainDrift,
         }
     }
@@ -366,7 +373,8 @@ impl Term {
             Term::Hysteresis { .. }
             | Term::Prony { .. }
             | Term::RelaxationSpread { .. }
-            | Term::GainDrift => None,
+            | Term::GainDrift
+            | Term::Wander { .. } => None,
         }
     }
 
@@ -386,7 +394,8 @@ impl Term {
             | Term::Hysteresis { .. }
             | Term::Prony { .. }
             | Term::RelaxationSpread { .. }
-            | Term::GainDrift => {}
+            | Term::GainDrift
+            | Term::Wander { .. } => {}
         }
         t
     }
@@ -463,6 +472,9 @@ impl Term {
             Term::Drift {
                 settle_tau_s: Some(tau),
             } => format!("settling, τ = {tau} s"),
+            Term::Wander { knot_s } => {
+                format!("wandering in time (a spline, knots every {knot_s:.1} s)")
+            }
         }
     }
 }

@@ -61,6 +61,11 @@ pub struct TimeRivalry {
     /// ([`super::decide`]); empty otherwise.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub among: Vec<(Effect, Calibration)>,
+    /// `beyond_time` is the candidate's lead over the rival, each alone over the model (a
+    /// wandering baseline against a wandering sensitivity, [`super::wander`]), not its
+    /// evidence added after the rival.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub lead: bool,
 }
 
 impl TimeRivalry {
@@ -85,14 +90,22 @@ impl TimeRivalry {
             _ => format!("not simulated (under the {}-nat screen)", c.screen),
         };
         let rival = self.rival_name();
-        let first = format!(
-            "{a} after {rival} {:.1} nats, its world {}",
-            self.beyond_time.observed,
-            reach(&self.beyond_time)
-        );
+        let first = if self.lead {
+            format!(
+                "{a} alone leads {rival} alone by {:.1} nats, {rival}'s world {}",
+                self.beyond_time.observed,
+                reach(&self.beyond_time)
+            )
+        } else {
+            format!(
+                "{a} after {rival} {:.1} nats, its world {}",
+                self.beyond_time.observed,
+                reach(&self.beyond_time)
+            )
+        };
         let second = self.time_beyond.as_ref().map_or(String::new(), |c| {
             format!(
-                "; a change in time after {a} {:.1} nats, {a}'s world {}",
+                "; {rival} after {a} {:.1} nats, {a}'s world {}",
                 c.observed,
                 reach(c)
             )
@@ -119,8 +132,8 @@ impl TimeRivalry {
             );
         }
         let verdict = match self.verdict {
-            Verdict::Named => "a change in time cannot produce what was seen".to_owned(),
-            Verdict::Rival => format!("{a} cannot produce what was seen, a change in time can"),
+            Verdict::Named => format!("{rival} cannot produce what was seen"),
+            Verdict::Rival => format!("{a} cannot produce what was seen, {rival} can"),
             Verdict::Neither => {
                 format!("either can produce what was seen; {a}, the simpler, stands")
             }
@@ -150,6 +163,7 @@ impl StageSearch<'_, '_> {
                 verdict: Verdict::Named,
                 rival: GenericKind::Time,
                 among: Vec::new(),
+                lead: false,
             });
         }
         // The spline after the name as it would be written: its shape refined, so that what
@@ -169,11 +183,12 @@ impl StageSearch<'_, '_> {
             verdict,
             rival: GenericKind::Time,
             among: Vec::new(),
+            lead: false,
         })
     }
 
     /// The generic test over the designs `train` and `test` of a model of this channel.
-    fn time_test<'d>(
+    pub(super) fn time_test<'d>(
         &'d self,
         train: &'d super::model::Design,
         test: &'d super::model::Design,

@@ -80,6 +80,10 @@ pub enum GenericKind {
     /// the rival an ambiguity among names a change in time imitates is told from
     /// ([`super::decide`]).
     Sensitivity,
+    /// The same spline alone: a baseline that changes over the run in any smooth way. Not one
+    /// of the `unexplained` test's kinds either: a wandering baseline's test against a
+    /// wandering sensitivity ([`super::wander`]).
+    Baseline,
 }
 
 impl GenericKind {
@@ -101,6 +105,7 @@ impl GenericKind {
             GenericKind::History => "during holds and after changes: the channel lags its input",
             GenericKind::Time => "over the run: the baseline or the sensitivity changes with time",
             GenericKind::Sensitivity => "over the run: the sensitivity changes with time",
+            GenericKind::Baseline => "over the run: the baseline changes with time",
         }
     }
 }
@@ -155,11 +160,35 @@ pub fn time_splines(t: &[f64], lo: f64, hi: f64, intervals: usize) -> Vec<Vec<f6
 /// The time kind's B-splines over `data`: knots every [`TIME_KNOT_S`] over the motion, at
 /// least [`MIN_TIME_INTERVALS`] intervals.
 fn time_splines_of(data: &Data) -> Vec<Vec<f64>> {
+    let (lo, hi, intervals) = time_intervals(data, TIME_KNOT_S);
+    time_splines(&data.time_s, lo, hi, intervals)
+}
+
+/// The motion's first and last time and how many intervals of about `knot_s` cover it (at
+/// least [`MIN_TIME_INTERVALS`]).
+fn time_intervals(data: &Data, knot_s: f64) -> (f64, f64, usize) {
     let moving = &data.time_s[data.rest.min(data.len())..];
     let lo = moving.first().copied().unwrap_or(0.0);
     let hi = moving.last().copied().unwrap_or(lo);
-    let intervals = (((hi - lo) / TIME_KNOT_S).round() as usize).max(MIN_TIME_INTERVALS);
+    let intervals = (((hi - lo) / knot_s).round() as usize).max(MIN_TIME_INTERVALS);
+    (lo, hi, intervals)
+}
+
+/// The knots' spacing of the time kind over `data` (s): [`TIME_KNOT_S`] rounded so that a
+/// whole number of intervals covers the motion.
+pub fn time_knot_s(data: &Data) -> f64 {
+    let (lo, hi, intervals) = time_intervals(data, TIME_KNOT_S);
+    (hi - lo) / intervals as f64
+}
+
+/// The columns of a wandering baseline ([`Term::Wander`]): the B-splines of knots every
+/// `knot_s` over the motion, the first left out (they add up to one, and the offset holds it).
+pub fn wander_splines(data: &Data, knot_s: f64) -> Vec<Vec<f64>> {
+    let (lo, hi, intervals) = time_intervals(data, knot_s);
     time_splines(&data.time_s, lo, hi, intervals)
+        .into_iter()
+        .skip(1)
+        .collect()
 }
 
 /// Each spline times the input `x`: a sensitivity that changes in time.
@@ -299,6 +328,11 @@ impl Residuals<'_> {
                 let gain = time_gain(&time_splines_of(data), x);
                 let m = gain.len();
                 (gain, vec![(0, m)])
+            }
+            GenericKind::Baseline => {
+                let offset = time_splines_of(data);
+                let m = offset.len();
+                (offset, vec![(0, m)])
             }
             GenericKind::Time => {
                 let offset = time_splines_of(data);
