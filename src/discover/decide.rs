@@ -284,6 +284,7 @@ impl StageSearch<'_, '_> {
                         rival: GenericKind::Sensitivity,
                         among: tests.into_iter().map(|(c, t)| (c.effect, t)).collect(),
                         lead: false,
+                        over_input: None,
                     },
                 )))
             }

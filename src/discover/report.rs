@@ -377,6 +377,21 @@ fn calibration_figure(page: &mut Page, tests: &[(String, &Calibration, bool)], a
             bounds.push(vec![(x - 0.35, squash(b)), (x + 0.35, squash(b))]);
         }
     }
+    // Headroom above every point for the legend: it sat in the upper left over the first
+    // test's observation, which is usually the largest (a clear name's).
+    let ys = copies
+        .iter()
+        .chain(&observed)
+        .chain(bounds.iter().flatten())
+        .map(|p| p.1)
+        .filter(|y| y.is_finite());
+    let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
+        (a.min(y), b.max(y))
+    });
+    if lo.is_finite() && hi.is_finite() {
+        let span = (hi - lo).max(1.0);
+        chart.y_range = Some((lo - 0.05 * span, hi + 0.4 * span));
+    }
     let mut dots = Series::dots("copies simulated without the effect", copies, PALETTE[0]);
     dots.style = SeriesStyle::Dots(3);
     chart.push(dots);

@@ -66,6 +66,11 @@ pub struct TimeRivalry {
     /// evidence added after the rival.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub lead: bool,
+    /// A wandering baseline's evidence over the input's generic structure (a curve, memory,
+    /// history: the `unexplained` test's other kinds), against copies of the model with that
+    /// structure ([`super::wander`]); absent for the other names.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub over_input: Option<Calibration>,
 }
 
 impl TimeRivalry {
@@ -103,6 +108,15 @@ impl TimeRivalry {
                 reach(&self.beyond_time)
             )
         };
+        let input = self.over_input.as_ref().map_or(String::new(), |c| {
+            format!(
+                "{a} after the input's structure (a curve, memory, history) {:.1} nats, that \
+                 world {}; ",
+                c.observed,
+                reach(c)
+            )
+        });
+        let first = format!("{input}{first}");
         let second = self.time_beyond.as_ref().map_or(String::new(), |c| {
             format!(
                 "; {rival} after {a} {:.1} nats, {a}'s world {}",
@@ -164,6 +178,7 @@ impl StageSearch<'_, '_> {
                 rival: GenericKind::Time,
                 among: Vec::new(),
                 lead: false,
+                over_input: None,
             });
         }
         // The spline after the name as it would be written: its shape refined, so that what
@@ -184,6 +199,7 @@ impl StageSearch<'_, '_> {
             rival: GenericKind::Time,
             among: Vec::new(),
             lead: false,
+            over_input: None,
         })
     }
 

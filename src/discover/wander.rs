@@ -131,6 +131,7 @@ impl StageSearch<'_, '_> {
                     rival: GenericKind::Sensitivity,
                     among: Vec::new(),
                     lead: true,
+                    over_input: Some(Calibration::of(beyond_input, Vec::new(), THRESHOLD_NATS)),
                 },
                 term,
             });
@@ -187,6 +188,7 @@ impl StageSearch<'_, '_> {
                 rival: GenericKind::Sensitivity,
                 among: Vec::new(),
                 lead: true,
+                over_input: Some(over_input),
             },
             term,
         })
