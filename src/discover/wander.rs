@@ -75,11 +75,18 @@ fn seed(round: usize, test: u64, channel: Stage) -> u64 {
 
 impl StageSearch<'_, '_> {
     /// A wandering baseline on this channel after its rounds, if it passes the tests of the
-    /// module docs; `None` otherwise, on the plant, with a holdout, or when a `drift` or a
-    /// `gain_drift` is already named.
+    /// module docs; `None` otherwise, on the plant, with a holdout, or when the model already
+    /// has a `drift` or a `gain_drift` (named, or from the base scenario).
     pub(super) fn wander(&self, round: usize, fast: bool) -> Option<Wander> {
         let s = self.search;
-        if !matches!(self.channel, Stage::Sensor(_)) || s.holdout() || self.time_named() {
+        // A drift or a gain drift in the model, named or given by a base scenario (`--scenario`):
+        // a change in time is already part of it, and the scenario has one drift to write.
+        let in_time = self
+            .model
+            .terms
+            .iter()
+            .any(|t| matches!(t.effect(), Effect::Drift | Effect::GainDrift));
+        if !matches!(self.channel, Stage::Sensor(_)) || s.holdout() || in_time {
             return None;
         }
         let train = self.model.design(&s.data, &s.inputs.0);
