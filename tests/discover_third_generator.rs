@@ -344,6 +344,38 @@ fn the_last_held_out_blocks_wrong_names_are_not_given() {
     assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
 }
 
+/// That `json` names `case`'s true effect on its true channel and nothing wrong.
+fn assert_right(json: &serde_json::Value, case: &Case) {
+    let j = judge(json, &case.truth());
+    assert!(
+        j.right && j.wrong.is_empty(),
+        "{}: {}",
+        case.name(),
+        said(json)
+    );
+}
+
+/// `case` written by the third generator into `dir` and discovered there, asserted right (the
+/// true name on the true channel, nothing wrong): the report, the recording and the output
+/// folder.
+fn discovered_right(
+    dir: &Path,
+    design_path: &str,
+    case: &Case,
+) -> (serde_json::Value, std::path::PathBuf, std::path::PathBuf) {
+    let rec = dir.join(case.name());
+    let bench = Bench {
+        effect: case.effect,
+        duration_s: case.duration_s(),
+        seed: case.seed,
+    };
+    third_generator::write_recording(Path::new(design_path), &bench, &rec);
+    let out = dir.join(format!("{}-out", case.name()));
+    let json = try_discover_json(design_path, &rec, &out).unwrap();
+    assert_right(&json, case);
+    (json, rec, out)
+}
+
 /// The wrong names `dlw discover` gives on Joint A's sensor 1 for each `(effect, size, seed)`.
 fn wrong_names(dir: &Path, found: &[(Effect, f64, u64)]) -> Vec<(String, Vec<String>)> {
     found
@@ -381,22 +413,7 @@ fn a_random_walk_drift_is_named_drift_and_its_scenario_wanders() {
             effect: Some((Effect::Drift, Size(size), 1)),
             seed: 1,
         };
-        let rec = dir.path().join(case.name());
-        let bench = Bench {
-            effect: case.effect,
-            duration_s: case.duration_s(),
-            seed: case.seed,
-        };
-        third_generator::write_recording(Path::new(&design_path), &bench, &rec);
-        let out = dir.path().join(format!("{}-out", case.name()));
-        let json = try_discover_json(&design_path, &rec, &out).unwrap();
-        let j = judge(&json, &case.truth());
-        assert!(
-            j.right && j.wrong.is_empty(),
-            "{}: {}",
-            case.name(),
-            said(&json)
-        );
+        let (json, _, out) = discovered_right(dir.path(), &design_path, &case);
         let named = &json["discovered"][0];
         assert_eq!(named["effect"], "drift", "{}", case.name());
         assert_eq!(named["calibration"]["passed"], true, "{}", case.name());
@@ -477,22 +494,7 @@ fn a_relaxation_with_a_spread_of_time_constants_is_named_and_simulated() {
             effect: Some((Effect::Relaxation, Size(size), 1)),
             seed: 3,
         };
-        let rec = dir.path().join(case.name());
-        let bench = Bench {
-            effect: case.effect,
-            duration_s: case.duration_s(),
-            seed: case.seed,
-        };
-        third_generator::write_recording(Path::new(&design_path), &bench, &rec);
-        let out = dir.path().join(format!("{}-out", case.name()));
-        let json = try_discover_json(&design_path, &rec, &out).unwrap();
-        let j = judge(&json, &case.truth());
-        assert!(
-            j.right && j.wrong.is_empty(),
-            "{}: {}",
-            case.name(),
-            said(&json)
-        );
+        let (json, rec, out) = discovered_right(dir.path(), &design_path, &case);
         // The bootstrap scores the spread as the search does (its signs too): the evidence it
         // calibrates is the evidence named. It read 1056.6 against 728.4 at ×4 when the
         // copies' solver left the signs free.
@@ -563,13 +565,7 @@ fn a_large_cycling_gain_gets_a_report_not_an_error() {
         seed: 3,
     };
     let json = try_run(dir.path(), &case).unwrap_or_else(|e| panic!("{}: {e}", case.name()));
-    let j = judge(&json, &case.truth());
-    assert!(
-        j.right && j.wrong.is_empty(),
-        "{}: {}",
-        case.name(),
-        said(&json)
-    );
+    assert_right(&json, &case);
     let declined = json["declined"].as_array().unwrap();
     assert!(
         declined.iter().any(|d| d["effect"] == "gain_drift"
