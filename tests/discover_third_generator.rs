@@ -454,6 +454,35 @@ fn a_random_walk_drift_is_named_drift_and_its_scenario_wanders() {
     }
 }
 
+/// A random-walk drift whose wander a slow lag and a loop each drew part of: the full-size
+/// run's two wrong verdicts (the ×2 of seed 10142, `ambiguous` between `creep` 25.3 and
+/// `hysteresis` 22.5; the ×1 of seed 10241, `creep` 40.4 and `hysteresis` 29.5), neither the
+/// truth. An ambiguity with a name a change in time imitates now stands only when one of its
+/// contenders shows what a change in time cannot produce (src/discover/decide.rs); here none
+/// does, the ambiguity is declined with that test, and the wandering baseline is named
+/// `drift`. Fails on the code before (both `ambiguous`).
+#[test]
+fn a_random_walk_drift_is_not_left_ambiguous_between_two_other_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let design_path = shipped_design("joint-a.toml");
+    for (size, seed) in [(2.0, 10_142), (1.0, 10_241)] {
+        let case = Case {
+            design: "joint-a.toml",
+            effect: Some((Effect::Drift, Size(size), 1)),
+            seed,
+        };
+        let (json, ..) = discovered_right(dir.path(), &design_path, &case);
+        let declined = json["declined"].as_array().unwrap();
+        assert!(
+            declined.iter().any(|d| d["time"]["rival"] == "time"
+                && d["time"]["verdict"] == "neither"
+                && !d["time"]["among"].as_array().map_or(true, Vec::is_empty)),
+            "{}: declined {declined:?}",
+            case.name()
+        );
+    }
+}
+
 /// A named effect's misfit is not named a wandering `drift` after it (2026-11-27): a Preisach
 /// hysteresis at ×8 (Joint A, seed 1), named `hysteresis` and then `drift` (28.3 nats) by the
 /// first version of the wandering baseline, because the loop's misfit follows the input's slow

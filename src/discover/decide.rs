@@ -31,7 +31,11 @@
 //!    names is declined when every one of them is refused so, and otherwise stands only when
 //!    one of them shows what a sensitivity changing in time (the spline times the input)
 //!    cannot produce; when it does not stand nothing is named (`declined`, with the test, or
-//!    each contender's) and the channel is left to the `unexplained` test.
+//!    each contender's) and the channel is left to the `unexplained` test. An ambiguity with
+//!    such a name among others stands only when one of its contenders shows what a change in
+//!    time of the baseline and the sensitivity cannot produce (a `drift` or a `gain_drift`,
+//!    which that change holds, over a sensitivity changing in time); otherwise it is declined
+//!    the same way.
 
 use super::calibrate::{
     separating_data, Calibration, Rivalry, Verdict, RIVAL_SCREEN_NATS, SCREEN_NATS,
@@ -282,6 +286,49 @@ impl StageSearch<'_, '_> {
                         time_beyond: None,
                         verdict: Verdict::Neither,
                         rival: GenericKind::Sensitivity,
+                        among: tests.into_iter().map(|(c, t)| (c.effect, t)).collect(),
+                        lead: false,
+                        over_input: None,
+                    },
+                )))
+            }
+            // An ambiguity with a name a change in time imitates among names it does not
+            // stands only when one of them shows what a change in time of the baseline and the
+            // sensitivity cannot produce: a random-walk drift was left `ambiguous` between
+            // `creep` and `hysteresis` (third generator, ×2 of seed 10142, ×1 of 10241), a
+            // slow lag and a loop each drawing part of the wander, neither the truth.
+            Pick::Ambiguous(a) if a.contenders.iter().any(|(e, _)| TIME_RIVALS.contains(e)) => {
+                let Some(contenders) = a
+                    .contenders
+                    .iter()
+                    .map(|(e, _)| scored.iter().find(|c| c.effect == *e))
+                    .collect::<Option<Vec<&Candidate>>>()
+                else {
+                    return Ok(Pick::Ambiguous(a));
+                };
+                // A `drift` or a `gain_drift` is a change in time of the baseline or the
+                // sensitivity, which the time spline holds: it is tested over a sensitivity
+                // changing in time, as in an ambiguity among names a change in time imitates.
+                let beyond = |c: &Candidate| match c.effect {
+                    Effect::Drift | Effect::GainDrift => self.over_sensitivity(c, round),
+                    _ => self.beyond_time(c, round),
+                };
+                let mut tests = Vec::new();
+                for c in contenders {
+                    match beyond(c) {
+                        Some(t) if !t.passed => tests.push((c.clone(), t)),
+                        _ => return Ok(Pick::Ambiguous(a)),
+                    }
+                }
+                let (c, beyond_time) = tests.remove(0);
+                Err(Box::new((
+                    c.clone(),
+                    TimeRivalry {
+                        effect: c.effect,
+                        beyond_time,
+                        time_beyond: None,
+                        verdict: Verdict::Neither,
+                        rival: GenericKind::Time,
                         among: tests.into_iter().map(|(c, t)| (c.effect, t)).collect(),
                         lead: false,
                         over_input: None,

@@ -226,7 +226,7 @@ impl StageSearch<'_, '_> {
 
     /// Step 1: `a`'s evidence (its best grid shape) over the model with the time spline,
     /// against copies of that model.
-    fn beyond_time(&self, a: &Candidate, round: usize) -> Option<Calibration> {
+    pub(super) fn beyond_time(&self, a: &Candidate, round: usize) -> Option<Calibration> {
         self.over_time(a, Some(round)).and_then(|(_, c)| c)
     }
 
