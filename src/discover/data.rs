@@ -26,10 +26,19 @@ pub const REST_MARGIN_S: f64 = 1.0;
 /// training ones: a term in time (`drift`, `gain_drift`, the time spline) is then judged on how
 /// it interpolates, never on how it extrapolates past the last training sample. With 10 it was
 /// (docs/discovery.md, "The last held-out block").
+/// The fewest blocks; a longer recording gets more ([`Data::blocks`]).
 pub const BLOCKS: usize = 11;
 const _: () = assert!(BLOCKS % 2 == 1, "the last block must train");
 /// Shortest block (s): a block must span several noise correlation times.
 pub const MIN_BLOCK_S: f64 = 8.0;
+/// Longest block (s): half the time spline's knot spacing
+/// ([`super::unexplained::TIME_KNOT_S`]). A change in time the spline can follow is then
+/// interpolated across every held-out block from the training blocks on both sides. With 11
+/// blocks whatever the length, a 3000 s recording's held-out blocks were 273 s long, longer
+/// than half a gain cycling at a period of 250-700 s: no term in time could predict them, and
+/// such a gain was never seen on a BSN joint (docs/discovery.md, "Blocks no longer than half
+/// a knot").
+pub const MAX_BLOCK_S: f64 = super::unexplained::TIME_KNOT_S / 2.0;
 
 /// One recording, decimated.
 #[derive(Debug, Clone)]
@@ -147,7 +156,8 @@ impl Data {
     pub fn split(&self) -> Result<(Vec<bool>, Vec<bool>), DiscoverError> {
         let n = self.len();
         let moving = n - self.rest;
-        let block = moving / BLOCKS;
+        let blocks = self.blocks();
+        let block = moving / blocks;
         if (block as f64) * self.dt_s < MIN_BLOCK_S {
             return Err(DiscoverError::TooShort {
                 moving_s: moving as f64 * self.dt_s,
@@ -159,7 +169,7 @@ impl Data {
         let mut train = vec![false; n];
         let mut test = vec![false; n];
         for i in (self.rest..n).filter(|&i| self.measured[i]) {
-            let b = ((i - self.rest) / block).min(BLOCKS - 1);
+            let b = ((i - self.rest) / block).min(blocks - 1);
             if b % 2 == 0 {
                 train[i] = true;
             } else {
@@ -167,6 +177,20 @@ impl Data {
             }
         }
         Ok((train, test))
+    }
+
+    /// How many blocks the motion is cut into: the fewest odd number from [`BLOCKS`] up whose
+    /// blocks are no longer than [`MAX_BLOCK_S`].
+    pub fn blocks(&self) -> usize {
+        let moving_s = (self.len() - self.rest) as f64 * self.dt_s;
+        let needed = (moving_s / MAX_BLOCK_S).ceil();
+        let needed = if needed.is_finite() && needed > 0.0 {
+            needed as usize
+        } else {
+            0
+        };
+        let blocks = needed.max(BLOCKS);
+        blocks + (1 - blocks % 2)
     }
 
     /// Every measured sample after the rest (a holdout recording is held out whole).
@@ -236,7 +260,7 @@ mod tests {
     /// at n 2500 and rest 100, samples held out up to 2499 while training ended at 2259).
     #[test]
     fn every_held_out_block_lies_between_training_blocks() {
-        for n in [2500, 2501, 2517, 7500, 7517, 75_000] {
+        for n in [2500, 2501, 2517, 7500, 7517, 75_000, 75_013] {
             for rest in [100, 137, 250] {
                 let (train, test) = data(n, rest).split().unwrap();
                 let first = train.iter().position(|t| *t).unwrap();
@@ -247,6 +271,37 @@ mod tests {
                     held.iter().all(|&i| i > first && i < last),
                     "n {n}, rest {rest}: held out up to sample {}, training ends at {last}",
                     held[held.len() - 1]
+                );
+            }
+        }
+    }
+
+    /// A held-out block is never longer than half the time spline's knot spacing, whatever the
+    /// recording's length, and no fewer blocks would do: with 11 blocks at any length a 3000 s
+    /// recording held out 273 s at a time, and a gain cycling at 250-700 s was never seen.
+    #[test]
+    fn no_held_out_block_is_longer_than_half_a_knot() {
+        for n in [2500, 7500, 7517, 30_000, 75_000, 75_013, 150_000] {
+            for rest in [100, 250] {
+                let d = data(n, rest);
+                let blocks = d.blocks();
+                let moving_s = (n - rest) as f64 * d.dt_s;
+                assert!(blocks >= BLOCKS && blocks % 2 == 1, "n {n}: {blocks} blocks");
+                assert!(
+                    blocks == BLOCKS || moving_s / (blocks - 2) as f64 > MAX_BLOCK_S,
+                    "n {n}: {blocks} blocks are more than needed"
+                );
+                let (_, test) = d.split().unwrap();
+                let mut run = 0usize;
+                let mut longest = 0usize;
+                for &t in &test {
+                    run = if t { run + 1 } else { 0 };
+                    longest = longest.max(run);
+                }
+                assert!(
+                    longest as f64 * d.dt_s <= MAX_BLOCK_S,
+                    "n {n}, rest {rest}: a held-out block of {} s",
+                    longest as f64 * d.dt_s
                 );
             }
         }

@@ -61,6 +61,9 @@ pub const SMOOTHING_POWERS: [i32; 8] = [-4, -3, -2, -1, 0, 1, 2, 3];
 const RIDGE: f64 = 1e-9;
 /// Folds of the cross-validation when the training samples are one run (a holdout).
 const FOLDS: usize = 5;
+/// Most folds of the cross-validation: a long recording's many training blocks
+/// ([`super::data::Data::blocks`]) are dealt into this many, each fold every tenth block.
+const MAX_FOLDS: usize = 10;
 
 /// A kind of generic regressor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -500,7 +503,8 @@ impl Residuals<'_> {
 }
 
 /// The training rows cut into folds: each run of consecutive training rows (a training block),
-/// or, when they are one run, [`FOLDS`] equal parts.
+/// every [`MAX_FOLDS`]-th run together when there are more, or, when they are one run,
+/// [`FOLDS`] equal parts.
 fn folds(rows: &[usize]) -> Vec<Vec<usize>> {
     let mut runs: Vec<Vec<usize>> = Vec::new();
     for &i in rows {
@@ -508,6 +512,13 @@ fn folds(rows: &[usize]) -> Vec<Vec<usize>> {
             Some(run) if run.last() == Some(&(i - 1)) => run.push(i),
             _ => runs.push(vec![i]),
         }
+    }
+    if runs.len() > MAX_FOLDS {
+        let mut folds = vec![Vec::new(); MAX_FOLDS];
+        for (k, run) in runs.into_iter().enumerate() {
+            folds[k % MAX_FOLDS].extend(run);
+        }
+        return folds;
     }
     if runs.len() >= 3 {
         return runs;
@@ -879,6 +890,15 @@ mod tests {
         let f = folds(&run);
         assert_eq!(f.len(), FOLDS);
         assert_eq!(f.iter().map(Vec::len).sum::<usize>(), 100);
+        // A long recording's 51 training blocks are dealt into MAX_FOLDS folds, each every
+        // tenth block, every row in one of them.
+        let many: Vec<usize> = (0..51).flat_map(|b| 20 * b..20 * b + 10).collect();
+        let f = folds(&many);
+        assert_eq!(f.len(), MAX_FOLDS);
+        assert_eq!(f[0][..11], [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 200]);
+        let mut all: Vec<usize> = f.concat();
+        all.sort_unstable();
+        assert_eq!(all, many);
     }
 }
 
