@@ -53,18 +53,24 @@ const DETECTION: [(Effect, f64, f64); 7] = [
     // sensor 2 (3/3 on sensor 1), ×2 the largest physical size.
     (Effect::Hysteresis, 2.0, f64::INFINITY),
     // Joint A: 12/12 at ×1 to ×8 (at ×4 one wrong `ambiguous` before the hinges). Joint C:
-    // sensor 2 2/3 at ×1, 1/3 at ×2, 0/3 at ×4 and ×8.
+    // sensor 2 2/3 at ×1, 1/3 at ×2, 0/3 at ×4 and ×8 (with 11 blocks 0/3 at ×0.5-×2; with
+    // blocks no longer than half a knot 0/3, 0/3, 1/3).
     (Effect::Saturation, 1.0, f64::INFINITY),
     // Joint A: 1/12 at ×0.5, 4/12 at ×1, 5/12 at ×2 and ×4, 6/12 at ×8 since the wandering
-    // baseline (2026-11-27; before it 1/12 at ×0.5 to ×4, 2/12 at ×8).
+    // baseline (2026-11-27; before it 1/12 at ×0.5 to ×4, 2/12 at ×8). Joint C: 0/3, 0/3, 2/3
+    // at ×0.5-×2 with blocks no longer than half a knot (1/3 at ×2 before).
     (Effect::Drift, f64::INFINITY, f64::INFINITY),
-    // Joint A: 10/12 at ×2 and ×4, the largest physical size (9/12 with 10 blocks).
+    // Joint A: 10/12 at ×2 and ×4, the largest physical size (9/12 with 10 blocks). Joint C:
+    // 0/18 at ×0.5-×2 until its blocks were no longer than half a knot, then 0/6, 2/6, 4/6
+    // (seeds 1-6; ×1 is its largest physical size).
     (Effect::GainWalk, f64::INFINITY, f64::INFINITY),
     // Joint A: 12/12 at ×2, ×4 and ×8 (on the way, seed 2 was named `hysteresis` after its
     // `gain_drift` at ×2 and ×4, until the change-in-time rule and the one-nat rival screen).
     // At ×8 it failed on seed 3 before the range check (its `gain_drift`'s fade, 26.9 /h, out
-    // of the scenario's range; now declined and flagged). Joint C: 0/3 at ×0.5-×4.
-    (Effect::GainCycle, 2.0, f64::INFINITY),
+    // of the scenario's range; now declined and flagged). Joint C: 0/3 at ×0.5-×4 until its
+    // held-out blocks were 273 s long; with blocks no longer than half a knot (2026-11-28)
+    // 6/6 at ×1 and ×2 (seeds 1-6), 3/3 at ×4, 0/6 at ×0.5.
+    (Effect::GainCycle, 2.0, 1.0),
 ];
 
 /// The detection size of `e` on `design` ([`DETECTION`]).
