@@ -286,7 +286,10 @@ mod tests {
                 let d = data(n, rest);
                 let blocks = d.blocks();
                 let moving_s = (n - rest) as f64 * d.dt_s;
-                assert!(blocks >= BLOCKS && blocks % 2 == 1, "n {n}: {blocks} blocks");
+                assert!(
+                    blocks >= BLOCKS && blocks % 2 == 1,
+                    "n {n}: {blocks} blocks"
+                );
                 assert!(
                     blocks == BLOCKS || moving_s / (blocks - 2) as f64 > MAX_BLOCK_S,
                     "n {n}: {blocks} blocks are more than needed"

@@ -247,12 +247,7 @@ impl StageSearch<'_, '_> {
                 if !a.contenders.is_empty()
                     && a.contenders.iter().all(|(e, _)| TIME_RIVALS.contains(e)) =>
             {
-                let Some(contenders) = a
-                    .contenders
-                    .iter()
-                    .map(|(e, _)| scored.iter().find(|c| c.effect == *e))
-                    .collect::<Option<Vec<&Candidate>>>()
-                else {
+                let Some(contenders) = contenders_of(&a, scored) else {
                     return Ok(Pick::Ambiguous(a));
                 };
                 // Every contender refused by a change in time (its world cannot produce the
@@ -270,27 +265,9 @@ impl StageSearch<'_, '_> {
                         return Err(Box::new(first));
                     }
                 }
-                let mut tests = Vec::new();
-                for c in contenders {
-                    match self.over_sensitivity(c, round) {
-                        Some(t) if !t.passed => tests.push((c.clone(), t)),
-                        _ => return Ok(Pick::Ambiguous(a)),
-                    }
-                }
-                let (c, beyond_time) = tests.remove(0);
-                Err(Box::new((
-                    c.clone(),
-                    TimeRivalry {
-                        effect: c.effect,
-                        beyond_time,
-                        time_beyond: None,
-                        verdict: Verdict::Neither,
-                        rival: GenericKind::Sensitivity,
-                        among: tests.into_iter().map(|(c, t)| (c.effect, t)).collect(),
-                        lead: false,
-                        over_input: None,
-                    },
-                )))
+                stands_or_declined(a, &contenders, GenericKind::Sensitivity, &|c| {
+                    self.over_sensitivity(c, round)
+                })
             }
             // An ambiguity with a name a change in time imitates among names it does not
             // stands only when one of them shows what a change in time of the baseline and the
@@ -298,12 +275,7 @@ impl StageSearch<'_, '_> {
             // `creep` and `hysteresis` (third generator, ×2 of seed 10142, ×1 of 10241), a
             // slow lag and a loop each drawing part of the wander, neither the truth.
             Pick::Ambiguous(a) if a.contenders.iter().any(|(e, _)| TIME_RIVALS.contains(e)) => {
-                let Some(contenders) = a
-                    .contenders
-                    .iter()
-                    .map(|(e, _)| scored.iter().find(|c| c.effect == *e))
-                    .collect::<Option<Vec<&Candidate>>>()
-                else {
+                let Some(contenders) = contenders_of(&a, scored) else {
                     return Ok(Pick::Ambiguous(a));
                 };
                 // A `drift` or a `gain_drift` is a change in time of the baseline or the
@@ -313,27 +285,7 @@ impl StageSearch<'_, '_> {
                     Effect::Drift | Effect::GainDrift => self.over_sensitivity(c, round),
                     _ => self.beyond_time(c, round),
                 };
-                let mut tests = Vec::new();
-                for c in contenders {
-                    match beyond(c) {
-                        Some(t) if !t.passed => tests.push((c.clone(), t)),
-                        _ => return Ok(Pick::Ambiguous(a)),
-                    }
-                }
-                let (c, beyond_time) = tests.remove(0);
-                Err(Box::new((
-                    c.clone(),
-                    TimeRivalry {
-                        effect: c.effect,
-                        beyond_time,
-                        time_beyond: None,
-                        verdict: Verdict::Neither,
-                        rival: GenericKind::Time,
-                        among: tests.into_iter().map(|(c, t)| (c.effect, t)).collect(),
-                        lead: false,
-                        over_input: None,
-                    },
-                )))
+                stands_or_declined(a, &contenders, GenericKind::Time, &beyond)
             }
             pick => Ok(pick),
         }
@@ -624,6 +576,46 @@ impl StageSearch<'_, '_> {
             verdict,
         })
     }
+}
+
+/// The scored candidates of an ambiguity's contenders, in its order; `None` when one is missing.
+fn contenders_of<'c>(a: &Ambiguity, scored: &'c [Candidate]) -> Option<Vec<&'c Candidate>> {
+    a.contenders
+        .iter()
+        .map(|(e, _)| scored.iter().find(|c| c.effect == *e))
+        .collect()
+}
+
+/// The ambiguity `a` when one of its `contenders` passes `test` (its evidence over the `rival`
+/// against copies of the rival's world), or a test cannot be made; otherwise `Err` with the
+/// first contender declined and the others' tests under `among`.
+fn stands_or_declined(
+    a: Ambiguity,
+    contenders: &[&Candidate],
+    rival: GenericKind,
+    test: &dyn Fn(&Candidate) -> Option<Calibration>,
+) -> Result<Pick, Box<(Candidate, TimeRivalry)>> {
+    let mut tests = Vec::new();
+    for &c in contenders {
+        match test(c) {
+            Some(t) if !t.passed => tests.push((c.clone(), t)),
+            _ => return Ok(Pick::Ambiguous(a)),
+        }
+    }
+    let (c, beyond_time) = tests.remove(0);
+    Err(Box::new((
+        c.clone(),
+        TimeRivalry {
+            effect: c.effect,
+            beyond_time,
+            time_beyond: None,
+            verdict: Verdict::Neither,
+            rival,
+            among: tests.into_iter().map(|(c, t)| (c.effect, t)).collect(),
+            lead: false,
+            over_input: None,
+        },
+    )))
 }
 
 /// Whether `creep` is a creep and `other` a hysteresis or a saturation: then the creep's world
