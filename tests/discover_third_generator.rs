@@ -466,7 +466,11 @@ fn a_random_walk_drift_is_named_drift_and_its_scenario_wanders() {
 /// truth. An ambiguity with a name a change in time imitates now stands only when one of its
 /// contenders shows what a change in time cannot produce (src/discover/decide.rs); here none
 /// does, the ambiguity is declined with that test, and the wandering baseline is named
-/// `drift`. Fails on the code before (both `ambiguous`).
+/// `drift`. Fails on the code before (both `ambiguous`). Since the creep is scored as a Prony
+/// series against a loop (2026-11-28), the ×2 of 10142 is no longer a tie: `creep` leads the
+/// `hysteresis` and is itself refused by the change in time (the creep after the spline 3.5
+/// nats, bound 26.4; the spline after the creep 27.3, bound 18.1). Either way the name a change
+/// in time explains is declined with that test, and `drift` is named.
 #[test]
 fn a_random_walk_drift_is_not_left_ambiguous_between_two_other_names() {
     let dir = tempfile::tempdir().unwrap();
@@ -481,10 +485,17 @@ fn a_random_walk_drift_is_not_left_ambiguous_between_two_other_names() {
         let declined = json["declined"].as_array().unwrap();
         assert!(
             declined.iter().any(|d| d["time"]["rival"] == "time"
-                && d["time"]["verdict"] == "neither"
-                && !d["time"]["among"].as_array().map_or(true, Vec::is_empty)),
+                && (d["time"]["verdict"] == "rival"
+                    || (d["time"]["verdict"] == "neither"
+                        && !d["time"]["among"].as_array().map_or(true, Vec::is_empty)))),
             "{}: declined {declined:?}",
             case.name()
+        );
+        assert!(
+            json["ambiguous"].as_array().unwrap().is_empty(),
+            "{}: {}",
+            case.name(),
+            json["ambiguous"]
         );
     }
 }
@@ -506,6 +517,49 @@ fn a_named_effects_misfit_is_not_named_a_wandering_drift() {
         &[(Effect::Hysteresis, 8.0, 1), (Effect::Creep, 8.0, 10214)],
     );
     assert!(wrong.is_empty(), "wrong names: {wrong:#?}");
+}
+
+/// A creep of six time constants (2 s to 200 s) on Joint A, seed 3, at ×2, ×4 and ×8 was left
+/// `ambiguous` with the `hysteresis` its lags draw on a cycling strain (×4: `hysteresis` 32.8
+/// nats, `creep` 27.2). Against a curve or a loop the creep was already simulated as a Prony
+/// series, but scored in its one- and two-term forms: after the loop it read −6.8 nats, and
+/// neither name was excluded. Scored as the Prony series it is simulated as, it now shows what
+/// the loop cannot produce, and `creep` is named (src/discover/decide.rs, `rival`). At ×8 its
+/// one-term form read 17.5 nats, under the screen: a rival under the screen, it excluded the
+/// `hysteresis` and was never tried as a name itself; it now is, when it excludes every
+/// credible candidate, and its calibration says so (the rivals' one-nat screen, passed).
+/// Fails on the code before (each `ambiguous`).
+#[test]
+fn a_creep_of_many_time_constants_is_told_from_the_loop_its_lags_draw() {
+    let dir = tempfile::tempdir().unwrap();
+    let design_path = shipped_design("joint-a.toml");
+    let cases: Vec<Case> = [2.0, 4.0, 8.0]
+        .into_iter()
+        .map(|size| Case {
+            design: "joint-a.toml",
+            effect: Some((Effect::Creep, Size(size), 1)),
+            seed: 3,
+        })
+        .collect();
+    let results: Vec<serde_json::Value> = cases
+        .par_iter()
+        .map(|case| discovered_right(dir.path(), &design_path, case).0)
+        .collect();
+    for (case, json) in cases.iter().zip(&results) {
+        let named = json["discovered"].as_array().unwrap();
+        let creep = named
+            .iter()
+            .find(|d| d["effect"] == "creep" && d["channel"] == "sensor1")
+            .unwrap_or_else(|| panic!("{}: named {named:?}", case.name()));
+        let calibration = &creep["calibration"];
+        assert_eq!(calibration["passed"], true, "{}: {calibration}", case.name());
+        assert!(
+            json["ambiguous"].as_array().unwrap().is_empty(),
+            "{}: {}",
+            case.name(),
+            json["ambiguous"]
+        );
+    }
 }
 
 /// A relaxation with a spread of time constants (the generator's eight Prony terms, 0.3 s to
@@ -1005,5 +1059,44 @@ fn measure_detection() {
             e.tag(),
             cells.join(", ")
         );
+        if matches!(e, Effect::Drift | Effect::GainWalk) {
+            eprintln!(
+                "{} on {design} sensor {sensor}, by realized size: {}",
+                e.tag(),
+                by_realized_size(&mine)
+            );
+        }
     }
 }
+
+/// A random-walk effect's cases by their realized size ([`third_generator::realized_size`]),
+/// in octaves: per octave the cases right (and wrong) of those whose walk wandered that far.
+fn by_realized_size(results: &[&(Case, Judgement, bool)]) -> String {
+    let mut octaves: std::collections::BTreeMap<i32, (usize, usize, usize)> = Default::default();
+    for (case, j, _) in results {
+        let bench = Bench {
+            effect: case.effect,
+            duration_s: case.duration_s(),
+            seed: case.seed,
+        };
+        let Some(r) = third_generator::realized_size(&bench) else {
+            continue;
+        };
+        let cell = octaves.entry(r.log2().floor() as i32).or_default();
+        cell.0 += usize::from(j.right && j.wrong.is_empty());
+        cell.1 += usize::from(!j.wrong.is_empty());
+        cell.2 += 1;
+    }
+    octaves
+        .iter()
+        .map(|(k, (right, wrong, n))| {
+            format!(
+                "×{}-{} {right}/{n} (wrong {wrong})",
+                2f64.powi(*k),
+                2f64.powi(*k + 1)
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+

@@ -311,10 +311,14 @@ impl Term {
         shapes
     }
 
-    /// Whether the term is a spread form ([`Term::spread`]), which the held-out samples choose
-    /// against the grid's best on the training ones.
+    /// Whether the term is a spread form, which the held-out samples choose against the grid's
+    /// best on the training ones: a relaxation's ([`Term::spread`]), and a creep's Prony
+    /// series where a rivalry scores it ([`Term::flexible`]). Chosen on the training samples
+    /// among the grid, the series' seven free weights always won, and read less on the held-out
+    /// ones than the one time constant it displaced (a simulator creep of τ = 10 s after a
+    /// `hysteresis`: −4.1 nats for the series against 11.9 for the grid's best).
     pub fn is_spread(&self) -> bool {
-        matches!(self, Term::RelaxationSpread { .. })
+        matches!(self, Term::RelaxationSpread { .. } | Term::Prony { .. })
     }
 
     /// Knots of the memoryless curve against which a hysteresis candidate's memory is scored:

@@ -474,3 +474,35 @@ pub fn write_recording(design: &Path, bench: &Bench, out: &Path) {
     .unwrap();
     std::fs::write(out.join("data.csv"), csv).unwrap();
 }
+
+/// The realized size of a random-walk effect of `bench` (the drift, the random-walk gain), or
+/// its nominal size for the others: the nominal size times the spread of its walk about its
+/// mean over the motion, relative to that spread's expectation (a walk from zero whose end has a
+/// spread of one: √(1/6)). A random walk's path, not its nominal size, is what a recording
+/// shows: one seed's walk at ×8 can wander less than another's at ×1 (the draws are the same as
+/// [`write_recording`]'s, in the same order).
+pub fn realized_size(bench: &Bench) -> Option<f64> {
+    let (effect, size, _) = bench.effect?;
+    if !matches!(effect, Effect::Drift | Effect::GainWalk) {
+        return Some(size.0);
+    }
+    let n = (bench.duration_s * SAMPLE_HZ) as usize;
+    let dt = 1.0 / SAMPLE_HZ;
+    let mut effect_rng = Rng::new(bench.seed ^ 0x9B05_688C_2B3E_6C1F);
+    // The cycle's period and phase come first.
+    effect_rng.uniform();
+    effect_rng.uniform();
+    let step = (dt / bench.duration_s).sqrt();
+    let rest = (REST_S * SAMPLE_HZ) as usize;
+    let mut walk = 0.0;
+    let mut path = Vec::with_capacity(n - rest.min(n));
+    for i in 0..n {
+        walk += step * effect_rng.normal();
+        if i >= rest {
+            path.push(walk);
+        }
+    }
+    let mean = path.iter().sum::<f64>() / path.len() as f64;
+    let spread = (path.iter().map(|w| (w - mean).powi(2)).sum::<f64>() / path.len() as f64).sqrt();
+    Some(size.0 * spread / (1.0_f64 / 6.0).sqrt())
+}
