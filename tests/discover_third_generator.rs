@@ -552,7 +552,12 @@ fn a_creep_of_many_time_constants_is_told_from_the_loop_its_lags_draw() {
             .find(|d| d["effect"] == "creep" && d["channel"] == "sensor1")
             .unwrap_or_else(|| panic!("{}: named {named:?}", case.name()));
         let calibration = &creep["calibration"];
-        assert_eq!(calibration["passed"], true, "{}: {calibration}", case.name());
+        assert_eq!(
+            calibration["passed"],
+            true,
+            "{}: {calibration}",
+            case.name()
+        );
         assert!(
             json["ambiguous"].as_array().unwrap().is_empty(),
             "{}: {}",
@@ -1099,4 +1104,3 @@ fn by_realized_size(results: &[&(Case, Judgement, bool)]) -> String {
         .collect::<Vec<_>>()
         .join(", ")
 }
-
