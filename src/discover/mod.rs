@@ -522,6 +522,11 @@ impl StageSearch<'_, '_> {
                 (Some(c.calibration), c.rivals, c.time)
             });
             let winner = self.refine(winner);
+            let winner = if options.fast {
+                winner
+            } else {
+                self.second_time_constant(winner, round)
+            };
             let form = self.form_fit(&winner);
             let Some((updated, fitted, rmse)) = self.extended(&winner) else {
                 break;
