@@ -527,8 +527,9 @@ fn a_named_effects_misfit_is_not_named_a_wandering_drift() {
 /// the loop cannot produce, and `creep` is named (src/discover/decide.rs, `rival`). At ×8 its
 /// one-term form read 17.5 nats, under the screen: a rival under the screen, it excluded the
 /// `hysteresis` and was never tried as a name itself; it now is, when it excludes every
-/// credible candidate, and its calibration says so (the rivals' one-nat screen, passed).
-/// Fails on the code before (each `ambiguous`).
+/// credible candidate, and its calibration says so (the rivals' one-nat screen, passed), with
+/// the test that excluded the loop among its rivals. Fails on the code before (each
+/// `ambiguous`).
 #[test]
 fn a_creep_of_many_time_constants_is_told_from_the_loop_its_lags_draw() {
     let dir = tempfile::tempdir().unwrap();
@@ -556,6 +557,15 @@ fn a_creep_of_many_time_constants_is_told_from_the_loop_its_lags_draw() {
             calibration["passed"],
             true,
             "{}: {calibration}",
+            case.name()
+        );
+        // The report says why the loop is not the name: its world cannot produce the creep.
+        let rivals = creep["rivals"].as_array().unwrap();
+        assert!(
+            rivals
+                .iter()
+                .any(|r| r["rival"] == "hysteresis" && r["verdict"] == "named"),
+            "{}: rivals {rivals:?}",
             case.name()
         );
         assert!(

@@ -159,6 +159,8 @@ impl StageSearch<'_, '_> {
         // The rivals that excluded a credible candidate: contenders of the ambiguity when
         // every credible one is excluded.
         let mut excluders: Vec<Effect> = Vec::new();
+        // Their tests, reported with the rival when it is named.
+        let mut exclusions: Vec<Rivalry> = Vec::new();
         let settle = Settle {
             scored: &scored,
             credible: &credible,
@@ -172,7 +174,11 @@ impl StageSearch<'_, '_> {
                 continue;
             }
             match self.settle(a, &settle, &excluded) {
-                Ok(pick) => match self.against_time_all(pick, &scored, round) {
+                Ok(pick) => match self.against_time_all(
+                    with_exclusions(pick, a.effect, &exclusions),
+                    &scored,
+                    round,
+                ) {
                     Ok(pick) => return pick,
                     // A change in time the library lacks explains the name: no other name is
                     // tried on this channel around it (a gain that fades, refused as
@@ -182,7 +188,8 @@ impl StageSearch<'_, '_> {
                 },
                 Err(by) => {
                     excluded.push(a.effect);
-                    excluders.extend(by);
+                    excluders.extend(by.iter().map(|t| t.rival));
+                    exclusions.extend(by);
                 }
             }
         }
@@ -199,7 +206,7 @@ impl StageSearch<'_, '_> {
         for q in excluders_under_screen {
             if let Ok(pick) = self.settle(q, &settle, &excluded) {
                 return self
-                    .against_time_all(pick, &scored, round)
+                    .against_time_all(with_exclusions(pick, q.effect, &exclusions), &scored, round)
                     .unwrap_or_else(refused);
             }
         }
@@ -352,13 +359,13 @@ impl StageSearch<'_, '_> {
 
     /// Candidate `a` tested against its rivals not yet excluded (the credible ones and those
     /// under the screen that beat the null): the verdict it settles (clear, or ambiguous with
-    /// what would separate them), or `Err` with the rivals that exclude it.
+    /// what would separate them), or `Err` with the tests of the rivals that exclude it.
     fn settle(
         &self,
         a: &Candidate,
         settle: &Settle,
         excluded: &[Effect],
-    ) -> Result<Pick, Vec<Effect>> {
+    ) -> Result<Pick, Vec<Rivalry>> {
         let quiet = settle
             .quiet
             .iter()
@@ -376,10 +383,10 @@ impl StageSearch<'_, '_> {
             .iter()
             .filter_map(|b| self.rival(a, &a_shapes, b, settle.round))
             .collect();
-        let by: Vec<Effect> = tests
+        let by: Vec<Rivalry> = tests
             .iter()
             .filter(|t| t.verdict == Verdict::Rival)
-            .map(|t| t.rival)
+            .cloned()
             .collect();
         if !by.is_empty() {
             return Err(by);
@@ -611,6 +618,37 @@ impl StageSearch<'_, '_> {
             verdict,
         })
     }
+}
+
+/// A name about to be given with the tests by which it excluded the candidates before it, told
+/// from its side, among its rivals: the report says why they are not the name.
+fn with_exclusions(pick: Pick, effect: Effect, exclusions: &[Rivalry]) -> Pick {
+    match pick {
+        Pick::Clear(c, runner, Some(mut calibrated)) => {
+            calibrated.rivals.extend(
+                exclusions
+                    .iter()
+                    .filter(|t| t.rival == effect)
+                    .filter_map(seen_from_the_rival),
+            );
+            Pick::Clear(c, runner, Some(calibrated))
+        }
+        pick => pick,
+    }
+}
+
+/// A rivalry the rival won, told from the rival's side: the rival named against the
+/// candidate it excluded. `None` when the rival's test was not made.
+fn seen_from_the_rival(t: &Rivalry) -> Option<Rivalry> {
+    Some(Rivalry {
+        effect: t.rival,
+        rival: t.effect,
+        evidence: t.rival_evidence,
+        rival_evidence: t.evidence,
+        beyond_rival: t.beyond_effect.clone()?,
+        beyond_effect: Some(t.beyond_rival.clone()),
+        verdict: Verdict::Named,
+    })
 }
 
 /// The scored candidates of an ambiguity's contenders, in its order; `None` when one is missing.

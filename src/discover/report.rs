@@ -209,8 +209,8 @@ fn candidates_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
          strain or time constant is then refined between the grid points (its parameters \
          under Result). A creep may be named with two time constants (fast_tau_s and \
          fast_fraction): in that form when it settles a near tie the one-term creep leads, or \
-         when its second term adds the threshold over the first; its evidence under Result is \
-         then that form's.",
+         when its second term adds the threshold over the first, or less that beats copies of \
+         the one-term model; its evidence under Result is then that form's.",
     );
 }
 
@@ -306,6 +306,20 @@ fn calibration_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         ]);
     }
     page.table(table);
+    // A name given under the screen, as the rival that excluded every name over it.
+    for d in &outcome.discovered {
+        if let Some(c) = d.calibration.as_ref().filter(|c| c.screen < SCREEN_NATS) {
+            page.text(format!(
+                "{} on {} read {:.1} nats, under the {SCREEN_NATS}-nat screen: it is named as \
+                 the rival that excluded every name over the screen (the rival tests below), \
+                 at the rivals' {}-nat screen and the same bound.",
+                d.effect.name(),
+                d.channel.name(),
+                c.observed,
+                c.screen
+            ));
+        }
+    }
     rival_table(page, outcome);
     calibration_figure(page, &tests, at);
 }

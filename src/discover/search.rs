@@ -647,8 +647,7 @@ impl StageSearch<'_, '_> {
         }
         let seed = 0x2C4E_E900_0000_0000 ^ ((round as u64) << 40);
         let fuller = self.model.with(two.term.clone());
-        let calibration =
-            self.bootstrap(&one, &fuller, &shapes, evidence, RIVAL_SCREEN_NATS, seed);
+        let calibration = self.bootstrap(&one, &fuller, &shapes, evidence, RIVAL_SCREEN_NATS, seed);
         if calibration.passed {
             self.refined(two)
         } else {
