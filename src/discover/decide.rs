@@ -143,7 +143,6 @@ impl StageSearch<'_, '_> {
             // explains is that form's misfit.
             return Pick::Declined(top.clone(), null, None, self.over_richer(top));
         }
-        let mut excluded: Vec<Effect> = Vec::new();
         // The screen is for speed, not a rule: a rival under it that beats the null can
         // produce what the name explains (a random-walk drift's `drift`, 17.7 nats, under its
         // `gain_drift`'s 24.7; a creep of six time constants' `creep`, 16.4, under the
@@ -156,11 +155,6 @@ impl StageSearch<'_, '_> {
                 e < SCREEN_NATS && e > RIVAL_SCREEN_NATS && e > null.bound_or_inf()
             })
             .collect();
-        // The rivals that excluded a credible candidate: contenders of the ambiguity when
-        // every credible one is excluded.
-        let mut excluders: Vec<Effect> = Vec::new();
-        // Their tests, reported with the rival when it is named.
-        let mut exclusions: Vec<Rivalry> = Vec::new();
         let settle = Settle {
             scored: &scored,
             credible: &credible,
@@ -169,23 +163,30 @@ impl StageSearch<'_, '_> {
             null: &null,
             round,
         };
-        for a in &credible {
+        // A change in time the library lacks explains the name: no other name is tried on
+        // this channel around it (a gain that fades, refused as `gain_drift`, was then named
+        // `hysteresis`); the `unexplained` test follows.
+        self.against_time_all(self.settle_all(&settle), &scored, round)
+            .unwrap_or_else(refused)
+    }
+
+    /// The credible candidates, best first, each settled against its rivals: the first that
+    /// none excludes is the verdict (named, or ambiguous with what would separate them); when
+    /// every one is excluded, a rival under the screen that excluded them and that nothing
+    /// left excludes; otherwise an ambiguity among them and their excluders.
+    fn settle_all(&self, settle: &Settle) -> Pick {
+        let mut excluded: Vec<Effect> = Vec::new();
+        // The rivals that excluded a credible candidate: contenders of the ambiguity when
+        // every credible one is excluded.
+        let mut excluders: Vec<Effect> = Vec::new();
+        // Their tests, reported with the rival when it is named.
+        let mut exclusions: Vec<Rivalry> = Vec::new();
+        for a in settle.credible {
             if excluded.contains(&a.effect) {
                 continue;
             }
-            match self.settle(a, &settle, &excluded) {
-                Ok(pick) => match self.against_time_all(
-                    with_exclusions(pick, a.effect, &exclusions),
-                    &scored,
-                    round,
-                ) {
-                    Ok(pick) => return pick,
-                    // A change in time the library lacks explains the name: no other name is
-                    // tried on this channel around it (a gain that fades, refused as
-                    // `gain_drift`, was then named `hysteresis`); the `unexplained` test
-                    // follows.
-                    Err(refusal) => return refused(refusal),
-                },
+            match self.settle(a, settle, &excluded) {
+                Ok(pick) => return with_exclusions(pick, a.effect, &exclusions),
                 Err(by) => {
                     excluded.push(a.effect);
                     excluders.extend(by.iter().map(|t| t.rival));
@@ -200,30 +201,33 @@ impl StageSearch<'_, '_> {
         // of six time constants at ×8 (third generator, Joint A, seed 3) scored 17.5 nats in
         // its one-term form, excluded the `hysteresis` its lags drew (29.4), and was left
         // `ambiguous` with it.
-        let excluders_under_screen = quiet
+        let excluders_under_screen = settle
+            .quiet
             .iter()
             .filter(|c| excluders.contains(&c.effect) && !excluded.contains(&c.effect));
         for q in excluders_under_screen {
-            if let Ok(pick) = self.settle(q, &settle, &excluded) {
-                return self
-                    .against_time_all(with_exclusions(pick, q.effect, &exclusions), &scored, round)
-                    .unwrap_or_else(refused);
+            if let Ok(pick) = self.settle(q, settle, &excluded) {
+                return with_exclusions(pick, q.effect, &exclusions);
             }
         }
         // Every credible candidate was excluded by another: the data shows something none of
         // them alone produces.
-        let ambiguity = Pick::Ambiguous(Ambiguity {
+        Pick::Ambiguous(Ambiguity {
             channel: self.channel,
-            contenders: credible
+            contenders: settle
+                .credible
                 .iter()
-                .chain(quiet.iter().filter(|c| excluders.contains(&c.effect)))
+                .chain(
+                    settle
+                        .quiet
+                        .iter()
+                        .filter(|c| excluders.contains(&c.effect)),
+                )
                 .map(|c| (c.effect, c.evidence))
                 .collect(),
             separate: Vec::new(),
             rivals: Vec::new(),
-        });
-        self.against_time_all(ambiguity, &scored, round)
-            .unwrap_or_else(refused)
+        })
     }
 
     /// A candidate's evidence over the richer forms of the effects named before it: the
