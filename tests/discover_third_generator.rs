@@ -382,6 +382,16 @@ fn discovered_right(
     (json, rec, out)
 }
 
+/// That the report of `case` leaves nothing `ambiguous`.
+fn assert_nothing_ambiguous(json: &serde_json::Value, case: &Case) {
+    assert!(
+        json["ambiguous"].as_array().unwrap().is_empty(),
+        "{}: {}",
+        case.name(),
+        json["ambiguous"]
+    );
+}
+
 /// The wrong names `dlw discover` gives on Joint A's sensor 1 for each `(effect, size, seed)`.
 fn wrong_names(dir: &Path, found: &[(Effect, f64, u64)]) -> Vec<(String, Vec<String>)> {
     found
@@ -491,12 +501,7 @@ fn a_random_walk_drift_is_not_left_ambiguous_between_two_other_names() {
             "{}: declined {declined:?}",
             case.name()
         );
-        assert!(
-            json["ambiguous"].as_array().unwrap().is_empty(),
-            "{}: {}",
-            case.name(),
-            json["ambiguous"]
-        );
+        assert_nothing_ambiguous(&json, &case);
     }
 }
 
@@ -568,12 +573,7 @@ fn a_creep_of_many_time_constants_is_told_from_the_loop_its_lags_draw() {
             "{}: rivals {rivals:?}",
             case.name()
         );
-        assert!(
-            json["ambiguous"].as_array().unwrap().is_empty(),
-            "{}: {}",
-            case.name(),
-            json["ambiguous"]
-        );
+        assert_nothing_ambiguous(json, case);
     }
 }
 
