@@ -13,10 +13,10 @@
 //! ≥ 80 % (`discover_meets_the_detection_figures_on_the_third_generator`). The two tests share
 //! one run of the cases. Most effects have no detection size up to ×8 (docs/discovery.md,
 //! "Detection against size"). CI runs Joint A's effects at ×1 and at ×2 or their detection size,
-//! and two of Joint C's; `DLW_DISCOVER_FULL=1 cargo test --release --test
+//! and three of Joint C's; `DLW_DISCOVER_FULL=1 cargo test --release --test
 //! discover_third_generator -- --nocapture` runs three seeds of every effect at ×0.5, ×1, ×2 on
-//! both joints and at ×4 and ×8 on Joint A where physical, with their clean twins and more
-//! controls, 100 clean recordings per joint. The ignored `measure_detection` is the measurement
+//! both joints and at ×4 and ×8 where physical, with their clean twins and more controls, 100
+//! clean recordings per joint. The ignored `measure_detection` is the measurement
 //! behind [`DETECTION`] and the clean controls' rate (its docs give the command).
 
 mod common;
@@ -33,12 +33,15 @@ use std::sync::OnceLock;
 /// every seed (the right effect named first on the right channel, no wrong name; a gain flagged
 /// or named `gain_drift` there), measured in release by `measure_detection`: Joint A on
 /// 2026-11-27 after the hinges, a change in time as the richer form of `drift` and
-/// `gain_drift`, and the one-nat rival screen (seeds 1-12 at ×0.5, ×1, ×2, ×4, ×8 on sensor 1); Joint C on 2026-11-27 (seeds 1-3 on sensor 2 at ×0.5, ×1, ×2, and at
-/// ×4, ×8 where physical, on sensor 1 at ×0.5-×2, and seeds 4-6 of the relaxation and the creep
-/// at ×0.5-×2; the creep and the hysteresis again after the change, seeds 1-3 on sensor 2;
-/// docs/discovery.md, "Detection against size"). `INFINITY`: not right on every seed at any
-/// size up to the largest measured, so nothing is asserted (the shares are in the docs). Above
-/// it the 95 % (80 % for the gains) is asserted on the CI cases.
+/// `gain_drift`, and the one-nat rival screen (seeds 1-12 at ×0.5, ×1, ×2, ×4, ×8 on sensor
+/// 1); Joint C on 2026-11-27 (seeds 1-3 on sensor 2 at ×0.5, ×1, ×2, and at ×4, ×8 where
+/// physical, on sensor 1 at ×0.5-×2, and seeds 4-6 of the relaxation and the creep at
+/// ×0.5-×2; the creep and the hysteresis again after the change, seeds 1-3 on sensor 2;
+/// docs/discovery.md, "Detection against size"), and its drift, saturation and cycling gain at
+/// ×4 and ×8 on 2026-11-28 (seeds 1-12 on sensor 2, 1-6 on sensor 1; the drift's size is the
+/// one exception to the rule, its comment says why). `INFINITY`: not right on every seed at
+/// any size up to the largest measured, so nothing is asserted (the shares are in the docs).
+/// Above it the 95 % (80 % for the gains) is asserted on the CI cases.
 const DETECTION: [(Effect, f64, f64); 7] = [
     // Joint A: 12/12 at ×1 to ×8, 11/12 at ×0.5, since the relaxation's spread form
     // (2026-11-27; before it seed 3 was never named, flagged `unexplained` on plant, 11/12).
@@ -54,12 +57,19 @@ const DETECTION: [(Effect, f64, f64); 7] = [
     (Effect::Hysteresis, 2.0, f64::INFINITY),
     // Joint A: 12/12 at ×1 to ×8 (at ×4 one wrong `ambiguous` before the hinges). Joint C:
     // sensor 2 2/3 at ×1, 1/3 at ×2, 0/3 at ×4 and ×8 (with 11 blocks 0/3 at ×0.5-×2; with
-    // blocks no longer than half a knot 0/3, 0/3, 1/3).
+    // blocks no longer than half a knot 0/3, 0/3, 1/3; 2026-11-28, seeds 1-12, 0/12 at ×4 and
+    // at ×8: the stronger the saturation, the flatter the compression sensor's response and
+    // the less of it a line does not fit); sensor 1 (seeds 1-6) 5/6 at ×4, 0/6 at ×8, flagged
+    // `unexplained` (a curve).
     (Effect::Saturation, 1.0, f64::INFINITY),
     // Joint A: 1/12 at ×0.5, 4/12 at ×1, 5/12 at ×2 and ×4, 6/12 at ×8 since the wandering
-    // baseline (2026-11-27; before it 1/12 at ×0.5 to ×4, 2/12 at ×8). Joint C: 0/3, 0/3, 2/3
-    // at ×0.5-×2 with blocks no longer than half a knot (1/3 at ×2 before).
-    (Effect::Drift, f64::INFINITY, f64::INFINITY),
+    // baseline (2026-11-27; before it 1/12 at ×0.5 to ×4, 2/12 at ×8); 7/12 at ×16 and 6/12 at
+    // ×32 (2026-11-28): no size is large enough, as the walk also runs through the rest the
+    // noise model is frozen from. Joint C: 0/3, 0/3, 2/3 at ×0.5-×2 with blocks no longer than
+    // half a knot (1/3 at ×2 before); from ×4 (2026-11-28, seeds 1-12) 24/24 on sensor 2 and
+    // (seeds 1-6) 11/12 on sensor 1, whose ×8 of seed 1 is flagged `unexplained`: 35 of 36,
+    // 97 %, the size from which the 95 % holds (not every seed, as for the others).
+    (Effect::Drift, f64::INFINITY, 4.0),
     // Joint A: 10/12 at ×2 and ×4, the largest physical size (9/12 with 10 blocks). Joint C:
     // 0/18 at ×0.5-×2 until its blocks were no longer than half a knot, then 0/6, 2/6, 4/6
     // (seeds 1-6; ×1 is its largest physical size).
@@ -69,7 +79,7 @@ const DETECTION: [(Effect, f64, f64); 7] = [
     // At ×8 it failed on seed 3 before the range check (its `gain_drift`'s fade, 26.9 /h, out
     // of the scenario's range; now declined and flagged). Joint C: 0/3 at ×0.5-×4 until its
     // held-out blocks were 273 s long; with blocks no longer than half a knot (2026-11-28)
-    // 6/6 at ×1 and ×2 (seeds 1-6), 3/3 at ×4, 0/6 at ×0.5.
+    // 6/6 at ×1 and ×2 (seeds 1-6), 3/3 at ×4 (6/6 later that day), 0/6 at ×0.5.
     (Effect::GainCycle, 2.0, 1.0),
 ];
 
@@ -686,8 +696,9 @@ fn run_cases() -> Summary {
     if full {
         for seed in 0..3u64 {
             for (i, effect) in Effect::ALL.into_iter().enumerate() {
-                // Joint A also at the larger sizes where they are physical; Joint C's are
-                // already ×4 the constants.
+                // Both joints also at the larger sizes where they are physical (Joint C's
+                // sensor effects are already ×4 the constants there, so fewer are); the three
+                // sizes of the tests on both, physical or not.
                 for (j, size) in Size::ALL.into_iter().chain(Size::LARGE).enumerate() {
                     let s = 10_000 + 100 * seed + 10 * i as u64 + j as u64;
                     if size.0 <= effect.largest_physical(false) {
@@ -697,7 +708,7 @@ fn run_cases() -> Summary {
                             seed: s,
                         });
                     }
-                    if j >= Size::ALL.len() {
+                    if j >= Size::ALL.len() && size.0 > effect.largest_physical(true) {
                         continue;
                     }
                     cases.push(Case {
@@ -747,6 +758,16 @@ fn run_cases() -> Summary {
             design: "joint-c.toml",
             effect: Some((Effect::GainCycle, Size(2.0), 1)),
             seed: 15_006,
+        });
+        // Joint C's drift at its detection size, on the compression sensor.
+        cases.push(Case {
+            design: "joint-c.toml",
+            effect: Some((
+                Effect::Drift,
+                Size(detection("joint-c.toml", Effect::Drift)),
+                2,
+            )),
+            seed: 15_004,
         });
         for seed in 0..3 {
             cases.push(Case {
