@@ -130,6 +130,12 @@ fn named_effect_goes_into_a_scenario_that_simulates_and_the_holdout_is_used() {
     ] {
         assert!(html.contains(part), "report lacks {part}");
     }
+    // The gap over the noise at rest, in the report's sentence, is the JSON's numbers'.
+    for g in json["gaps"].as_array().unwrap() {
+        let ratio = g["after"].as_f64().unwrap() / g["noise_floor"].as_f64().unwrap();
+        let said = format!("{ratio:.1} on {}", g["channel"].as_str().unwrap());
+        assert!(html.contains(&said), "report lacks \"{said}\"");
+    }
     // Given as the base scenario, the backlash is not named again.
     let base = d.join("base.toml");
     std::fs::write(&base, BACKLASH).unwrap();

@@ -149,6 +149,7 @@ fn gap_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         "before",
         "after each named effect",
         "after",
+        "after / noise at rest",
         "in degrees of estimate",
     ]);
     for g in &outcome.gaps {
@@ -162,6 +163,7 @@ fn gap_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
                 .collect::<Vec<_>>()
                 .join(", "),
             format!("{:.4} {}", g.after, g.unit),
+            rest_ratio(g).map_or("–".into(), |r| format!("{r:.1}")),
             match (g.before_deg, g.after_deg) {
                 (Some(b), Some(a)) => format!("{b:.3}° → {a:.3}°"),
                 _ => "–".into(),
@@ -169,6 +171,26 @@ fn gap_section(page: &mut Page, outcome: &Outcome, at: Placement<'_>) {
         ]);
     }
     page.table(gaps);
+    let ratios: Vec<String> = outcome
+        .gaps
+        .iter()
+        .filter_map(|g| rest_ratio(g).map(|r| format!("{r:.1} on {}", g.channel.name())))
+        .collect();
+    if !ratios.is_empty() {
+        page.text(format!(
+            "After the named effects, the held-out gap is this many times the noise at rest: {}. \
+             The noise over a whole run can wander more than over the rest it is frozen from, so \
+             a ratio above 1 names nothing by itself; where nothing is named or flagged, it is the \
+             size of what, if anything, the tests could not tell from that noise.",
+            ratios.join(", ")
+        ));
+    }
+}
+
+/// A channel's held-out gap after the named effects over its noise at rest; `None` when the
+/// rest shows no noise.
+fn rest_ratio(g: &super::Gap) -> Option<f64> {
+    (g.noise_floor > 0.0 && g.after.is_finite()).then(|| g.after / g.noise_floor)
 }
 
 /// The noise model frozen from the rest, per channel.
