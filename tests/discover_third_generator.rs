@@ -19,8 +19,9 @@
 //! clean recordings per joint. That run fails since it includes Joint C's ×4 and ×8 (stop 49,
 //! 2026-11-28): the plant relaxation ×4 of seed 15003 also names `drift` on sensor 2, as its
 //! clean twin does, a slow wander of the noise the copies do not carry (docs/discovery.md,
-//! "The full-size run with Joint C's larger sizes finds a false `drift`"). Not fixed. The ignored `measure_detection` is the measurement
-//! behind [`DETECTION`] and the clean controls' rate (its docs give the command).
+//! "The full-size run with Joint C's larger sizes finds a false `drift`"). Not fixed. The
+//! ignored `measure_detection` is the measurement behind [`DETECTION`] and the clean controls'
+//! rate (its docs give the command).
 
 mod common;
 use common::discovery::{judge, try_discover_json, Judgement, Truth};
