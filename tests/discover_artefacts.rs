@@ -5,19 +5,29 @@
 //! (a connector knocked) is a change in time: it may be named `drift` or flagged as a change in
 //! time on the sensor, and nothing else.
 //!
+//! And the ways another lab's logger differs from the generator's, none of which discovery was
+//! built next to: noise with heavy tails (Student's t with 3 degrees of freedom) or a 1/f
+//! spectrum down to the record's length, a logger at 100 Hz instead of 500 Hz, a tracker that
+//! reports to 0.1°. On a clean recording each names, flags and leaves ambiguous nothing; on a
+//! hysteresis ×2 (its detection size) each still names `hysteresis` first on the sensor, with
+//! no other name.
+//!
 //! The recordings are the third generator's clean ones (coloured noise close to 1/f), with the
 //! artefact added to the divider voltage afterwards, as a logger would record it.
 
 mod common;
 use common::discovery::{contenders, named, try_discover_json};
+use common::rng::Rng;
 use common::shipped_design;
-use common::third_generator::{self, Bench};
+use common::third_generator::{self, Bench, Effect, Size};
 
 use rayon::prelude::*;
 use std::path::Path;
 
 /// The clean recordings' seeds (Joint A, 300 s).
 const SEEDS: [u64; 2] = [3, 4];
+/// The seeds of the hysteresis recordings (Joint A, 300 s), other than the clean ones'.
+const EFFECT_SEEDS: [u64; 2] = [21_001, 21_002];
 
 /// An artefact added to the divider voltage `v` (V) at the times `t` (s), given the noise's
 /// per-sample spread `sigma` (V).
@@ -69,10 +79,80 @@ fn step(t: &[f64], v: &mut [f64], sigma: f64) {
     }
 }
 
-/// Writes the clean recording of `seed` into `rec` with `artefact` added to its voltage.
-fn write_with(rec: &Path, seed: u64, artefact: Artefact) {
+/// Heavy-tailed noise of the noise's spread: Student's t with 3 degrees of freedom (variance 3),
+/// scaled.
+fn heavy_tails(_: &[f64], v: &mut [f64], sigma: f64) {
+    let mut rng = Rng::new(0x7A11);
+    for v in v.iter_mut() {
+        let chi2: f64 = (0..3).map(|_| rng.normal().powi(2)).sum();
+        *v += sigma / 3f64.sqrt() * rng.normal() / (chi2 / 3.0).sqrt();
+    }
+}
+
+/// 1/f noise of the noise's spread, from 0.01 s to the record's length: twelve AR(1) terms with
+/// correlation times spaced evenly in log, of equal variance (a flicker noise's spectrum).
+fn flicker(t: &[f64], v: &mut [f64], sigma: f64) {
+    let mut rng = Rng::new(0xF11C);
+    let dt = t[1] - t[0];
+    let (lo, hi) = (0.01_f64, t[t.len() - 1]);
+    let terms = 12;
+    let spread = sigma / (terms as f64).sqrt();
+    let mut states: Vec<(f64, f64)> = (0..terms)
+        .map(|k| {
+            let tau = lo * (hi / lo).powf(k as f64 / (terms - 1) as f64);
+            ((-dt / tau).exp(), spread * rng.normal())
+        })
+        .collect();
+    for v in v.iter_mut() {
+        for (phi, state) in &mut states {
+            *state = *phi * *state + (1.0 - *phi * *phi).sqrt() * spread * rng.normal();
+            *v += *state;
+        }
+    }
+}
+
+/// A recording's columns, to change as another logger would have written them.
+struct Rows {
+    header: String,
+    columns: Vec<Vec<f64>>,
+    sample_hz: f64,
+}
+
+/// A change to a recording: an artefact on its voltage, or one to its rows.
+#[derive(Clone, Copy)]
+enum Change {
+    Voltage(Artefact),
+    Rows(fn(&mut Rows)),
+}
+
+/// A logger at 100 Hz: the means of five samples, stamped at the first.
+fn at_100_hz(r: &mut Rows) {
+    for (k, column) in r.columns.iter_mut().enumerate() {
+        *column = column
+            .chunks_exact(5)
+            .map(|c| {
+                if k == 0 {
+                    c[0]
+                } else {
+                    c.iter().sum::<f64>() / 5.0
+                }
+            })
+            .collect();
+    }
+    r.sample_hz /= 5.0;
+}
+
+/// A tracker that reports to 0.1°.
+fn tracker_to_a_tenth(r: &mut Rows) {
+    for a in &mut r.columns[2] {
+        *a = (*a * 10.0).round() / 10.0;
+    }
+}
+
+/// Writes the recording of `seed` (clean, or with `effect`) into `rec` with `change` made.
+fn write_with(rec: &Path, seed: u64, effect: Option<(Effect, Size, usize)>, change: Change) {
     let bench = Bench {
-        effect: None,
+        effect,
         duration_s: 300.0,
         seed,
     };
@@ -82,35 +162,73 @@ fn write_with(rec: &Path, seed: u64, artefact: Artefact) {
     let mut lines = text.lines();
     let header = lines.next().unwrap().to_owned();
     assert_eq!(header, "time_s,stroke_mm,angle_deg,v1_V");
-    let rows: Vec<Vec<String>> = lines
-        .map(|l| l.split(',').map(str::to_owned).collect())
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
         .collect();
-    let column = |k: usize| -> Vec<f64> { rows.iter().map(|r| r[k].parse().unwrap()).collect() };
-    let t = column(0);
-    let mut v = column(3);
-    // The noise's spread from the differences of successive samples (the signal is slow).
-    let diffs: Vec<f64> = v.windows(2).map(|w| w[1] - w[0]).collect();
-    let mean = diffs.iter().sum::<f64>() / diffs.len() as f64;
-    let var = diffs.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / diffs.len() as f64;
-    let sigma = (var / 2.0).sqrt();
-    artefact(&t, &mut v, sigma);
-    let mut out = header;
+    let mut r = Rows {
+        header,
+        columns: (0..4)
+            .map(|k| rows.iter().map(|row| row[k]).collect())
+            .collect(),
+        sample_hz: third_generator::SAMPLE_HZ,
+    };
+    match change {
+        Change::Voltage(artefact) => {
+            let v = &r.columns[3];
+            // The noise's spread from the differences of successive samples (the signal is
+            // slow).
+            let diffs: Vec<f64> = v.windows(2).map(|w| w[1] - w[0]).collect();
+            let mean = diffs.iter().sum::<f64>() / diffs.len() as f64;
+            let var = diffs.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / diffs.len() as f64;
+            let sigma = (var / 2.0).sqrt();
+            let (t, rest) = r.columns.split_at_mut(3);
+            artefact(&t[0], &mut rest[0], sigma);
+        }
+        Change::Rows(change) => change(&mut r),
+    }
+    let mut out = r.header.clone();
     out.push('\n');
-    for (r, v) in rows.iter().zip(&v) {
-        out.push_str(&format!("{},{},{},{v:.6}\n", r[0], r[1], r[2]));
+    for i in 0..r.columns[0].len() {
+        let c = |k: usize| r.columns[k][i];
+        out.push_str(&format!(
+            "{:.6},{:.6},{:.4},{:.6}\n",
+            c(0),
+            c(1),
+            c(2),
+            c(3)
+        ));
     }
     std::fs::write(&csv, out).unwrap();
+    let rig = rec.join("rig.toml");
+    let text = std::fs::read_to_string(&rig).unwrap();
+    let hz = format!("sample_hz = {:.1}", third_generator::SAMPLE_HZ);
+    assert!(text.contains(&hz), "{text}");
+    std::fs::write(
+        &rig,
+        text.replace(&hz, &format!("sample_hz = {:.1}", r.sample_hz)),
+    )
+    .unwrap();
 }
 
 /// `dlw discover --json` on each seed's clean recording with `artefact`.
 fn reports(name: &str, artefact: Artefact) -> Vec<(String, serde_json::Value)> {
+    reports_of(name, &SEEDS, None, Change::Voltage(artefact))
+}
+
+/// `dlw discover --json` on each of `seeds`' recordings (clean, or with `effect`) with `change`.
+fn reports_of(
+    name: &str,
+    seeds: &[u64],
+    effect: Option<(Effect, Size, usize)>,
+    change: Change,
+) -> Vec<(String, serde_json::Value)> {
     let dir = tempfile::tempdir().unwrap();
-    SEEDS
+    seeds
         .par_iter()
         .map(|&seed| {
             let case = format!("{name}-{seed}");
             let rec = dir.path().join(&case);
-            write_with(&rec, seed, artefact);
+            write_with(&rec, seed, effect, change);
             let out = dir.path().join(format!("{case}-out"));
             let json = try_discover_json(&shipped_design("joint-a.toml"), &rec, &out)
                 .unwrap_or_else(|e| panic!("{case}: {e}"));
@@ -121,7 +239,12 @@ fn reports(name: &str, artefact: Artefact) -> Vec<(String, serde_json::Value)> {
 
 /// Every report names nothing, flags nothing and leaves nothing ambiguous.
 fn assert_quiet(name: &str, artefact: Artefact) {
-    for (case, json) in reports(name, artefact) {
+    assert_quiet_with(name, Change::Voltage(artefact));
+}
+
+/// As [`assert_quiet`], for any change.
+fn assert_quiet_with(name: &str, change: Change) {
+    for (case, json) in reports_of(name, &SEEDS, None, change) {
         assert!(named(&json).is_empty(), "{case}: named {:?}", named(&json));
         assert_eq!(
             json["unexplained"].as_array().unwrap().len(),
@@ -184,5 +307,42 @@ fn a_step_in_the_baseline_is_a_change_in_time_on_the_sensor() {
             .map(contenders)
             .collect();
         assert!(open.is_empty(), "{case}: ambiguous {open:?}");
+    }
+}
+
+#[test]
+fn heavy_tailed_or_flicker_noise_is_not_an_effect() {
+    assert_quiet("heavy-tails", heavy_tails);
+    assert_quiet("flicker", flicker);
+}
+
+#[test]
+fn a_slower_logger_or_a_coarser_tracker_is_not_an_effect() {
+    assert_quiet_with("100-hz", Change::Rows(at_100_hz));
+    assert_quiet_with("tracker-0.1", Change::Rows(tracker_to_a_tenth));
+}
+
+/// A hysteresis at its detection size is still named first on its sensor, and nothing else is
+/// named, whatever the logger: `ambiguous` only on the sensor with `hysteresis` among the
+/// contenders (the rule).
+#[test]
+fn a_hysteresis_is_still_named_under_another_loggers_noise_and_rate() {
+    let hysteresis = Some((Effect::Hysteresis, Size(2.0), 1));
+    let truth = ("hysteresis".to_owned(), "sensor1".to_owned());
+    for (name, change) in [
+        ("hysteresis-heavy-tails", Change::Voltage(heavy_tails)),
+        ("hysteresis-100-hz", Change::Rows(at_100_hz)),
+    ] {
+        for (case, json) in reports_of(name, &EFFECT_SEEDS, hysteresis, change) {
+            let names = named(&json);
+            assert_eq!(names.first(), Some(&truth), "{case}: named {names:?}");
+            assert!(names.iter().all(|n| *n == truth), "{case}: named {names:?}");
+            for a in json["ambiguous"].as_array().unwrap() {
+                assert!(
+                    a["channel"] == "sensor1" && contenders(a).contains(&truth.0),
+                    "{case}: ambiguous {a}"
+                );
+            }
+        }
     }
 }
