@@ -223,6 +223,55 @@ fn bad_input_is_refused_and_nothing_is_written() {
         &out,
         &["at rest", "4 s"],
     );
+    // A tracker reporting the bend with the other sign: refused before the search, not a
+    // scenario with the nominal plant gain and a negative gauge factor (exit 0 before).
+    let flipped = with_columns(&uan, &d.join("flipped"), |header, row| {
+        let k = header.iter().position(|h| h == "angle_deg").unwrap();
+        row[k] = format!("{}", -row[k].parse::<f64>().unwrap());
+    });
+    let out = d.join("o5");
+    check(
+        discover("joint-a.toml", &flipped, &out, &[]),
+        &out,
+        &["plant's base gain is -", "above 0", "other sign"],
+    );
+    // A BSN joint's voltage columns swapped: sensor 1 reads the side that shortens.
+    let bsn = simulate(d, "bsn", "joint-c.toml", "200", "1", None);
+    let swapped = with_columns(&bsn, &d.join("swapped"), |header, row| {
+        let (a, b) = (
+            header.iter().position(|h| h == "v1_V").unwrap(),
+            header.iter().position(|h| h == "v2_V").unwrap(),
+        );
+        row.swap(a, b);
+    });
+    let out = d.join("o6");
+    check(
+        discover("joint-c.toml", &swapped, &out, &[]),
+        &out,
+        &["sensor1's resistance falls", "base gain is -", "above 0"],
+    );
+    let out = d.join("o7");
+    let o = discover("joint-c.toml", &bsn, &out, &["--fast"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// A copy of recording `rec` at `to`, each data row changed by `change` (given the header).
+fn with_columns(rec: &Path, to: &Path, change: impl Fn(&[String], &mut Vec<String>)) -> PathBuf {
+    std::fs::create_dir_all(to).unwrap();
+    std::fs::copy(rec.join("rig.toml"), to.join("rig.toml")).unwrap();
+    let csv = std::fs::read_to_string(rec.join("data.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header_line = lines.next().unwrap();
+    let header: Vec<String> = header_line.split(',').map(str::to_owned).collect();
+    let mut out = format!("{header_line}\n");
+    for l in lines {
+        let mut row: Vec<String> = l.split(',').map(str::to_owned).collect();
+        change(&header, &mut row);
+        out.push_str(&row.join(","));
+        out.push('\n');
+    }
+    std::fs::write(to.join("data.csv"), out).unwrap();
+    to.to_path_buf()
 }
 
 /// The README tour's discovery, as the tour runs it (Joint A, 300 s, realistic noise, the

@@ -176,6 +176,20 @@ pub enum DiscoverError {
         /// Stage.
         channel: String,
     },
+    /// The measured angle runs against the stroke.
+    #[error("the measured angle falls as the stroke rises: the plant's base gain is {gain_deg_per_mm:.4} ° per mm, and the design's convention needs it above 0 (pulling the tendon bends the joint to positive angles). The tracker's angle, or the stroke, has the other sign: correct it in the recording")]
+    PlantSign {
+        /// The fitted gain (° per mm).
+        gain_deg_per_mm: f64,
+    },
+    /// A sensor's resistance falls as its side stretches.
+    #[error("{channel}'s resistance falls as the joint bends: its base gain is {gain_ohm_per_strain:.4e} Ω per unit strain, and the design needs it above 0 (the sensor's resistance rises with its own side's strain, as `dlw fit` needs too). A reversed tracker angle or swapped voltage columns do this: correct the recording")]
+    SensorSign {
+        /// The sensor.
+        channel: String,
+        /// The fitted gain (Ω per unit strain).
+        gain_ohm_per_strain: f64,
+    },
 }
 
 /// One candidate's score in one round.

@@ -239,6 +239,21 @@ impl<'a> Search<'a> {
             let noise = ArNoise::fit(&residual[self.data.measured_rest()]);
             let base = fit(&design, &noise, &self.train)
                 .ok_or(DiscoverError::Base { channel: ch.name() })?;
+            // The sign conventions every later fit and the scenario rely on (`dlw simulate`
+            // takes a positive plant gain; a PI model, a rising loop): a recording against them
+            // is refused here, not after the search with a scenario that keeps the nominal gain.
+            let gain = base.gain();
+            if !(gain > 0.0) {
+                return Err(match ch {
+                    Stage::Plant => DiscoverError::PlantSign {
+                        gain_deg_per_mm: gain,
+                    },
+                    Stage::Sensor(_) => DiscoverError::SensorSign {
+                        channel: ch.name(),
+                        gain_ohm_per_strain: gain,
+                    },
+                });
+            }
             self.bases.insert(ch, base);
             self.noises.insert(ch, noise);
             self.base_models.insert(ch, m);
