@@ -184,6 +184,9 @@ fn try_run(dir: &Path, case: &Case) -> Result<serde_json::Value, String> {
     json
 }
 
+/// One case's run: the case, its judgement, what the report said, and what it named.
+type Outcome = (Case, Judgement, String, Vec<(String, String)>);
+
 /// What one run of the cases found.
 struct Summary {
     wrong: Vec<(String, String)>,
@@ -788,7 +791,7 @@ fn run_cases() -> Summary {
         }
     }
     let dir = tempfile::tempdir().unwrap();
-    let results: Vec<(Case, Judgement, String, Vec<(String, String)>)> = cases
+    let results: Vec<Outcome> = cases
         .par_iter()
         .map(|case| {
             let json = run(dir.path(), case);

@@ -243,7 +243,7 @@ impl<'a> Search<'a> {
             // takes a positive plant gain; a PI model, a rising loop): a recording against them
             // is refused here, not after the search with a scenario that keeps the nominal gain.
             let gain = base.gain();
-            if !(gain > 0.0) {
+            if gain.is_nan() || gain <= 0.0 {
                 return Err(match ch {
                     Stage::Plant => DiscoverError::PlantSign {
                         gain_deg_per_mm: gain,
