@@ -8,7 +8,8 @@
 //! And the ways another lab's logger differs from the generator's, none of which discovery was
 //! built next to: noise with heavy tails (Student's t with 3 degrees of freedom) or a 1/f
 //! spectrum down to the record's length, a logger at 100 Hz instead of 500 Hz, a tracker that
-//! reports to 0.1°. On a clean recording each names, flags and leaves ambiguous nothing; on a
+//! reports to 0.1°, a stroke read through an analog channel (1 µm of noise). On a clean
+//! recording each names, flags and leaves ambiguous nothing; on a
 //! hysteresis ×2 (its detection size) each still names `hysteresis` first on the sensor, with
 //! no other name.
 //!
@@ -147,6 +148,23 @@ fn tracker_to_a_tenth(r: &mut Rows) {
     for a in &mut r.columns[2] {
         *a = (*a * 10.0).round() / 10.0;
     }
+}
+
+/// A stroke read through an analog channel: white noise of `sd_mm` on the 0.74 mm stroke (1 µm
+/// is a 16-bit DAQ's millivolt on a 1 mm/V sensor).
+fn analog_stroke(r: &mut Rows, sd_mm: f64) {
+    let mut rng = Rng::new(0x57_0CE);
+    for x in &mut r.columns[1] {
+        *x += sd_mm * rng.normal();
+    }
+}
+
+fn analog_stroke_1um(r: &mut Rows) {
+    analog_stroke(r, 0.001);
+}
+
+fn analog_stroke_5um(r: &mut Rows) {
+    analog_stroke(r, 0.005);
 }
 
 /// Writes the recording of `seed` (clean, or with `effect`) into `rec` with `change` made.
@@ -320,6 +338,44 @@ fn heavy_tailed_or_flicker_noise_is_not_an_effect() {
 fn a_slower_logger_or_a_coarser_tracker_is_not_an_effect() {
     assert_quiet_with("100-hz", Change::Rows(at_100_hz));
     assert_quiet_with("tracker-0.1", Change::Rows(tracker_to_a_tenth));
+}
+
+/// A noisy stroke: discovery takes the stroke as exact, and a plant candidate that filters it
+/// (a backlash's play) earns evidence by removing its noise. So a recording either names
+/// nothing or is refused for the stroke's noise, with the bound; never a name, and never
+/// refused for want of a rest it has. Before (2026-11-28), 1 µm ended the 10 s rest after
+/// 2.8 s and the recording was refused for that; with the rest found, 5 µm named `backlash`
+/// on 2 of 3 clean recordings (seeds 21001-21003).
+#[test]
+fn a_noisy_stroke_names_nothing_or_is_refused_for_its_noise() {
+    let design = shipped_design("joint-a.toml");
+    for (name, change, refused) in [
+        ("stroke-1um", analog_stroke_1um as fn(&mut Rows), false),
+        ("stroke-5um", analog_stroke_5um, true),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        for seed in SEEDS {
+            let case = format!("{name}-{seed}");
+            let rec = dir.path().join(&case);
+            write_with(&rec, seed, None, Change::Rows(change));
+            let out = dir.path().join(format!("{case}-out"));
+            match try_discover_json(&design, &rec, &out) {
+                Ok(json) => {
+                    assert!(!refused, "{case}: not refused");
+                    assert!(named(&json).is_empty(), "{case}: named {:?}", named(&json));
+                    assert_eq!(json["unexplained"].as_array().unwrap().len(), 0, "{case}");
+                    assert_eq!(json["ambiguous"].as_array().unwrap().len(), 0, "{case}");
+                }
+                Err(e) => {
+                    assert!(
+                        e.contains("the stroke is noisy") && e.contains("20-nat screen"),
+                        "{case}: {e}"
+                    );
+                    assert!(!out.exists(), "{case}: output written");
+                }
+            }
+        }
+    }
 }
 
 /// A hysteresis at its detection size is still named first on its sensor, and nothing else is

@@ -109,15 +109,8 @@ impl Data {
             .iter()
             .map(|a| joint.strain(a.to_radians()))
             .collect();
-        // The rest: the stroke stays where it started (within 0.1 % of its span).
-        let span = stroke_mm
-            .iter()
-            .fold(0.0_f64, |m, v| m.max((v - stroke_mm[0]).abs()));
-        let moved = stroke_mm
-            .iter()
-            .position(|v| (v - stroke_mm[0]).abs() > 1e-3 * span.max(1e-9))
-            .unwrap_or(n);
         let dt_s = step as f64 / rig.sample_hz;
+        let moved = rest_end(&stroke_mm, dt_s);
         let rest = moved.saturating_sub((REST_MARGIN_S / dt_s) as usize);
         if (rest as f64) * dt_s < MIN_REST_S {
             return Err(DiscoverError::NoRest {
@@ -207,6 +200,45 @@ impl Data {
         let first = self.measured.iter().position(|&m| m).unwrap_or(0);
         first.min(self.rest)..self.rest
     }
+}
+
+/// Bands of the stroke's own noise the stroke may stray from its start and still be at rest.
+/// Five: over a rest of a few hundred samples a Gaussian noise leaves the band with a
+/// probability of about 1e-4.
+pub const REST_NOISE_BANDS: f64 = 5.0;
+
+/// The first sample where the stroke has left its start: by more than 0.1 % of its span, or
+/// [`REST_NOISE_BANDS`] times its own noise when that is larger. The start is the median of
+/// the first second. A stroke read by the DAQ through an analog channel (an LVDT, a
+/// potentiometer: `dlw import-recording --stroke-scale`) carries the DAQ's noise; with the
+/// 0.1 % alone, a noise of 1 µm on a 0.74 mm stroke ended the rest after 2.8 s of a 10 s one
+/// and the recording was refused for want of a rest.
+fn rest_end(stroke_mm: &[f64], dt_s: f64) -> usize {
+    let n = stroke_mm.len();
+    let first = ((1.0 / dt_s).round() as usize).clamp(1, n.max(1));
+    let Some(start) = crate::stats::median(&stroke_mm[..first.min(n)]) else {
+        return 0;
+    };
+    let span = stroke_mm
+        .iter()
+        .fold(0.0_f64, |m, v| m.max((v - start).abs()));
+    let band = (1e-3 * span.max(1e-9)).max(REST_NOISE_BANDS * stroke_noise(stroke_mm));
+    stroke_mm
+        .iter()
+        .position(|v| (v - start).abs() > band)
+        .unwrap_or(n)
+}
+
+/// The stroke's white noise (mm per sample), from its second differences: a noise of spread σ
+/// gives them a spread of √6·σ, which a stroke's ramps and holds leave alone (a ramp's second
+/// differences are zero; its corners are few), and the median absolute deviation ignores the
+/// corners (×1.4826 for a normal spread).
+pub fn stroke_noise(stroke_mm: &[f64]) -> f64 {
+    let d2: Vec<f64> = stroke_mm
+        .windows(3)
+        .map(|w| w[2] - 2.0 * w[1] + w[0])
+        .collect();
+    crate::stats::median_abs_deviation(&d2).map_or(0.0, |mad| 1.4826 * mad / 6f64.sqrt())
 }
 
 /// Replaces the values of the samples not `measured` by linear interpolation between the
@@ -308,6 +340,49 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    /// A 10 s rest at 25 Hz, then a 1 s ramp of 0.74 mm, with white noise of 0.25 µm: 0.1 % of
+    /// the span (0.74 µm) is three spreads, which a few hundred samples exceed; five of the
+    /// noise's own spreads they do not. The rest ends where the ramp starts, and a noise-free
+    /// stroke's rest ends there too.
+    #[test]
+    fn the_rest_ends_where_the_stroke_moves_not_where_its_noise_strays() {
+        let (dt, rest) = (0.04, 250);
+        let clean: Vec<f64> = (0..1000)
+            .map(|i| {
+                if i < rest {
+                    0.0
+                } else {
+                    (0.74 * (i - rest) as f64 * dt).min(0.74)
+                }
+            })
+            .collect();
+        let mut seed = 0x2545_F491_u64;
+        let mut normal = || {
+            let mut u = || {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                (seed >> 11) as f64 / (1u64 << 53) as f64 + 1e-12
+            };
+            let (a, b) = (u(), u());
+            (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
+        };
+        let noisy: Vec<f64> = clean.iter().map(|x| x + 0.25e-3 * normal()).collect();
+        for stroke in [&clean, &noisy] {
+            let end = rest_end(stroke, dt);
+            assert!((rest..rest + 3).contains(&end), "rest ends at {end}");
+        }
+        let sd = stroke_noise(&noisy);
+        assert!((0.2e-3..0.3e-3).contains(&sd), "{sd}");
+        // The 0.1 % rule alone ends it early.
+        let early = noisy
+            .iter()
+            .position(|v| (v - noisy[0]).abs() > 0.74e-3)
+            .unwrap();
+        assert!(early < rest, "{early}");
     }
 
     #[test]

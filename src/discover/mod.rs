@@ -182,6 +182,20 @@ pub enum DiscoverError {
         /// The fitted gain (° per mm).
         gain_deg_per_mm: f64,
     },
+    /// The stroke is too noisy for the plant channel to tell an effect from its noise.
+    #[error("the stroke is noisy: {noise_mm:.2e} mm per sample at {rate_hz:.1} Hz after averaging, {pct:.1} % of the plant's whitened noise at rest through its gain. Discovery takes the stroke as exact, and a plant candidate that filters it could gain up to {bound_nats:.1} nats by removing that noise alone, at or above the {screen_nats}-nat screen: it cannot tell a plant effect from the stroke's noise. Record the stage's encoder or a smoothed stroke", pct = 100.0 * share)]
+    StrokeNoise {
+        /// The stroke's white noise per discovery sample (mm).
+        noise_mm: f64,
+        /// Discovery's sample rate (Hz).
+        rate_hz: f64,
+        /// Its share of the plant's whitened noise at rest.
+        share: f64,
+        /// The most evidence removing it could earn (nats).
+        bound_nats: f64,
+        /// The screen (nats).
+        screen_nats: f64,
+    },
     /// A sensor's resistance falls as its side stretches.
     #[error("{channel}'s resistance falls as the joint bends: its base gain is {gain_ohm_per_strain:.4e} Ω per unit strain, and the design needs it above 0 (the sensor's resistance rises with its own side's strain, as `dlw fit` needs too). A reversed tracker angle or swapped voltage columns do this: correct the recording")]
     SensorSign {

@@ -254,11 +254,42 @@ impl<'a> Search<'a> {
                     },
                 });
             }
+            if ch == Stage::Plant {
+                self.check_stroke_noise(gain, &noise)?;
+            }
             self.bases.insert(ch, base);
             self.noises.insert(ch, noise);
             self.base_models.insert(ch, m);
         }
         Ok(())
+    }
+
+    /// The plant channel takes the stroke as exact. A stroke read by the DAQ through an analog
+    /// channel carries the DAQ's noise, and a candidate that filters its input (a backlash's
+    /// play) then earns evidence by removing that noise from the plant's prediction: on Joint
+    /// A, 5 µm of noise on a 0.74 mm stroke named `backlash` on 2 of 3 clean recordings. No
+    /// candidate can earn more than a perfect denoiser of the stroke: the stroke's noise
+    /// through the base gain, whitened by the plant's noise model, is a share `ρ` of the
+    /// whitened noise at rest, and removing all of it gains at most `½·n·ln(1/(1−ρ))` nats on
+    /// `n` held-out samples (the evidence's correlation time is at least one sample). When that
+    /// bound reaches the screen ([`THRESHOLD_NATS`]), the stroke's noise alone could name a
+    /// plant effect, and the recording is refused ("cannot tell"); under it, it cannot.
+    fn check_stroke_noise(&self, gain: f64, noise: &ArNoise) -> Result<(), DiscoverError> {
+        let sd = super::data::stroke_noise(&self.data.stroke_mm);
+        let phi2: f64 = noise.phi.iter().map(|p| p * p).sum();
+        let share = ((gain * sd).powi(2) * (1.0 + phi2) / noise.sigma.powi(2)).min(0.999);
+        let n = self.test.iter().filter(|t| **t).count() as f64;
+        let bound = 0.5 * n * (1.0 / (1.0 - share)).ln();
+        if bound.is_finite() && bound < THRESHOLD_NATS {
+            return Ok(());
+        }
+        Err(DiscoverError::StrokeNoise {
+            noise_mm: sd,
+            rate_hz: 1.0 / self.data.dt_s,
+            share,
+            bound_nats: bound,
+            screen_nats: THRESHOLD_NATS,
+        })
     }
 
     /// The search of channel `ch`, from its base model.
