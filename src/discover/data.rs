@@ -208,37 +208,33 @@ impl Data {
 pub const REST_NOISE_BANDS: f64 = 5.0;
 
 /// The first sample where the stroke has left its start: by more than 0.1 % of its span, or
-/// [`REST_NOISE_BANDS`] times its own noise when that is larger. The start is the median of
-/// the first second. A stroke read by the DAQ through an analog channel (an LVDT, a
-/// potentiometer: `dlw import-recording --stroke-scale`) carries the DAQ's noise; with the
-/// 0.1 % alone, a noise of 1 µm on a 0.74 mm stroke ended the rest after 2.8 s of a 10 s one
-/// and the recording was refused for want of a rest.
+/// [`REST_NOISE_BANDS`] times its own noise when that is larger. The start and the noise are
+/// the median and the spread ([`spread`]) of the first second, where a recording starts at
+/// rest. A stroke read by the DAQ through an analog channel (an LVDT, a potentiometer: `dlw
+/// import-recording --stroke-scale`) carries the DAQ's noise; with the 0.1 % alone, a noise of
+/// 1 µm on a 0.74 mm stroke ended the rest after 2.8 s of a 10 s one and the recording was
+/// refused for want of a rest.
 fn rest_end(stroke_mm: &[f64], dt_s: f64) -> usize {
     let n = stroke_mm.len();
-    let first = ((1.0 / dt_s).round() as usize).clamp(1, n.max(1));
-    let Some(start) = crate::stats::median(&stroke_mm[..first.min(n)]) else {
+    let first = &stroke_mm[..((1.0 / dt_s).round() as usize).clamp(1, n.max(1)).min(n)];
+    let Some(start) = crate::stats::median(first) else {
         return 0;
     };
     let span = stroke_mm
         .iter()
         .fold(0.0_f64, |m, v| m.max((v - start).abs()));
-    let band = (1e-3 * span.max(1e-9)).max(REST_NOISE_BANDS * stroke_noise(stroke_mm));
+    let band = (1e-3 * span.max(1e-9)).max(REST_NOISE_BANDS * spread(first));
     stroke_mm
         .iter()
         .position(|v| (v - start).abs() > band)
         .unwrap_or(n)
 }
 
-/// The stroke's white noise (mm per sample), from its second differences: a noise of spread σ
-/// gives them a spread of √6·σ, which a stroke's ramps and holds leave alone (a ramp's second
-/// differences are zero; its corners are few), and the median absolute deviation ignores the
-/// corners (×1.4826 for a normal spread).
-pub fn stroke_noise(stroke_mm: &[f64]) -> f64 {
-    let d2: Vec<f64> = stroke_mm
-        .windows(3)
-        .map(|w| w[2] - 2.0 * w[1] + w[0])
-        .collect();
-    crate::stats::median_abs_deviation(&d2).map_or(0.0, |mad| 1.4826 * mad / 6f64.sqrt())
+/// The spread of samples that hold still (a stroke at rest): their median absolute deviation,
+/// ×1.4826 for a normal spread (so that a stray sample does not set it). A stroke recorded
+/// without noise (a stage's encoder) has none.
+pub fn spread(v: &[f64]) -> f64 {
+    crate::stats::median_abs_deviation(v).map_or(0.0, |mad| 1.4826 * mad)
 }
 
 /// Replaces the values of the samples not `measured` by linear interpolation between the
@@ -375,8 +371,9 @@ mod tests {
             let end = rest_end(stroke, dt);
             assert!((rest..rest + 3).contains(&end), "rest ends at {end}");
         }
-        let sd = stroke_noise(&noisy);
+        let sd = spread(&noisy[..rest]);
         assert!((0.2e-3..0.3e-3).contains(&sd), "{sd}");
+        assert_eq!(spread(&clean[..rest]), 0.0);
         // The 0.1 % rule alone ends it early.
         let early = noisy
             .iter()

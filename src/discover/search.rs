@@ -275,7 +275,8 @@ impl<'a> Search<'a> {
     /// bound reaches the screen ([`THRESHOLD_NATS`]), the stroke's noise alone could name a
     /// plant effect, and the recording is refused ("cannot tell"); under it, it cannot.
     fn check_stroke_noise(&self, gain: f64, noise: &ArNoise) -> Result<(), DiscoverError> {
-        let sd = super::data::stroke_noise(&self.data.stroke_mm);
+        // The stroke's noise: its spread at rest, where it holds still.
+        let sd = super::data::spread(&self.data.stroke_mm[self.data.measured_rest()]);
         let phi2: f64 = noise.phi.iter().map(|p| p * p).sum();
         let share = ((gain * sd).powi(2) * (1.0 + phi2) / noise.sigma.powi(2)).min(0.999);
         let n = self.test.iter().filter(|t| **t).count() as f64;
