@@ -338,7 +338,6 @@ mod tests {
         }
     }
 
-    #[test]
     /// A 10 s rest at 25 Hz, then a 1 s ramp of 0.74 mm, with white noise of 0.25 µm: 0.1 % of
     /// the span (0.74 µm) is three spreads, which a few hundred samples exceed; five of the
     /// noise's own spreads they do not. The rest ends where the ramp starts, and a noise-free
