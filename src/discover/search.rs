@@ -277,6 +277,10 @@ impl<'a> Search<'a> {
     fn check_stroke_noise(&self, gain: f64, noise: &ArNoise) -> Result<(), DiscoverError> {
         // The stroke's noise: its spread at rest, where it holds still.
         let sd = super::data::spread(&self.data.stroke_mm[self.data.measured_rest()]);
+        if sd == 0.0 {
+            // A stroke without noise (a stage's encoder): nothing to remove.
+            return Ok(());
+        }
         let phi2: f64 = noise.phi.iter().map(|p| p * p).sum();
         let share = ((gain * sd).powi(2) * (1.0 + phi2) / noise.sigma.powi(2)).min(0.999);
         let n = self.test.iter().filter(|t| **t).count() as f64;
