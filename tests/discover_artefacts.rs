@@ -263,20 +263,25 @@ fn assert_quiet(name: &str, artefact: Artefact) {
 /// As [`assert_quiet`], for any change.
 fn assert_quiet_with(name: &str, change: Change) {
     for (case, json) in reports_of(name, &SEEDS, None, change) {
-        assert!(named(&json).is_empty(), "{case}: named {:?}", named(&json));
-        assert_eq!(
-            json["unexplained"].as_array().unwrap().len(),
-            0,
-            "{case}: {}",
-            json["unexplained"]
-        );
-        assert_eq!(
-            json["ambiguous"].as_array().unwrap().len(),
-            0,
-            "{case}: {}",
-            json["ambiguous"]
-        );
+        assert_said_nothing(&case, &json);
     }
+}
+
+/// `json` names nothing, flags nothing and leaves nothing ambiguous.
+fn assert_said_nothing(case: &str, json: &serde_json::Value) {
+    assert!(named(json).is_empty(), "{case}: named {:?}", named(json));
+    assert_eq!(
+        json["unexplained"].as_array().unwrap().len(),
+        0,
+        "{case}: {}",
+        json["unexplained"]
+    );
+    assert_eq!(
+        json["ambiguous"].as_array().unwrap().len(),
+        0,
+        "{case}: {}",
+        json["ambiguous"]
+    );
 }
 
 #[test]
@@ -362,9 +367,7 @@ fn a_noisy_stroke_names_nothing_or_is_refused_for_its_noise() {
             match try_discover_json(&design, &rec, &out) {
                 Ok(json) => {
                     assert!(!refused, "{case}: not refused");
-                    assert!(named(&json).is_empty(), "{case}: named {:?}", named(&json));
-                    assert_eq!(json["unexplained"].as_array().unwrap().len(), 0, "{case}");
-                    assert_eq!(json["ambiguous"].as_array().unwrap().len(), 0, "{case}");
+                    assert_said_nothing(&case, &json);
                 }
                 Err(e) => {
                     assert!(
