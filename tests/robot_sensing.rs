@@ -632,3 +632,78 @@ fn dlw_estimate_agrees_with_the_runtime_golden_file_that_c_and_python_match() {
     );
     assert!(worst_mm <= 1e-9, "tips differ by {worst_mm:e} mm");
 }
+
+/// A robot recording whose column `column` (0-based in `data.csv`) is rewritten by `edit`,
+/// given each row's fields.
+fn robot_recording_edited(dir: &Path, column: usize, edit: impl Fn(usize, &mut String)) {
+    write_generated(dir, [0.01; 3], false);
+    let text = std::fs::read_to_string(dir.join("data.csv")).unwrap();
+    let mut out = String::new();
+    for (i, line) in text.lines().enumerate() {
+        let mut fields: Vec<String> = line.split(',').map(str::to_owned).collect();
+        if i > 0 {
+            edit(i - 1, &mut fields[column]);
+        }
+        out.push_str(&fields.join(","));
+        out.push('\n');
+    }
+    std::fs::write(dir.join("data.csv"), out).unwrap();
+}
+
+#[test]
+fn fit_refuses_a_clipped_voltage_and_a_frozen_angle_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let robot = designs().join("robot-bdb.toml");
+    // data.csv: time, 3 strokes, 3 angles, 3 voltages.
+    let clipped = d.join("clipped");
+    write_generated(&clipped, [0.01; 3], false);
+    let text = std::fs::read_to_string(clipped.join("data.csv")).unwrap();
+    let mut v2: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(8).unwrap().parse().unwrap())
+        .collect();
+    v2.sort_by(f64::total_cmp);
+    // v2 held at its 90th percentile from above.
+    let top = v2[v2.len() * 9 / 10];
+    robot_recording_edited(&clipped, 8, |_, field| {
+        if field.parse::<f64>().unwrap() > top {
+            *field = format!("{top:.6}");
+        }
+    });
+    // Joint 2's angle held for 5 s (rows 2000-2999 at 200 Hz) while its stroke moves.
+    let frozen = d.join("frozen");
+    let held = std::cell::RefCell::new(String::new());
+    robot_recording_edited(&frozen, 5, |row, field| {
+        if row == 2000 {
+            *held.borrow_mut() = field.clone();
+        }
+        if (2000..3000).contains(&row) {
+            *field = held.borrow().clone();
+        }
+    });
+    for (rec, column, what) in [
+        (&clipped, "v2_V", "largest"),
+        (&frozen, "angle2_deg", "stopped updating"),
+    ] {
+        let out = d.join("out.toml");
+        let o = dlw(&[
+            "fit",
+            "--design",
+            &arg(&robot),
+            &arg(rec),
+            "--model",
+            "linear",
+            "-o",
+            &arg(&out),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success(),
+            "a robot recording with {column} {what} was fitted"
+        );
+        assert!(err.contains(column) && err.contains(what), "{err}");
+        assert!(!out.exists());
+    }
+}

@@ -17,6 +17,8 @@ mod characterize_cli;
 mod characterize_second_generator;
 #[path = "cli_draw.rs"]
 mod cli_draw;
+#[path = "clipped_recordings.rs"]
+mod clipped_recordings;
 #[path = "control_cli.rs"]
 mod control_cli;
 #[path = "daq_info.rs"]

@@ -52,7 +52,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .chain(&args.config),
     )?;
     let design = Design::load(&args.design)?;
-    let recording = Recording::read(&args.recording)?;
+    let recording = Recording::read_measured(&args.recording)?;
     let request = CharacterizeRequest {
         recording: &recording,
         recording_name: args.recording.display().to_string(),

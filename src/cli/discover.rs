@@ -44,11 +44,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .chain(&args.holdout),
     )?;
     let design = Design::load(&args.design)?;
-    let recording = Recording::read(&args.recording)?;
+    let recording = Recording::read_measured(&args.recording)?;
     let holdout = args
         .holdout
         .as_ref()
-        .map(|p| Recording::read(p))
+        .map(|p| Recording::read_measured(p))
         .transpose()?;
     let base = match &args.scenario {
         Some(path) => Scenario::load(path)?,

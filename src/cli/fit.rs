@@ -86,11 +86,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
     }
     let design = Design::load(&args.design)?;
-    let recording = Recording::read(&args.recording)?;
+    let recording = Recording::read_measured(&args.recording)?;
     let validate = args
         .validate
         .as_ref()
-        .map(|p| Recording::read(p))
+        .map(|p| Recording::read_measured(p))
         .transpose()?;
     let t_read = start.elapsed().as_secs_f64();
     let request = FitRequest {

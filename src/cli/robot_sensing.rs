@@ -123,7 +123,7 @@ pub(crate) fn fit(
     json: bool,
 ) -> anyhow::Result<()> {
     let robot = super::robot::load(path)?;
-    let recording = RobotRecording::read(recording_path)?;
+    let recording = RobotRecording::read_measured(recording_path)?;
     let fitted = dlw::fit::robot::fit_robot(&robot, &recording, model, order, prefilter)
         .with_context(|| format!("fitting {}", recording_path.display()))?;
     let config = robot_fit_config(&robot, &fitted, &recording.rig, model, prefilter)?;

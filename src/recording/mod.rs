@@ -25,6 +25,8 @@
 //! simulator, not on design files). A simulated recording keeps its design and scenario as TOML
 //! tables, which the simulator reads back with its own types.
 
+pub mod clipping;
+pub mod frozen;
 mod protocol;
 pub mod provenance;
 pub mod robot;
@@ -212,6 +214,14 @@ pub enum RecordingError {
         /// The data file.
         path: PathBuf,
     },
+    /// A column piles up at one end of its range: the instrument's range clipped it
+    /// ([`clipping`]).
+    #[error(transparent)]
+    Clipped(Box<ClippedColumn>),
+    /// A column holds one value while the stroke moves: the instrument stopped updating it
+    /// ([`frozen`]).
+    #[error(transparent)]
+    Frozen(Box<FrozenColumn>),
     /// The destination exists and replacing it was not asked for.
     #[error("output folder {path} already exists and is not empty (pass --force to replace it)")]
     Exists {
@@ -238,6 +248,56 @@ pub enum RecordingError {
         /// The reader's message (it names the staging folder's file and line).
         reason: String,
     },
+}
+
+/// A column the instrument's range clipped ([`RecordingError::Clipped`]).
+#[derive(Debug, thiserror::Error)]
+#[error("{path} line {line}: {column} holds its {end} value, {value}, in {count} of {rows} rows ({share:.1} %), {ratio:.0} times as often as any of the next {neighbours} values ({next_count} at most): the instrument's range clipped it, and an analysis would take the clip for the sensor's or the joint's response (record again with a wider input range, or cut the clipped stretch out)")]
+pub struct ClippedColumn {
+    /// The data file.
+    pub path: PathBuf,
+    /// The first 1-based line holding the value.
+    pub line: usize,
+    /// Column name.
+    pub column: String,
+    /// `largest` or `smallest`.
+    pub end: &'static str,
+    /// The value held.
+    pub value: f64,
+    /// How many rows hold it.
+    pub count: usize,
+    /// How many rows were looked at.
+    pub rows: usize,
+    /// `count` as a percentage of `rows`.
+    pub share: f64,
+    /// `count` over `next_count` (or `count` when that is 0).
+    pub ratio: f64,
+    /// How many neighbouring values were compared.
+    pub neighbours: usize,
+    /// How many rows the most held neighbour holds.
+    pub next_count: usize,
+}
+
+/// A column the instrument stopped updating ([`RecordingError::Frozen`]).
+#[derive(Debug, thiserror::Error)]
+#[error("{path} line {line}: {column} holds {value} for {count} rows ({seconds:.2} s) while the stroke moves over {moved:.0} % of its range, where its other runs of one value last at most {typical} row(s) (99th percentile): the instrument stopped updating it (a tracker that lost the tool and holds its last reading, a stalled DAQ), and an analysis would take the hold for the sensor's or the joint's response (mark the rows tracker_valid = 0 for an angle, or cut the stretch out)")]
+pub struct FrozenColumn {
+    /// The data file.
+    pub path: PathBuf,
+    /// The first 1-based line of the stretch.
+    pub line: usize,
+    /// Column name.
+    pub column: String,
+    /// The value held.
+    pub value: f64,
+    /// How many rows hold it.
+    pub count: usize,
+    /// How long it holds (s).
+    pub seconds: f64,
+    /// How far the stroke moved meanwhile (% of its range).
+    pub moved: f64,
+    /// The 99th percentile of the column's other runs.
+    pub typical: usize,
 }
 
 /// `rig.toml`: how the bench was set up.
@@ -483,6 +543,50 @@ impl Recording {
         let samples = parse_data(&text, &rig, &data_path)?;
         check_sample_rate(&rig, &samples.time_s, &rig_path, &data_path)?;
         Ok(Self { rig, samples })
+    }
+
+    /// [`read`](Self::read)s a recording a model will be fitted to, and refuses it when a
+    /// column was not measured throughout ([`check_measured`](Self::check_measured)).
+    ///
+    /// # Errors
+    /// Those of [`read`](Self::read), [`RecordingError::Clipped`] and
+    /// [`RecordingError::Frozen`].
+    pub fn read_measured(dir: &Path) -> Result<Self, RecordingError> {
+        let rec = Self::read(dir)?;
+        rec.check_measured(dir)?;
+        Ok(rec)
+    }
+
+    /// Refuses a recording one of whose columns was not measured throughout: the tracker's
+    /// angle (on its valid rows) or a voltage clipped by the instrument's range
+    /// ([`clipping`]), or holding one value while the stroke moves ([`frozen`]). An analysis
+    /// that fits a model (`fit`, `discover`, `characterize`) calls it after reading; `dir` is
+    /// the folder read, for the message.
+    ///
+    /// # Errors
+    /// [`RecordingError::Clipped`] or [`RecordingError::Frozen`], naming the column, the value,
+    /// how many rows hold it and the first line.
+    pub fn check_measured(&self, dir: &Path) -> Result<(), RecordingError> {
+        let s = &self.samples;
+        let valid = s.valid_angle_rows();
+        let mut columns = Vec::new();
+        if !valid.is_empty() {
+            columns.push(Measured {
+                name: "angle_deg".to_string(),
+                values: valid.iter().map(|&i| s.angle_deg[i]).collect(),
+                rows: valid,
+                stroke: Some(&s.stroke_mm),
+            });
+        }
+        for (c, v) in s.volts.iter().enumerate() {
+            columns.push(Measured {
+                name: format!("v{}_V", c + 1),
+                values: v.clone(),
+                rows: (0..v.len()).collect(),
+                stroke: Some(&s.stroke_mm),
+            });
+        }
+        refuse_unmeasured(dir, &s.time_s, columns)
     }
 
     /// Writes the recording as folder `dest`, atomically: it is built under a temporary name
@@ -933,6 +1037,61 @@ pub fn column_limit(column: &str) -> (f64, &'static str) {
         c if c.starts_with("angle") => (MAX_ABS_ANGLE_DEG, "°"),
         _ => (MAX_ABS_VOLTS, "V"),
     }
+}
+
+/// A column an analysis will fit a model to, for [`refuse_unmeasured`]: its name, its values,
+/// the row each is from, and the stroke that drives it (none: not checked for a frozen
+/// stretch).
+pub(crate) struct Measured<'a> {
+    pub name: String,
+    pub values: Vec<f64>,
+    pub rows: Vec<usize>,
+    pub stroke: Option<&'a [f64]>,
+}
+
+/// The first of `columns` that the instrument clipped ([`clipping::pile_up`]) or stopped
+/// updating while its stroke moved ([`frozen::frozen`]), as [`RecordingError::Clipped`] or
+/// [`RecordingError::Frozen`] naming `dir`'s data file and the line (`time_s` gives a frozen
+/// stretch's length in seconds).
+pub(crate) fn refuse_unmeasured(
+    dir: &Path,
+    time_s: &[f64],
+    columns: Vec<Measured<'_>>,
+) -> Result<(), RecordingError> {
+    let path = dir.join(DATA_FILE);
+    for c in columns {
+        if let Some(p) = clipping::pile_up(&c.values) {
+            let first = c.values.iter().position(|v| *v == p.value).unwrap_or(0);
+            return Err(RecordingError::Clipped(Box::new(ClippedColumn {
+                path,
+                line: c.rows.get(first).map_or(2, |r| r + 2),
+                column: c.name,
+                end: p.end.word(),
+                value: p.value,
+                count: p.count,
+                rows: p.rows,
+                share: 100.0 * p.count as f64 / p.rows as f64,
+                ratio: p.count as f64 / p.next_count.max(1) as f64,
+                neighbours: clipping::NEIGHBOURS,
+                next_count: p.next_count,
+            })));
+        }
+        let Some(f) = c.stroke.and_then(|s| frozen::frozen(&c.values, &c.rows, s)) else {
+            continue;
+        };
+        let (start, end) = (c.rows[f.first], c.rows[f.first + f.len - 1]);
+        return Err(RecordingError::Frozen(Box::new(FrozenColumn {
+            path,
+            line: start + 2,
+            column: c.name,
+            value: f.value,
+            count: f.len,
+            seconds: time_s[end] - time_s[start],
+            moved: 100.0 * f.moved,
+            typical: f.typical,
+        })));
+    }
+    Ok(())
 }
 
 /// Whether a divider voltage lies strictly between the rails `0` and `supply_v`, where a

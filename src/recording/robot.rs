@@ -26,8 +26,8 @@ use crate::fixed::push_fixed;
 use crate::output::write_folder_atomic;
 
 use super::{
-    check_sample_rate, folder_files, parse_field, read_text, RecordingError, Rig, DATA_FILE,
-    RIG_FILE, VALID_COLUMN_SUFFIX,
+    check_sample_rate, folder_files, parse_field, read_text, refuse_unmeasured, Measured,
+    RecordingError, Rig, DATA_FILE, RIG_FILE, VALID_COLUMN_SUFFIX,
 };
 
 /// The most joints a robot recording holds (the runtime's `MAX_JOINTS`).
@@ -146,6 +146,61 @@ impl RobotRecording {
         let samples = parse_robot_data(&text, &rig, &data_path)?;
         check_sample_rate(&rig, &samples.time_s, &rig_path, &data_path)?;
         Ok(Self { rig, samples })
+    }
+
+    /// [`read`](Self::read)s a robot recording a model will be fitted to, and refuses it when
+    /// a column was not measured throughout ([`Recording::check_measured`]): a joint's angle or
+    /// the tip (on the rows the tracker marks valid) or a voltage clipped by the instrument's
+    /// range, or a joint's angle holding one value while its own stroke moves. A voltage is
+    /// not checked for a hold: the joints its sensor does not sit on may be the ones moving.
+    ///
+    /// [`Recording::check_measured`]: super::Recording::check_measured
+    ///
+    /// # Errors
+    /// Those of [`read`](Self::read), [`RecordingError::Clipped`] and
+    /// [`RecordingError::Frozen`].
+    pub fn read_measured(dir: &Path) -> Result<Self, RecordingError> {
+        let rec = Self::read(dir)?;
+        let s = &rec.samples;
+        let valid: Vec<usize> = (0..s.time_s.len())
+            .filter(|&i| s.tracker_valid_at(i))
+            .collect();
+        fn tracked<'a>(
+            name: String,
+            v: &[f64],
+            valid: &[usize],
+            stroke: Option<&'a [f64]>,
+        ) -> Measured<'a> {
+            Measured {
+                name,
+                values: valid.iter().map(|&i| v[i]).collect(),
+                rows: valid.to_vec(),
+                stroke,
+            }
+        }
+        let mut columns = Vec::new();
+        for (k, a) in s
+            .angle_deg
+            .iter()
+            .enumerate()
+            .filter(|(_, a)| !a.is_empty())
+        {
+            let stroke = s.stroke_mm.get(k).map(Vec::as_slice);
+            columns.push(tracked(format!("angle{}_deg", k + 1), a, &valid, stroke));
+        }
+        for (axis, v) in ["x", "y", "z"].iter().zip(s.tip_mm.iter().flatten()) {
+            columns.push(tracked(format!("tip_{axis}_mm"), v, &valid, None));
+        }
+        for (k, v) in s.volts.iter().enumerate() {
+            columns.push(Measured {
+                name: format!("v{}_V", k + 1),
+                values: v.clone(),
+                rows: (0..v.len()).collect(),
+                stroke: None,
+            });
+        }
+        refuse_unmeasured(dir, &s.time_s, columns)?;
+        Ok(rec)
     }
 
     /// Checks the recording by its reader's rules on what [`RobotRecording::write`] would put in
