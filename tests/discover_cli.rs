@@ -235,6 +235,18 @@ fn bad_input_is_refused_and_nothing_is_written() {
         &out,
         &["plant's base gain is -", "above 0", "other sign"],
     );
+    // The tracker's angle in radians: it spans 57 times less, under the floor `dlw fit` has
+    // (exit 0 before, with a scenario of the radians' plant gain).
+    let radians = with_columns(&uan, &d.join("radians"), |header, row| {
+        let k = header.iter().position(|h| h == "angle_deg").unwrap();
+        row[k] = format!("{:.6}", row[k].parse::<f64>().unwrap().to_radians());
+    });
+    let out = d.join("o8");
+    check(
+        discover("joint-a.toml", &radians, &out, &[]),
+        &out,
+        &["no motion", "spans 0.", "at least 1°", "radians"],
+    );
     // A BSN joint's voltage columns swapped: sensor 1 reads the side that shortens.
     let bsn = simulate(d, "bsn", "joint-c.toml", "200", "1", None);
     let swapped = with_columns(&bsn, &d.join("swapped"), |header, row| {

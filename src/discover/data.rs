@@ -12,6 +12,7 @@ use dlw_geometry::Joint;
 use super::DiscoverError;
 use crate::recording::Recording;
 use crate::sensor::Sensor;
+use crate::signal::MIN_ANGLE_SPAN_DEG;
 
 /// Rate discovery works at (Hz): each sample is the mean of `sample_hz/TARGET_HZ` recorded
 /// samples. The effects live at seconds; averaging cuts the white noise and the work.
@@ -65,7 +66,8 @@ impl Data {
     /// Block-averages `recording`; strain through `joint`.
     ///
     /// # Errors
-    /// A voltage with no finite resistance, or less than [`MIN_REST_S`] at rest at the start.
+    /// A voltage with no finite resistance, an angle that spans less than
+    /// [`MIN_ANGLE_SPAN_DEG`], or less than [`MIN_REST_S`] at rest at the start.
     pub fn new(recording: &Recording, joint: &Joint) -> Result<Self, DiscoverError> {
         let s = &recording.samples;
         let rig = &recording.rig;
@@ -101,6 +103,19 @@ impl Data {
         if !measured.contains(&true) {
             return Err(DiscoverError::NoAngle {
                 rows: s.invalid_angle_rows(),
+            });
+        }
+        let (lo, hi) = s
+            .valid_angle_rows()
+            .into_iter()
+            .map(|i| s.angle_deg[i])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), a| {
+                (lo.min(a), hi.max(a))
+            });
+        if hi - lo < MIN_ANGLE_SPAN_DEG {
+            return Err(DiscoverError::NoMotion {
+                span_deg: hi - lo,
+                min_deg: MIN_ANGLE_SPAN_DEG,
             });
         }
         let mut angle_deg: Vec<f64> = (0..n).map(|k| mean(&s.angle_deg, k)).collect();

@@ -126,6 +126,14 @@ pub enum DiscoverError {
         /// Rows marked.
         rows: usize,
     },
+    /// The angle barely moves.
+    #[error("no motion: the recorded angle spans {span_deg:.3}°, and discovery needs at least {min_deg}°, as `dlw fit` does: below it the strain is the tracker's noise (an angle recorded in radians spans 57 times less than in degrees)")]
+    NoMotion {
+        /// The valid angle's span (°).
+        span_deg: f64,
+        /// The least span (°).
+        min_deg: f64,
+    },
     /// No rest at the start.
     #[error("the recording starts with {rest_s:.1} s at rest; discovery freezes its noise model from that rest less the {margin_s} s before the first motion, and needs {min_s} s of it: a rest of at least {needs_s} s at the start (the stroke constant)")]
     NoRest {
