@@ -1,0 +1,272 @@
+//! The tracker's clock against the DAQ's: a tracker whose angle reaches the recording late (an
+//! EM tracker's latency, a clock offset the import left) makes the joint's angle lag its stroke
+//! and the sensors' voltages by the same time.
+//!
+//! Discovery would take that for physics: on Joint A's clean recordings (third generator) an
+//! angle 50 ms late named `backlash` on the plant (seed 3), and 200 ms late named `rate` and
+//! `creep` on sensor 1 (seeds 3 and 4), each with exit 0.
+//!
+//! Physics cannot do it, which is the property the check rests on. A plant effect makes the
+//! angle lag the stroke, but the sensors (on the joint) then follow the angle, not the stroke; a
+//! sensor effect makes a voltage lag or lead the angle, but leaves the angle on time against
+//! the stroke. Only the angle's own timing moves both by one delay. So the delay of the angle
+//! is measured twice, each by least squares over a grid of shifts (the angle against the
+//! stroke, a line; each voltage's resistance against the angle, a parabola), in each of
+//! [`BLOCKS`] blocks of the motion, and the recording is refused when both delays are
+//! non-zero by at least [`Z_NONZERO`] standard errors (the spread of the blocks'), with the
+//! same sign, and agree within [`Z_AGREE`] standard errors of their difference.
+
+use super::data::Data;
+use super::DiscoverError;
+
+/// Blocks of the motion, each giving one estimate of each delay.
+pub const BLOCKS: usize = 11;
+/// The largest delay looked for (s).
+pub const MAX_DELAY_S: f64 = 0.3;
+/// The grid's step (s); the least squares' minimum is refined by a parabola through its
+/// neighbours.
+pub const STEP_S: f64 = 0.005;
+/// How many standard errors from zero each delay must be.
+pub const Z_NONZERO: f64 = 4.0;
+/// How many standard errors of their difference the two delays may differ by.
+pub const Z_AGREE: f64 = 3.0;
+
+/// A delay measured over the blocks: their mean and its standard error (s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Delay {
+    /// Mean over the blocks (s).
+    pub mean_s: f64,
+    /// Standard error of the mean (s).
+    pub se_s: f64,
+}
+
+impl Delay {
+    fn of(estimates: &[f64]) -> Option<Self> {
+        let n = estimates.len();
+        if n < 3 {
+            return None;
+        }
+        let mean_s = estimates.iter().sum::<f64>() / n as f64;
+        let var = estimates.iter().map(|d| (d - mean_s).powi(2)).sum::<f64>() / (n - 1) as f64;
+        let se_s = (var / n as f64).sqrt();
+        (mean_s.is_finite() && se_s.is_finite()).then_some(Self { mean_s, se_s })
+    }
+
+    /// How many standard errors from zero (infinite for an exact, non-zero delay).
+    fn z(self) -> f64 {
+        if self.se_s > 0.0 {
+            self.mean_s.abs() / self.se_s
+        } else if self.mean_s != 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The angle's delay against the stroke, and against the voltages (their resistances pooled
+/// by inverse variance), over `data`'s motion; `None` when a block cannot be fitted.
+pub fn delays(data: &Data) -> Option<(Delay, Delay)> {
+    let first = data.rest.min(data.len());
+    let moving = data.len() - first;
+    let size = moving / BLOCKS;
+    if size < 10 {
+        return None;
+    }
+    let mut plant = Vec::with_capacity(BLOCKS);
+    let mut sensors = vec![Vec::with_capacity(BLOCKS); data.ohm.len()];
+    for b in 0..BLOCKS {
+        let rows = first + b * size..first + (b + 1) * size;
+        let rows: Vec<usize> = rows.filter(|&i| data.measured[i]).collect();
+        if rows.len() < 10 {
+            return None;
+        }
+        let t: Vec<f64> = rows.iter().map(|&i| data.time_s[i]).collect();
+        let column = |v: &[f64]| -> Vec<f64> { rows.iter().map(|&i| v[i]).collect() };
+        let angle = column(&data.angle_deg);
+        // The angle later than the stroke by `d`: the stroke shifted by `d` explains it.
+        plant.push(best_shift(&t, &column(&data.stroke_mm), &angle, 1)?);
+        for (s, ohm) in sensors.iter_mut().zip(&data.ohm) {
+            // The resistance later than the angle by `d`: the angle is late by `-d`.
+            s.push(-best_shift(&t, &angle, &column(ohm), 2)?);
+        }
+    }
+    let sensor_delays: Vec<Delay> = sensors
+        .iter()
+        .map(|s| Delay::of(s))
+        .collect::<Option<_>>()?;
+    Some((Delay::of(&plant)?, pooled(&sensor_delays)?))
+}
+
+/// Inverse-variance pooling of several measurements of one delay.
+fn pooled(delays: &[Delay]) -> Option<Delay> {
+    if delays.len() == 1 {
+        return Some(delays[0]);
+    }
+    let weights: Vec<f64> = delays
+        .iter()
+        .map(|d| 1.0 / d.se_s.powi(2).max(f64::MIN_POSITIVE))
+        .collect();
+    let total: f64 = weights.iter().sum();
+    let mean_s = delays
+        .iter()
+        .zip(&weights)
+        .map(|(d, w)| d.mean_s * w)
+        .sum::<f64>()
+        / total;
+    let se_s = (1.0 / total).sqrt();
+    (mean_s.is_finite() && se_s.is_finite()).then_some(Delay { mean_s, se_s })
+}
+
+/// The shift `d` (s) of the grid, refined, for which `y(t)` is best fitted by a polynomial of
+/// `degree` in `x(t − d)` (linear interpolation of `x`; held at its ends).
+fn best_shift(t: &[f64], x: &[f64], y: &[f64], degree: usize) -> Option<f64> {
+    let steps = (MAX_DELAY_S / STEP_S).round() as i64;
+    let ss: Vec<f64> = (-steps..=steps)
+        .map(|k| {
+            let d = k as f64 * STEP_S;
+            let shifted: Vec<f64> = t.iter().map(|&ti| interpolate(t, x, ti - d)).collect();
+            residual_ss(&shifted, y, degree)
+        })
+        .collect();
+    let (i, _) = ss
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.is_finite())
+        .min_by(|a, b| a.1.total_cmp(b.1))?;
+    let refine = if i > 0 && i + 1 < ss.len() {
+        let curvature = ss[i - 1] - 2.0 * ss[i] + ss[i + 1];
+        if curvature > 0.0 {
+            0.5 * (ss[i - 1] - ss[i + 1]) / curvature
+        } else {
+            0.0
+        }
+    } else {
+        0.0
+    };
+    Some((i as f64 - steps as f64 + refine) * STEP_S)
+}
+
+/// `x` at time `at`, linearly interpolated between the samples at times `t` (increasing).
+fn interpolate(t: &[f64], x: &[f64], at: f64) -> f64 {
+    match t.partition_point(|&ti| ti <= at) {
+        0 => x[0],
+        k if k >= t.len() => x[t.len() - 1],
+        k => {
+            let (t0, t1) = (t[k - 1], t[k]);
+            let f = if t1 > t0 { (at - t0) / (t1 - t0) } else { 0.0 };
+            x[k - 1] + f * (x[k] - x[k - 1])
+        }
+    }
+}
+
+/// The residual sum of squares of `y` fitted by a polynomial of `degree` in `x` (least
+/// squares on centred, scaled `x`).
+fn residual_ss(x: &[f64], y: &[f64], degree: usize) -> f64 {
+    let n = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    let scale = (x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
+    if scale.is_nan() || scale <= 0.0 {
+        return f64::NAN;
+    }
+    let p = degree + 1;
+    let design =
+        nalgebra::DMatrix::from_fn(x.len(), p, |r, c| ((x[r] - mean) / scale).powi(c as i32));
+    let target = nalgebra::DVector::from_column_slice(y);
+    let Ok(beta) = design.clone().svd(true, true).solve(&target, 1e-12) else {
+        return f64::NAN;
+    };
+    (target - design * beta).norm_squared()
+}
+
+/// Refuses `data` when its angle is late (or early) against both the stroke and the voltages
+/// by one delay (module docs).
+///
+/// # Errors
+/// [`DiscoverError::TrackerDelay`] with both delays and their standard errors.
+pub fn check(data: &Data) -> Result<(), DiscoverError> {
+    let Some((plant, sensors)) = delays(data) else {
+        return Ok(());
+    };
+    let both = plant.z() >= Z_NONZERO && sensors.z() >= Z_NONZERO;
+    let same_sign = plant.mean_s.signum() == sensors.mean_s.signum();
+    let apart = (plant.mean_s - sensors.mean_s).abs();
+    let agree = apart <= Z_AGREE * plant.se_s.hypot(sensors.se_s);
+    if both && same_sign && agree {
+        return Err(DiscoverError::TrackerDelay {
+            stroke_ms: 1e3 * plant.mean_s,
+            stroke_se_ms: 1e3 * plant.se_s,
+            voltage_ms: 1e3 * sensors.mean_s,
+            voltage_se_ms: 1e3 * sensors.se_s,
+            z: Z_NONZERO,
+        });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::recording::clipping::tests::uniform;
+
+    /// A motion of two sines after a 10 s rest at 25 Hz: the stroke, the joint's angle
+    /// `plant_lag_s` behind it, the tracker's reading `tracker_lag_s` behind the angle, and a
+    /// resistance `sensor_lag_s` behind the angle, each with noise.
+    fn data(plant_lag_s: f64, tracker_lag_s: f64, sensor_lag_s: f64) -> Data {
+        let dt_s = 0.04;
+        let n = 7500;
+        let stroke = |t: f64| {
+            if t < 10.0 {
+                0.0
+            } else {
+                let u = t - 10.0;
+                0.3 * (1.0 - (0.9 * u).cos()) + 0.1 * (2.3 * u).sin().powi(2)
+            }
+        };
+        let angle = |t: f64| 35.0 * stroke(t - plant_lag_s);
+        let mut state = 7_u64;
+        let mut noise = |scale: f64| scale * uniform(&mut state);
+        let time_s: Vec<f64> = (0..n).map(|i| i as f64 * dt_s).collect();
+        Data {
+            stroke_mm: time_s.iter().map(|&t| stroke(t)).collect(),
+            angle_deg: time_s
+                .iter()
+                .map(|&t| angle(t - tracker_lag_s) + noise(0.2))
+                .collect(),
+            strain: vec![0.0; n],
+            ohm: vec![time_s
+                .iter()
+                .map(|&t| 180e3 + 400.0 * angle(t - sensor_lag_s) + noise(100.0))
+                .collect()],
+            rest: 250,
+            measured: vec![true; n],
+            dt_s,
+            time_s,
+        }
+    }
+
+    #[test]
+    fn a_late_tracker_is_refused_with_both_delays() {
+        let err = check(&data(0.0, 0.08, 0.0)).unwrap_err().to_string();
+        assert!(err.contains("late"), "{err}");
+        let (plant, sensors) = delays(&data(0.0, 0.08, 0.0)).unwrap();
+        assert!((plant.mean_s - 0.08).abs() < 0.005, "{plant:?}");
+        assert!((sensors.mean_s - 0.08).abs() < 0.01, "{sensors:?}");
+        let err = check(&data(0.0, -0.08, 0.0)).unwrap_err().to_string();
+        assert!(err.contains("early"), "{err}");
+    }
+
+    #[test]
+    fn a_lagging_joint_or_sensor_is_physics_and_is_accepted() {
+        // The joint lags its stroke: the sensor follows the joint, not the stroke.
+        let (plant, sensors) = delays(&data(0.08, 0.0, 0.0)).unwrap();
+        assert!((plant.mean_s - 0.08).abs() < 0.005, "{plant:?}");
+        assert!(sensors.mean_s.abs() < 0.01, "{sensors:?}");
+        check(&data(0.08, 0.0, 0.0)).unwrap();
+        // The sensor lags the joint, or leads it (a rate term): the angle is on time.
+        check(&data(0.0, 0.0, 0.08)).unwrap();
+        check(&data(0.0, 0.0, -0.08)).unwrap();
+        // On time.
+        check(&data(0.0, 0.0, 0.0)).unwrap();
+    }
+}
