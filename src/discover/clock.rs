@@ -161,7 +161,8 @@ fn interpolate(t: &[f64], x: &[f64], at: f64) -> f64 {
 }
 
 /// The residual sum of squares of `y` fitted by a polynomial of `degree` in `x` (least
-/// squares on centred, scaled `x`).
+/// squares on centred, scaled `x`, by its normal equations: at most three columns, well
+/// conditioned once scaled).
 fn residual_ss(x: &[f64], y: &[f64], degree: usize) -> f64 {
     let n = x.len() as f64;
     let mean = x.iter().sum::<f64>() / n;
@@ -169,14 +170,34 @@ fn residual_ss(x: &[f64], y: &[f64], degree: usize) -> f64 {
     if scale.is_nan() || scale <= 0.0 {
         return f64::NAN;
     }
+    // `y` centred too: the intercept takes its mean, and `yᵀy` below stays of the order of
+    // the residual's.
+    let y_mean = y.iter().sum::<f64>() / n;
     let p = degree + 1;
-    let design =
-        nalgebra::DMatrix::from_fn(x.len(), p, |r, c| ((x[r] - mean) / scale).powi(c as i32));
-    let target = nalgebra::DVector::from_column_slice(y);
-    let Ok(beta) = design.clone().svd(true, true).solve(&target, 1e-12) else {
+    let mut gram = nalgebra::DMatrix::<f64>::zeros(p, p);
+    let mut xty = nalgebra::DVector::<f64>::zeros(p);
+    let mut yty = 0.0;
+    let mut powers = vec![0.0; p];
+    for (&xi, &y_raw) in x.iter().zip(y) {
+        let yi = y_raw - y_mean;
+        let u = (xi - mean) / scale;
+        powers[0] = 1.0;
+        for k in 1..p {
+            powers[k] = powers[k - 1] * u;
+        }
+        for r in 0..p {
+            xty[r] += powers[r] * yi;
+            for c in 0..p {
+                gram[(r, c)] += powers[r] * powers[c];
+            }
+        }
+        yty += yi * yi;
+    }
+    let Some(beta) = gram.clone().cholesky().map(|c| c.solve(&xty)) else {
         return f64::NAN;
     };
-    (target - design * beta).norm_squared()
+    // ‖y − Xβ‖² = yᵀy − 2βᵀXᵀy + βᵀXᵀXβ = yᵀy − βᵀXᵀy at the least-squares β.
+    (yty - beta.dot(&xty)).max(0.0)
 }
 
 /// Refuses `data` when its angle is late (or early) against both the stroke and the voltages
