@@ -18,6 +18,7 @@
 
 use super::data::Data;
 use super::DiscoverError;
+use crate::stats::interpolate_held;
 
 /// Blocks of the motion, each giving one estimate of each delay.
 pub const BLOCKS: usize = 11;
@@ -125,7 +126,10 @@ fn best_shift(t: &[f64], x: &[f64], y: &[f64], degree: usize) -> Option<f64> {
     let ss: Vec<f64> = (-steps..=steps)
         .map(|k| {
             let d = k as f64 * STEP_S;
-            let shifted: Vec<f64> = t.iter().map(|&ti| interpolate(t, x, ti - d)).collect();
+            let shifted: Vec<f64> = t
+                .iter()
+                .map(|&ti| interpolate_held(t, x, ti - d).unwrap_or(f64::NAN))
+                .collect();
             residual_ss(&shifted, y, degree)
         })
         .collect();
@@ -145,19 +149,6 @@ fn best_shift(t: &[f64], x: &[f64], y: &[f64], degree: usize) -> Option<f64> {
         0.0
     };
     Some((i as f64 - steps as f64 + refine) * STEP_S)
-}
-
-/// `x` at time `at`, linearly interpolated between the samples at times `t` (increasing).
-fn interpolate(t: &[f64], x: &[f64], at: f64) -> f64 {
-    match t.partition_point(|&ti| ti <= at) {
-        0 => x[0],
-        k if k >= t.len() => x[t.len() - 1],
-        k => {
-            let (t0, t1) = (t[k - 1], t[k]);
-            let f = if t1 > t0 { (at - t0) / (t1 - t0) } else { 0.0 };
-            x[k - 1] + f * (x[k] - x[k - 1])
-        }
-    }
 }
 
 /// The residual sum of squares of `y` fitted by a polynomial of `degree` in `x` (least

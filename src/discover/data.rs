@@ -105,13 +105,7 @@ impl Data {
                 rows: s.invalid_angle_rows(),
             });
         }
-        let (lo, hi) = s
-            .valid_angle_rows()
-            .into_iter()
-            .map(|i| s.angle_deg[i])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), a| {
-                (lo.min(a), hi.max(a))
-            });
+        let (lo, hi) = s.valid_angle_range();
         if hi - lo < MIN_ANGLE_SPAN_DEG {
             return Err(DiscoverError::NoMotion {
                 span_deg: hi - lo,

@@ -378,6 +378,17 @@ impl Samples {
             .collect()
     }
 
+    /// The smallest and the largest tracker angle over the rows with a usable one (°);
+    /// `(∞, −∞)` when there is none.
+    pub fn valid_angle_range(&self) -> (f64, f64) {
+        (0..self.angle_deg.len())
+            .filter(|&i| self.angle_valid(i))
+            .map(|i| self.angle_deg[i])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), a| {
+                (lo.min(a), hi.max(a))
+            })
+    }
+
     /// Rows marked invalid by the `tracker_valid` column.
     pub fn invalid_angle_rows(&self) -> usize {
         self.tracker_valid.iter().filter(|v| !**v).count()

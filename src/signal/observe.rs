@@ -78,15 +78,7 @@ pub fn observe(
         columns: s.volts.len(),
     })?;
     // Rows whose angle the tracker did not measure (`tracker_valid = 0`) are left out.
-    let (lo, hi) = s
-        .angle_deg
-        .iter()
-        .enumerate()
-        .filter(|&(i, _)| s.angle_valid(i))
-        .map(|(_, a)| a)
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &a| {
-            (lo.min(a), hi.max(a))
-        });
+    let (lo, hi) = s.valid_angle_range();
     if !(hi - lo >= MIN_ANGLE_SPAN_DEG) {
         return Err(SignalError::NoMotion {
             span_deg: (hi - lo).max(0.0),
