@@ -17,13 +17,23 @@ use common::third_generator::{self, Bench, Effect, Size};
 
 use std::path::{Path, PathBuf};
 
-/// Joint A's third-generator recording of `effect` (seed 3), written into `root/name`.
+/// Joint A's third-generator recording of `effect` (seed 3, 120 s), written into `root/name`.
 fn recording(root: &Path, name: &str, effect: Option<(Effect, Size, usize)>) -> PathBuf {
+    recording_of(root, name, effect, 120.0)
+}
+
+/// [`recording`], `duration_s` long.
+fn recording_of(
+    root: &Path,
+    name: &str,
+    effect: Option<(Effect, Size, usize)>,
+    duration_s: f64,
+) -> PathBuf {
     let dir = root.join(name);
     let design = Path::new(env!("CARGO_MANIFEST_DIR")).join("designs/joint-a.toml");
     let bench = Bench {
         effect,
-        duration_s: 120.0,
+        duration_s,
         seed: 3,
     };
     third_generator::write_recording(&design, &bench, &dir);
@@ -229,4 +239,51 @@ fn a_sensor_that_saturates_is_not_a_clip() {
     // carrying the noise: no value piles up.
     let saturating = Some((Effect::Saturation, Size(8.0), 1));
     assert_fits(root, &recording(root, "saturation", saturating));
+}
+
+/// A copy of `from` as `root/name` whose angle is `rows` rows late: a tracker's clock behind
+/// the DAQ's (the first value held over the rows shifted in).
+fn late(from: &Path, root: &Path, name: &str, rows: usize) -> PathBuf {
+    copy_edited(from, root, name, |(header, mut table)| {
+        let angle: Vec<String> = table.iter().map(|r| r[2].clone()).collect();
+        for (i, row) in table.iter_mut().enumerate() {
+            row[2] = angle[i.saturating_sub(rows)].clone();
+        }
+        (header, table)
+    })
+}
+
+/// A tracker 200 ms behind the DAQ is refused by `fit`, `discover` and `characterize`, naming
+/// both delays (`src/recording/clock.rs`); before, `fit` wrote a gauge factor 1 % low and a
+/// Prandtl-Ishlinskii loop the sensor does not have. 20 ms late, under what the recording can
+/// time, is accepted. 300 s: the 120 s recording the other tests use is accepted even 200 ms
+/// late (measured; its eleven blocks are too short to time the angle: "cannot tell").
+#[test]
+fn a_late_tracker_is_refused_by_fit_discover_and_characterize() {
+    let root = tempfile::tempdir().unwrap();
+    let root = root.path();
+    let design = Path::new(env!("CARGO_MANIFEST_DIR")).join("designs/joint-a.toml");
+    let design = design.to_str().unwrap();
+    let clean = recording_of(root, "clean", None, 300.0);
+    let rows_per_ms = third_generator::SAMPLE_HZ / 1000.0;
+    let late_200 = late(&clean, root, "late-200", (200.0 * rows_per_ms) as usize);
+    let commands: [(&[&str], &str); 3] = [
+        (&["fit"], "fit.toml"),
+        (&["discover", "--fast"], "discover"),
+        (&["characterize", "--kind", "loops"], "loops"),
+    ];
+    for (command, output) in commands {
+        let out = root.join(output);
+        let mut args = command.to_vec();
+        args.extend(["--design", design, late_200.to_str().unwrap()]);
+        args.extend(["-o", out.to_str().unwrap()]);
+        let o = dlw(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} accepted a late tracker");
+        for part in ["angle is late", "against the stroke", "against the sensors' voltages", "ms"] {
+            assert!(err.contains(part), "{args:?}: {part:?} not in {err}");
+        }
+        assert!(!out.exists(), "{args:?} wrote {}", out.display());
+    }
+    assert_fits(root, &late(&clean, root, "late-20", (20.0 * rows_per_ms) as usize));
 }

@@ -529,6 +529,12 @@ fn sync_level(t: f64) -> f64 {
 /// Adds the sync pulse to the bench's files: a `SYNC` column (0/5 V) to `daq.csv`, and a `Sync`
 /// column (the level at each frame's time) to `aurora.csv`, as a lab's own logger would.
 fn add_sync_pulse(dir: &Path) {
+    add_sync_pulse_latency(dir, 0.0);
+}
+
+/// [`add_sync_pulse`], the tracker logging each pose `latency_s` after the pulse level it
+/// writes beside it (a tracker's own processing latency, which a pulse cannot show).
+fn add_sync_pulse_latency(dir: &Path, latency_s: f64) {
     let daq = std::fs::read_to_string(dir.join("daq.csv")).unwrap();
     let mut out = String::new();
     for (i, line) in daq.lines().enumerate() {
@@ -549,7 +555,7 @@ fn add_sync_pulse(dir: &Path) {
             let frame: f64 = line.split(',').nth(2).unwrap().parse().unwrap();
             let tau = (frame - 1000.0) / TRACKER_HZ;
             let t = OFFSET_S + tau * (1.0 + DRIFT_PPM * 1e-6);
-            writeln!(out, "{line},{}", sync_level(t)).unwrap();
+            writeln!(out, "{line},{}", sync_level(t + latency_s)).unwrap();
         }
     }
     std::fs::write(dir.join("aurora.csv"), out).unwrap();
@@ -643,6 +649,73 @@ fn a_sync_pulse_aligns_the_clocks() {
     assert!(!o.status.success(), "noise on AI1 aligned");
     eprintln!("AI1 as the sync channel: {err}");
     assert!(!out.exists());
+}
+
+/// A tracker whose poses come 150 ms after the pulse level it logs beside them: the pulse
+/// aligns the clocks it sees, and the angle would be 150 ms off the DAQ's channels. The
+/// import's own check after the alignment refuses it (the angle predicted from sensor 1
+/// departs from the tracker's, and the sensor shifted by the latency would not), with nothing
+/// written; a recording written late by other means is refused by `fit` and `discover`
+/// (`src/recording/clock.rs`, `tests/clipped_recordings.rs`).
+#[test]
+fn a_tracker_late_behind_its_sync_pulse_is_refused_by_the_import() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench(dir.path(), STILL_6DOF);
+    add_sync_pulse_latency(dir.path(), -0.15);
+    let o = import(
+        dir.path(),
+        &["--sync", "SYNC", "--tracker-sync-column", "Sync"],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("the clocks do not line up") && err.contains("+0.15"),
+        "{err}"
+    );
+    assert!(!dir.path().join("rec").exists());
+}
+
+/// A DAQ channel clipped by its input range (the linear sensor's voltage held at its 90th
+/// percentile): the import writes it with a warning naming the column; `fit` refuses it.
+#[test]
+fn a_clipped_daq_channel_is_warned_of_and_refused_by_fit() {
+    let dir = tempfile::tempdir().unwrap();
+    write_bench(dir.path(), STILL_6DOF);
+    let daq = std::fs::read_to_string(dir.path().join("daq.csv")).unwrap();
+    let mut lines = daq.lines();
+    let header = lines.next().unwrap();
+    let at = header.split(',').position(|c| c == "AI0").unwrap();
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(str::to_owned).collect())
+        .collect();
+    let mut values: Vec<f64> = rows.iter().map(|r| r[at].parse().unwrap()).collect();
+    values.sort_by(f64::total_cmp);
+    let limit = values[values.len() * 9 / 10];
+    let mut out = format!("{header}\n");
+    for mut r in rows {
+        if r[at].parse::<f64>().unwrap() > limit {
+            r[at] = limit.to_string();
+        }
+        writeln!(out, "{}", r.join(",")).unwrap();
+    }
+    std::fs::write(dir.path().join("daq.csv"), out).unwrap();
+    let o = import(dir.path(), &[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    eprintln!("{err}");
+    assert!(
+        err.contains("warning:") && err.contains("v1_V holds its largest value") && err.contains("will refuse it"),
+        "{err}"
+    );
+    let o = dlw(&[
+        "fit",
+        "--design",
+        &shipped_design("joint-a.toml"),
+        &arg(&dir.path().join("rec")),
+        "-o",
+        &arg(&dir.path().join("fit.toml")),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("v1_V holds its largest value"), "{err}");
 }
 
 /// `--rate-hz 100` on the 500 Hz bench: 100 rows a second, each sensor voltage the mean of the

@@ -9,7 +9,6 @@
 //! ([`scenario`]) and the report ([`report`]).
 
 pub mod calibrate;
-pub mod clock;
 pub mod data;
 mod decide;
 pub mod locate;
@@ -126,20 +125,6 @@ pub enum DiscoverError {
     NoAngle {
         /// Rows marked.
         rows: usize,
-    },
-    /// The tracker's angle is late (or early) against the stroke and the voltages alike.
-    #[error("the tracker's angle is {late} by one delay against both the DAQ's channels: {stroke_ms:.1} ± {stroke_se_ms:.1} ms against the stroke and {voltage_ms:.1} ± {voltage_se_ms:.1} ms against the sensors' voltages (each at least {z} standard errors from zero, and within 3 of each other). No plant effect moves the sensors with the angle, and no sensor effect moves the angle against the stroke: the tracker's clock is off the DAQ's. Discovery would take it for a plant's play or a sensor's rate; align the clocks (shift angle_deg by the delay, or import again with the tracker's offset)", late = if *stroke_ms > 0.0 { "late" } else { "early" })]
-    TrackerDelay {
-        /// The angle's delay against the stroke (ms).
-        stroke_ms: f64,
-        /// Its standard error (ms).
-        stroke_se_ms: f64,
-        /// The angle's delay against the voltages (ms).
-        voltage_ms: f64,
-        /// Its standard error (ms).
-        voltage_se_ms: f64,
-        /// Standard errors each must be from zero.
-        z: f64,
     },
     /// The angle barely moves.
     #[error("no motion: the recorded angle spans {span_deg:.3}°, and discovery needs at least {min_deg}°, as `dlw fit` does: below it the strain is the tracker's noise (an angle recorded in radians spans 57 times less than in degrees)")]

@@ -130,11 +130,9 @@ impl<'a> Search<'a> {
             same_rig(recording, h)?;
         }
         let data = Data::new(recording, joint)?;
-        super::clock::check(&data)?;
         let (train, test_data, test) = match holdout {
             Some(h) => {
                 let other = Data::new(h, joint)?;
-                super::clock::check(&other)?;
                 let mask = other.moving();
                 (data.moving(), other, mask)
             }

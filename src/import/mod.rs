@@ -32,6 +32,8 @@ pub use map::TrackerMap;
 pub use place::MAX_GAP_FRAMES;
 pub use tracker::{ToolFrame, TrackerError, TrackerLog};
 
+use std::path::Path;
+
 use sha2::{Digest, Sha256};
 
 use crate::recording::{
@@ -490,7 +492,24 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
     };
     let recording = Recording { rig, samples };
     recording.check()?;
+    let mut summary = summary;
+    summary
+        .warnings
+        .extend(refused_by_analyses(recording.check_measured(Path::new(IMPORTED))));
     Ok((recording, summary))
+}
+
+/// How an import's warnings name the recording it wrote (the folder is the caller's).
+pub(crate) const IMPORTED: &str = "the imported recording";
+
+/// A warning for what `fit`, `discover` and `characterize` will refuse in an imported recording
+/// (`Recording::check_measured`: a column clipped or frozen, the tracker's clock off the
+/// DAQ's). The import writes it all the same: it is what the instruments gave, and `estimate`
+/// reads it.
+pub(crate) fn refused_by_analyses(check: Result<(), RecordingError>) -> Option<String> {
+    check.err().map(|e| {
+        format!("{e}. The recording is written as the instruments gave it, and the analyses that fit a model to it (`dlw fit`, `discover`, `characterize`) will refuse it")
+    })
 }
 
 /// The DAQ channels an import reads, in the DAQ table's order: the voltages, the strokes (one

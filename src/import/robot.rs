@@ -16,6 +16,8 @@
 //! A tip tool alone is refused by the caller: its positions cannot be put in the robot's base
 //! frame without the base's pose in the tracker's frame ([`TIP_TOOL_REFUSAL`]).
 
+use std::path::Path;
+
 use crate::recording::robot::{RobotRecording, RobotSamples};
 use crate::recording::Rig;
 
@@ -301,6 +303,9 @@ pub fn import_robot(
     recording.check()?;
     let mut import = shared;
     import.tracker.missing_frames = missing;
+    import.warnings.extend(super::refused_by_analyses(
+        recording.check_measured(Path::new(super::IMPORTED)),
+    ));
     Ok((recording, RobotImportSummary { import, joints }))
 }
 

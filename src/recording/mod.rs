@@ -26,9 +26,11 @@
 //! tables, which the simulator reads back with its own types.
 
 pub mod clipping;
+pub mod clock;
 pub mod frozen;
 mod protocol;
 pub mod provenance;
+pub mod rest;
 pub mod robot;
 mod truth;
 
@@ -222,6 +224,10 @@ pub enum RecordingError {
     /// ([`frozen`]).
     #[error(transparent)]
     Frozen(Box<FrozenColumn>),
+    /// The tracker's angle is late (or early) against the stroke and the voltages alike: its
+    /// clock is off the DAQ's ([`clock`]).
+    #[error(transparent)]
+    TrackerDelay(Box<clock::TrackerDelay>),
     /// The destination exists and replacing it was not asked for.
     #[error("output folder {path} already exists and is not empty (pass --force to replace it)")]
     Exists {
@@ -557,11 +563,10 @@ impl Recording {
     }
 
     /// [`read`](Self::read)s a recording a model will be fitted to, and refuses it when a
-    /// column was not measured throughout ([`check_measured`](Self::check_measured)).
+    /// column was not measured throughout or its tracker is late ([`check_measured`](Self::check_measured)).
     ///
     /// # Errors
-    /// Those of [`read`](Self::read), [`RecordingError::Clipped`] and
-    /// [`RecordingError::Frozen`].
+    /// Those of [`read`](Self::read) and of [`check_measured`](Self::check_measured).
     pub fn read_measured(dir: &Path) -> Result<Self, RecordingError> {
         let rec = Self::read(dir)?;
         rec.check_measured(dir)?;
@@ -570,13 +575,16 @@ impl Recording {
 
     /// Refuses a recording one of whose columns was not measured throughout: the tracker's
     /// angle (on its valid rows) or a voltage clipped by the instrument's range
-    /// ([`clipping`]), or holding one value while the stroke moves ([`frozen`]). An analysis
-    /// that fits a model (`fit`, `discover`, `characterize`) calls it after reading; `dir` is
-    /// the folder read, for the message.
+    /// ([`clipping`]), or holding one value while the stroke moves ([`frozen`]); or whose
+    /// tracker's clock is off the DAQ's, its angle late against the stroke and the voltages
+    /// alike ([`clock`]). An analysis that fits a model (`fit`, `discover`, `characterize`,
+    /// and the Python binding's) calls it after reading; `dir` is the folder read, for the
+    /// message.
     ///
     /// # Errors
     /// [`RecordingError::Clipped`] or [`RecordingError::Frozen`], naming the column, the value,
-    /// how many rows hold it and the first line.
+    /// how many rows hold it and the first line; [`RecordingError::TrackerDelay`] with both
+    /// delays and their standard errors.
     pub fn check_measured(&self, dir: &Path) -> Result<(), RecordingError> {
         let s = &self.samples;
         let valid = s.valid_angle_rows();
@@ -597,7 +605,8 @@ impl Recording {
                 stroke: Some(&s.stroke_mm),
             });
         }
-        refuse_unmeasured(dir, &s.time_s, columns)
+        refuse_unmeasured(dir, &s.time_s, columns)?;
+        clock::check(self, dir)
     }
 
     /// Writes the recording as folder `dest`, atomically: it is built under a temporary name

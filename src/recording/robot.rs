@@ -149,19 +149,31 @@ impl RobotRecording {
     }
 
     /// [`read`](Self::read)s a robot recording a model will be fitted to, and refuses it when
-    /// a column was not measured throughout ([`Recording::check_measured`]): a joint's angle or
-    /// the tip (on the rows the tracker marks valid) or a voltage clipped by the instrument's
-    /// range, or a joint's angle holding one value while its own stroke moves. A voltage is
-    /// not checked for a hold: the joints its sensor does not sit on may be the ones moving.
+    /// a column was not measured throughout ([`check_measured`](Self::check_measured)).
+    ///
+    /// # Errors
+    /// Those of [`read`](Self::read) and of [`check_measured`](Self::check_measured).
+    pub fn read_measured(dir: &Path) -> Result<Self, RecordingError> {
+        let rec = Self::read(dir)?;
+        rec.check_measured(dir)?;
+        Ok(rec)
+    }
+
+    /// Refuses a robot recording one of whose columns was not measured throughout
+    /// ([`Recording::check_measured`]): a joint's angle or the tip (on the rows the tracker
+    /// marks valid) or a voltage clipped by the instrument's range, or a joint's angle holding
+    /// one value while its own stroke moves. A voltage is not checked for a hold: the joints its
+    /// sensor does not sit on may be the ones moving. `dir` is the folder read, for the message.
+    ///
+    /// The tracker's clock is not checked against the DAQ's here, as a joint's is
+    /// ([`super::clock`]): a sensor of a robot also answers the joints it does not sit on.
     ///
     /// [`Recording::check_measured`]: super::Recording::check_measured
     ///
     /// # Errors
-    /// Those of [`read`](Self::read), [`RecordingError::Clipped`] and
-    /// [`RecordingError::Frozen`].
-    pub fn read_measured(dir: &Path) -> Result<Self, RecordingError> {
-        let rec = Self::read(dir)?;
-        let s = &rec.samples;
+    /// [`RecordingError::Clipped`] and [`RecordingError::Frozen`].
+    pub fn check_measured(&self, dir: &Path) -> Result<(), RecordingError> {
+        let s = &self.samples;
         let valid: Vec<usize> = (0..s.time_s.len())
             .filter(|&i| s.tracker_valid_at(i))
             .collect();
@@ -199,8 +211,7 @@ impl RobotRecording {
                 stroke: None,
             });
         }
-        refuse_unmeasured(dir, &s.time_s, columns)?;
-        Ok(rec)
+        refuse_unmeasured(dir, &s.time_s, columns)
     }
 
     /// Checks the recording by its reader's rules on what [`RobotRecording::write`] would put in

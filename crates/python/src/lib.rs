@@ -8,7 +8,7 @@
 //! input raises `ValueError` with the command's message; long work releases the GIL.
 //! `docs/python.md` is the user's guide.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 mod robot;
 mod robot_file;
@@ -155,11 +155,13 @@ fn recording_dict<'py>(py: Python<'py>, recording: &Recording) -> PyResult<Bound
     Ok(d)
 }
 
-/// A recording argument: a path to a recording folder, or a dict as `read_recording` returns.
+/// A recording argument: a path to a recording folder, or a dict as `read_recording` returns;
+/// refused, as the commands refuse it, when a column was not measured throughout or the
+/// tracker's clock is off the DAQ's ([`Recording::read_measured`]).
 fn recording_arg(value: &Bound<'_, PyAny>) -> PyResult<Recording> {
     let Ok(d) = value.cast::<PyDict>() else {
         let path: PathBuf = value.extract()?;
-        return Recording::read(&path).map_err(value_error);
+        return Recording::read_measured(&path).map_err(value_error);
     };
     let column = |key: &str| -> PyResult<Option<Vec<f64>>> {
         d.get_item(key)?.map(|v| floats(&v)).transpose()
@@ -216,7 +218,13 @@ fn recording_arg(value: &Bound<'_, PyAny>) -> PyResult<Recording> {
     Recording { rig, samples }
         .write(&path, false)
         .map_err(value_error)?;
-    Recording::read(&path).map_err(value_error)
+    let recording = Recording::read(&path).map_err(value_error)?;
+    // The analyses' refusals of a column not measured throughout, or a late tracker
+    // (`Recording::check_measured`), named as the dict's: its rows are the data file's lines.
+    recording
+        .check_measured(Path::new("the recording dict"))
+        .map_err(value_error)?;
+    Ok(recording)
 }
 
 /// Reads a recording folder (`rig.toml` + `data.csv`): a dict of numpy arrays (`time_s`,

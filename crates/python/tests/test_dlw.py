@@ -151,6 +151,25 @@ def test_bad_fit_input_raises_value_error(recordings):
     assert "v1_V" in str(e.value)
 
 
+def test_unmeasured_or_late_input_is_refused_as_the_commands_refuse_it(recordings):
+    """A clipped voltage and a tracker 200 ms late, from a folder or a dict: ValueError with
+    the command's message, for fit, discover and characterize alike."""
+    design = DESIGNS / "joint-d.toml"
+    rec = dlw.read_recording(recordings / "rand")
+    limit = np.percentile(rec["v1_V"], 90.0)
+    rec["v1_V"] = np.minimum(rec["v1_V"], limit)
+    with pytest.raises(ValueError, match="v1_V holds its largest value"):
+        dlw.fit(rec, design)
+    rec = dlw.read_recording(recordings / "rand")
+    rows = int(round(0.2 * rec["rig"]["sample_hz"]))
+    a = rec["angle_deg"]
+    rec["angle_deg"] = np.concatenate([np.full(rows, a[0]), a[:-rows]])
+    for call in (dlw.fit, dlw.discover, dlw.characterize):
+        with pytest.raises(ValueError, match="angle is late by one delay") as e:
+            call(rec, design)
+        assert "the recording dict" in str(e.value)
+
+
 def test_simulate_equals_the_cli(tmp_path):
     r = dlw.simulate(DESIGNS / "joint-a.toml", protocol="random", duration_s=5.0, seed=4)
     cli("simulate", "--design", DESIGNS / "joint-a.toml", "--protocol", "random", "--duration-s", "5", "--seed", "4", "-o", tmp_path / "s")

@@ -2,9 +2,10 @@
 //! EM tracker's latency, a clock offset the import left) makes the joint's angle lag its stroke
 //! and the sensors' voltages by the same time.
 //!
-//! Discovery would take that for physics: on Joint A's clean recordings (third generator) an
-//! angle 50 ms late named `backlash` on the plant (seed 3), and 200 ms late named `rate` and
-//! `creep` on sensor 1 (seeds 3 and 4), each with exit 0.
+//! Every analysis that fits a model would take that for physics. On Joint A's clean recordings
+//! (third generator) an angle 50 ms late made `discover` name `backlash` on the plant (seed 3),
+//! and 200 ms late `rate` and `creep` on sensor 1 (seeds 3 and 4); `fit` wrote a gauge factor
+//! 1 % low and a Prandtl-Ishlinskii loop the sensor does not have. Each with exit 0.
 //!
 //! Physics cannot do it, which is the property the check rests on. A plant effect makes the
 //! angle lag the stroke, but the sensors (on the joint) then follow the angle, not the stroke; a
@@ -15,11 +16,21 @@
 //! [`BLOCKS`] blocks of the motion, and the recording is refused when both delays are
 //! non-zero by at least [`Z_NONZERO`] standard errors (the spread of the blocks'), with the
 //! same sign, and agree within [`Z_AGREE`] standard errors of their difference.
+//!
+//! It works on the recording block-averaged to about [`TARGET_HZ`] ([`Timeline`]), from the end
+//! of the rest at the start ([`super::rest::rest_end`]), on the rows the tracker measured.
+//! Where the motion is too slow to time the angle (a characterization's slow cycles: 200 ms
+//! measured as 109 ± 37 ms against the stroke), the check cannot tell, and accepts.
 
-use super::data::Data;
-use super::DiscoverError;
+use std::path::{Path, PathBuf};
+
+use super::{Recording, RecordingError, DATA_FILE};
+use crate::sensor::Sensor;
 use crate::stats::interpolate_held;
 
+/// The rate the delays are measured at (Hz): each sample is the mean of `sample_hz/TARGET_HZ`
+/// recorded ones. A 5 ms grid is refined below a sample by the parabola through its minimum.
+pub const TARGET_HZ: f64 = 25.0;
 /// Blocks of the motion, each giving one estimate of each delay.
 pub const BLOCKS: usize = 11;
 /// The largest delay looked for (s).
@@ -65,9 +76,62 @@ impl Delay {
     }
 }
 
+/// A recording block-averaged to about [`TARGET_HZ`]: what the delays are measured on.
+#[derive(Debug, Clone)]
+pub struct Timeline {
+    /// Time (s).
+    pub time_s: Vec<f64>,
+    /// Tendon stroke (mm).
+    pub stroke_mm: Vec<f64>,
+    /// Tracker angle (°).
+    pub angle_deg: Vec<f64>,
+    /// Each divider's sensor resistance (Ω).
+    pub ohm: Vec<Vec<f64>>,
+    /// Whether every row of each sample's block has a tracker angle (`tracker_valid`).
+    pub measured: Vec<bool>,
+    /// Samples `0..rest` are the rest at the start.
+    pub rest: usize,
+}
+
+impl Timeline {
+    /// `rec` block-averaged; `None` when a block's voltage has no finite resistance (an
+    /// analysis refuses such a recording on its own terms).
+    pub fn of(rec: &Recording) -> Option<Self> {
+        let s = &rec.samples;
+        let step = ((rec.rig.sample_hz / TARGET_HZ).round() as usize).max(1);
+        let n = s.time_s.len() / step;
+        let mean = |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
+        let column = |v: &[f64]| -> Vec<f64> { (0..n).map(|k| mean(v, k)).collect() };
+        let mut ohm = Vec::with_capacity(s.volts.len());
+        for (volts, sensor) in s.volts.iter().zip(Sensor::ALL) {
+            let divider = rec.rig.divider(sensor)?;
+            let r: Vec<f64> = (0..n)
+                .map(|k| divider.resistance(mean(volts, k)).ok().filter(|r| r.is_finite()))
+                .collect::<Option<_>>()?;
+            ohm.push(r);
+        }
+        let stroke_mm = column(&s.stroke_mm);
+        let dt_s = step as f64 / rec.rig.sample_hz;
+        Some(Self {
+            time_s: column(&s.time_s),
+            rest: super::rest::rest_end(&stroke_mm, dt_s),
+            stroke_mm,
+            angle_deg: column(&s.angle_deg),
+            ohm,
+            measured: (0..n)
+                .map(|k| (k * step..(k + 1) * step).all(|i| s.angle_valid(i)))
+                .collect(),
+        })
+    }
+
+    fn len(&self) -> usize {
+        self.time_s.len()
+    }
+}
+
 /// The angle's delay against the stroke, and against the voltages (their resistances pooled
 /// by inverse variance), over `data`'s motion; `None` when a block cannot be fitted.
-pub fn delays(data: &Data) -> Option<(Delay, Delay)> {
+pub fn delays(data: &Timeline) -> Option<(Delay, Delay)> {
     let first = data.rest.min(data.len());
     let moving = data.len() - first;
     let size = moving / BLOCKS;
@@ -191,29 +255,52 @@ fn residual_ss(x: &[f64], y: &[f64], degree: usize) -> f64 {
     (yty - beta.dot(&xty)).max(0.0)
 }
 
-/// Refuses `data` when its angle is late (or early) against both the stroke and the voltages
-/// by one delay (module docs).
-///
-/// # Errors
-/// [`DiscoverError::TrackerDelay`] with both delays and their standard errors.
-pub fn check(data: &Data) -> Result<(), DiscoverError> {
-    let Some((plant, sensors)) = delays(data) else {
-        return Ok(());
-    };
+/// The angle's delays against the stroke and the voltages, when they show the tracker's clock
+/// off the DAQ's (module docs): both non-zero, of one sign, and agreeing.
+pub fn tracker_delay(data: &Timeline) -> Option<(Delay, Delay)> {
+    let (plant, sensors) = delays(data)?;
     let both = plant.z() >= Z_NONZERO && sensors.z() >= Z_NONZERO;
     let same_sign = plant.mean_s.signum() == sensors.mean_s.signum();
     let apart = (plant.mean_s - sensors.mean_s).abs();
     let agree = apart <= Z_AGREE * plant.se_s.hypot(sensors.se_s);
-    if both && same_sign && agree {
-        return Err(DiscoverError::TrackerDelay {
-            stroke_ms: 1e3 * plant.mean_s,
-            stroke_se_ms: 1e3 * plant.se_s,
-            voltage_ms: 1e3 * sensors.mean_s,
-            voltage_se_ms: 1e3 * sensors.se_s,
-            z: Z_NONZERO,
-        });
-    }
-    Ok(())
+    (both && same_sign && agree).then_some((plant, sensors))
+}
+
+/// A recording whose tracker's clock is off the DAQ's ([`RecordingError::TrackerDelay`]).
+#[derive(Debug, thiserror::Error)]
+#[error("{path}: the tracker's angle is {late} by one delay against both the DAQ's channels: {stroke_ms:.1} ± {stroke_se_ms:.1} ms against the stroke and {voltage_ms:.1} ± {voltage_se_ms:.1} ms against the sensors' voltages (each at least {z} standard errors from zero, and within {agree} of each other). No plant effect moves the sensors with the angle, and no sensor effect moves the angle against the stroke: the tracker's clock is off the DAQ's, and a model fitted to it would take the delay for physics (`discover` a plant's play or a sensor's rate, `fit` a loop the sensor does not have). Align the clocks (shift angle_deg by the delay) and run it again", late = if *stroke_ms > 0.0 { "late" } else { "early" }, agree = Z_AGREE)]
+pub struct TrackerDelay {
+    /// The recording's data file.
+    pub path: PathBuf,
+    /// The angle's delay against the stroke (ms).
+    pub stroke_ms: f64,
+    /// Its standard error (ms).
+    pub stroke_se_ms: f64,
+    /// The angle's delay against the voltages (ms).
+    pub voltage_ms: f64,
+    /// Its standard error (ms).
+    pub voltage_se_ms: f64,
+    /// Standard errors each must be from zero.
+    pub z: f64,
+}
+
+/// Refuses `rec` (read from folder `dir`) when its angle is late (or early) against both the
+/// stroke and the voltages by one delay (module docs).
+///
+/// # Errors
+/// [`RecordingError::TrackerDelay`] with both delays and their standard errors.
+pub fn check(rec: &Recording, dir: &Path) -> Result<(), RecordingError> {
+    let Some((plant, sensors)) = Timeline::of(rec).and_then(|t| tracker_delay(&t)) else {
+        return Ok(());
+    };
+    Err(RecordingError::TrackerDelay(Box::new(TrackerDelay {
+        path: dir.join(DATA_FILE),
+        stroke_ms: 1e3 * plant.mean_s,
+        stroke_se_ms: 1e3 * plant.se_s,
+        voltage_ms: 1e3 * sensors.mean_s,
+        voltage_se_ms: 1e3 * sensors.se_s,
+        z: Z_NONZERO,
+    })))
 }
 
 #[cfg(test)]
@@ -224,7 +311,7 @@ mod tests {
     /// A motion of two sines after a 10 s rest at 25 Hz: the stroke, the joint's angle
     /// `plant_lag_s` behind it, the tracker's reading `tracker_lag_s` behind the angle, and a
     /// resistance `sensor_lag_s` behind the angle, each with noise.
-    fn data(plant_lag_s: f64, tracker_lag_s: f64, sensor_lag_s: f64) -> Data {
+    fn data(plant_lag_s: f64, tracker_lag_s: f64, sensor_lag_s: f64) -> Timeline {
         let dt_s = 0.04;
         let n = 7500;
         let stroke = |t: f64| {
@@ -239,33 +326,34 @@ mod tests {
         let mut state = 7_u64;
         let mut noise = |scale: f64| scale * uniform(&mut state);
         let time_s: Vec<f64> = (0..n).map(|i| i as f64 * dt_s).collect();
-        Data {
+        Timeline {
             stroke_mm: time_s.iter().map(|&t| stroke(t)).collect(),
             angle_deg: time_s
                 .iter()
                 .map(|&t| angle(t - tracker_lag_s) + noise(0.2))
                 .collect(),
-            strain: vec![0.0; n],
             ohm: vec![time_s
                 .iter()
                 .map(|&t| 180e3 + 400.0 * angle(t - sensor_lag_s) + noise(100.0))
                 .collect()],
             rest: 250,
             measured: vec![true; n],
-            dt_s,
             time_s,
         }
     }
 
+    /// No tracker delay found.
+    fn quiet(data: &Timeline) {
+        assert_eq!(tracker_delay(data), None);
+    }
+
     #[test]
     fn a_late_tracker_is_refused_with_both_delays() {
-        let err = check(&data(0.0, 0.08, 0.0)).unwrap_err().to_string();
-        assert!(err.contains("late"), "{err}");
-        let (plant, sensors) = delays(&data(0.0, 0.08, 0.0)).unwrap();
+        let (plant, sensors) = tracker_delay(&data(0.0, 0.08, 0.0)).unwrap();
         assert!((plant.mean_s - 0.08).abs() < 0.005, "{plant:?}");
         assert!((sensors.mean_s - 0.08).abs() < 0.01, "{sensors:?}");
-        let err = check(&data(0.0, -0.08, 0.0)).unwrap_err().to_string();
-        assert!(err.contains("early"), "{err}");
+        let (plant, sensors) = tracker_delay(&data(0.0, -0.08, 0.0)).unwrap();
+        assert!(plant.mean_s < 0.0 && sensors.mean_s < 0.0, "{plant:?} {sensors:?}");
     }
 
     #[test]
@@ -274,11 +362,11 @@ mod tests {
         let (plant, sensors) = delays(&data(0.08, 0.0, 0.0)).unwrap();
         assert!((plant.mean_s - 0.08).abs() < 0.005, "{plant:?}");
         assert!(sensors.mean_s.abs() < 0.01, "{sensors:?}");
-        check(&data(0.08, 0.0, 0.0)).unwrap();
+        quiet(&data(0.08, 0.0, 0.0));
         // The sensor lags the joint, or leads it (a rate term): the angle is on time.
-        check(&data(0.0, 0.0, 0.08)).unwrap();
-        check(&data(0.0, 0.0, -0.08)).unwrap();
+        quiet(&data(0.0, 0.0, 0.08));
+        quiet(&data(0.0, 0.0, -0.08));
         // On time.
-        check(&data(0.0, 0.0, 0.0)).unwrap();
+        quiet(&data(0.0, 0.0, 0.0));
     }
 }
