@@ -280,10 +280,18 @@ fn a_late_tracker_is_refused_by_fit_discover_and_characterize() {
         let o = dlw(&args);
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "{args:?} accepted a late tracker");
-        for part in ["angle is late", "against the stroke", "against the sensors' voltages", "ms"] {
+        for part in [
+            "angle is late",
+            "against the stroke",
+            "against the sensors' voltages",
+            "ms",
+        ] {
             assert!(err.contains(part), "{args:?}: {part:?} not in {err}");
         }
         assert!(!out.exists(), "{args:?} wrote {}", out.display());
     }
-    assert_fits(root, &late(&clean, root, "late-20", (20.0 * rows_per_ms) as usize));
+    assert_fits(
+        root,
+        &late(&clean, root, "late-20", (20.0 * rows_per_ms) as usize),
+    );
 }

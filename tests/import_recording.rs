@@ -703,7 +703,9 @@ fn a_clipped_daq_channel_is_warned_of_and_refused_by_fit() {
     assert!(o.status.success(), "{err}");
     eprintln!("{err}");
     assert!(
-        err.contains("warning:") && err.contains("v1_V holds its largest value") && err.contains("will refuse it"),
+        err.contains("warning:")
+            && err.contains("v1_V holds its largest value")
+            && err.contains("will refuse it"),
         "{err}"
     );
     let o = dlw(&[
@@ -715,7 +717,10 @@ fn a_clipped_daq_channel_is_warned_of_and_refused_by_fit() {
         &arg(&dir.path().join("fit.toml")),
     ]);
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("v1_V holds its largest value"), "{err}");
+    assert!(
+        !o.status.success() && err.contains("v1_V holds its largest value"),
+        "{err}"
+    );
 }
 
 /// `--rate-hz 100` on the 500 Hz bench: 100 rows a second, each sensor voltage the mean of the

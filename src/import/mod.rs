@@ -493,9 +493,9 @@ pub fn import(req: &ImportRequest<'_>) -> Result<(Recording, ImportSummary), Imp
     let recording = Recording { rig, samples };
     recording.check()?;
     let mut summary = summary;
-    summary
-        .warnings
-        .extend(refused_by_analyses(recording.check_measured(Path::new(IMPORTED))));
+    summary.warnings.extend(refused_by_analyses(
+        recording.check_measured(Path::new(IMPORTED)),
+    ));
     Ok((recording, summary))
 }
 

@@ -100,13 +100,19 @@ impl Timeline {
         let s = &rec.samples;
         let step = ((rec.rig.sample_hz / TARGET_HZ).round() as usize).max(1);
         let n = s.time_s.len() / step;
-        let mean = |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
+        let mean =
+            |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
         let column = |v: &[f64]| -> Vec<f64> { (0..n).map(|k| mean(v, k)).collect() };
         let mut ohm = Vec::with_capacity(s.volts.len());
         for (volts, sensor) in s.volts.iter().zip(Sensor::ALL) {
             let divider = rec.rig.divider(sensor)?;
             let r: Vec<f64> = (0..n)
-                .map(|k| divider.resistance(mean(volts, k)).ok().filter(|r| r.is_finite()))
+                .map(|k| {
+                    divider
+                        .resistance(mean(volts, k))
+                        .ok()
+                        .filter(|r| r.is_finite())
+                })
                 .collect::<Option<_>>()?;
             ohm.push(r);
         }
@@ -353,7 +359,10 @@ mod tests {
         assert!((plant.mean_s - 0.08).abs() < 0.005, "{plant:?}");
         assert!((sensors.mean_s - 0.08).abs() < 0.01, "{sensors:?}");
         let (plant, sensors) = tracker_delay(&data(0.0, -0.08, 0.0)).unwrap();
-        assert!(plant.mean_s < 0.0 && sensors.mean_s < 0.0, "{plant:?} {sensors:?}");
+        assert!(
+            plant.mean_s < 0.0 && sensors.mean_s < 0.0,
+            "{plant:?} {sensors:?}"
+        );
     }
 
     #[test]

@@ -36,4 +36,3 @@ pub fn rest_end(stroke_mm: &[f64], dt_s: f64) -> usize {
 pub fn spread(v: &[f64]) -> f64 {
     crate::stats::median_abs_deviation(v).map_or(0.0, |mad| 1.4826 * mad)
 }
-
