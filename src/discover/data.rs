@@ -10,13 +10,14 @@
 use dlw_geometry::Joint;
 
 use super::DiscoverError;
+use crate::recording::clock::Timeline;
 use crate::recording::Recording;
-use crate::sensor::Sensor;
 use crate::signal::MIN_ANGLE_SPAN_DEG;
 
 /// Rate discovery works at (Hz): each sample is the mean of `sample_hz/TARGET_HZ` recorded
-/// samples. The effects live at seconds; averaging cuts the white noise and the work.
-pub const TARGET_HZ: f64 = 25.0;
+/// samples ([`Timeline`], the recording's block averages, which the clock check works on too).
+/// The effects live at seconds; averaging cuts the white noise and the work.
+pub use crate::recording::clock::TARGET_HZ;
 /// Shortest rest at the start (s) the noise model is frozen from.
 pub const MIN_REST_S: f64 = 4.0;
 /// The time before the first motion left out of the rest (s): the stroke may start moving
@@ -70,36 +71,19 @@ impl Data {
     /// [`MIN_ANGLE_SPAN_DEG`], or less than [`MIN_REST_S`] at rest at the start.
     pub fn new(recording: &Recording, joint: &Joint) -> Result<Self, DiscoverError> {
         let s = &recording.samples;
-        let rig = &recording.rig;
-        let step = ((rig.sample_hz / TARGET_HZ).round() as usize).max(1);
-        let n = s.time_s.len() / step;
-        let mean =
-            |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
-        let mut ohm = Vec::new();
-        // A recording holds one voltage column per divider, one or two (`Recording::read`).
-        for ((c, volts), sensor) in s.volts.iter().enumerate().zip(Sensor::ALL) {
-            let Some(divider) = rig.divider(sensor) else {
-                continue;
-            };
-            let mut r = Vec::with_capacity(n);
-            for k in 0..n {
-                let v = mean(volts, k);
-                let value = divider.resistance(v).ok().filter(|r| r.is_finite()).ok_or(
-                    DiscoverError::Rail {
-                        column: c + 1,
-                        time_s: s.time_s[k * step],
-                        volts: v,
-                    },
-                )?;
-                r.push(value);
-            }
-            ohm.push(r);
-        }
-        let time_s: Vec<f64> = (0..n).map(|k| mean(&s.time_s, k)).collect();
-        let stroke_mm: Vec<f64> = (0..n).map(|k| mean(&s.stroke_mm, k)).collect();
-        let measured: Vec<bool> = (0..n)
-            .map(|k| (k * step..(k + 1) * step).all(|i| s.angle_valid(i)))
-            .collect();
+        let Timeline {
+            time_s,
+            stroke_mm,
+            mut angle_deg,
+            ohm,
+            measured,
+            rest: moved,
+            dt_s,
+        } = Timeline::of(recording).map_err(|r| DiscoverError::Rail {
+            column: r.column,
+            time_s: r.time_s,
+            volts: r.volts,
+        })?;
         if !measured.contains(&true) {
             return Err(DiscoverError::NoAngle {
                 rows: s.invalid_angle_rows(),
@@ -112,14 +96,11 @@ impl Data {
                 min_deg: MIN_ANGLE_SPAN_DEG,
             });
         }
-        let mut angle_deg: Vec<f64> = (0..n).map(|k| mean(&s.angle_deg, k)).collect();
         fill_unmeasured(&mut angle_deg, &measured);
         let strain = angle_deg
             .iter()
             .map(|a| joint.strain(a.to_radians()))
             .collect();
-        let dt_s = step as f64 / rig.sample_hz;
-        let moved = rest_end(&stroke_mm, dt_s);
         let rest = moved.saturating_sub((REST_MARGIN_S / dt_s) as usize);
         if (rest as f64) * dt_s < MIN_REST_S {
             return Err(DiscoverError::NoRest {
@@ -211,7 +192,7 @@ impl Data {
     }
 }
 
-pub use crate::recording::rest::{rest_end, spread, REST_NOISE_BANDS};
+pub use crate::recording::rest::spread;
 
 /// Replaces the values of the samples not `measured` by linear interpolation between the
 /// measured ones around them, held at the ends. At least one sample must be measured.
@@ -312,49 +293,6 @@ mod tests {
                 );
             }
         }
-    }
-
-    /// A 10 s rest at 25 Hz, then a 1 s ramp of 0.74 mm, with white noise of 0.25 µm: 0.1 % of
-    /// the span (0.74 µm) is three spreads, which a few hundred samples exceed; five of the
-    /// noise's own spreads they do not. The rest ends where the ramp starts, and a noise-free
-    /// stroke's rest ends there too.
-    #[test]
-    fn the_rest_ends_where_the_stroke_moves_not_where_its_noise_strays() {
-        let (dt, rest) = (0.04, 250);
-        let clean: Vec<f64> = (0..1000)
-            .map(|i| {
-                if i < rest {
-                    0.0
-                } else {
-                    (0.74 * (i - rest) as f64 * dt).min(0.74)
-                }
-            })
-            .collect();
-        let mut seed = 0x2545_F491_u64;
-        let mut normal = || {
-            let mut u = || {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
-                (seed >> 11) as f64 / (1u64 << 53) as f64 + 1e-12
-            };
-            let (a, b) = (u(), u());
-            (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
-        };
-        let noisy: Vec<f64> = clean.iter().map(|x| x + 0.25e-3 * normal()).collect();
-        for stroke in [&clean, &noisy] {
-            let end = rest_end(stroke, dt);
-            assert!((rest..rest + 3).contains(&end), "rest ends at {end}");
-        }
-        let sd = spread(&noisy[..rest]);
-        assert!((0.2e-3..0.3e-3).contains(&sd), "{sd}");
-        assert_eq!(spread(&clean[..rest]), 0.0);
-        // The 0.1 % rule alone ends it early.
-        let early = noisy
-            .iter()
-            .position(|v| (v - noisy[0]).abs() > 0.74e-3)
-            .unwrap();
-        assert!(early < rest, "{early}");
     }
 
     #[test]

@@ -76,7 +76,8 @@ impl Delay {
     }
 }
 
-/// A recording block-averaged to about [`TARGET_HZ`]: what the delays are measured on.
+/// A recording block-averaged to about [`TARGET_HZ`]: what the delays are measured on, and what
+/// discovery works on (`discover::data::Data` adds the strain and its checks).
 #[derive(Debug, Clone)]
 pub struct Timeline {
     /// Time (s).
@@ -89,14 +90,30 @@ pub struct Timeline {
     pub ohm: Vec<Vec<f64>>,
     /// Whether every row of each sample's block has a tracker angle (`tracker_valid`).
     pub measured: Vec<bool>,
-    /// Samples `0..rest` are the rest at the start.
+    /// Samples `0..rest` are the rest at the start: up to the stroke's first motion
+    /// ([`super::rest::rest_end`]).
     pub rest: usize,
+    /// Sample spacing (s).
+    pub dt_s: f64,
+}
+
+/// A block whose mean voltage no finite sensor resistance explains ([`Timeline::of`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rail {
+    /// The voltage column (1-based).
+    pub column: usize,
+    /// The block's first time (s).
+    pub time_s: f64,
+    /// The block's mean voltage (V).
+    pub volts: f64,
 }
 
 impl Timeline {
-    /// `rec` block-averaged; `None` when a block's voltage has no finite resistance (an
-    /// analysis refuses such a recording on its own terms).
-    pub fn of(rec: &Recording) -> Option<Self> {
+    /// `rec` block-averaged: each sample the mean of `sample_hz/TARGET_HZ` rows.
+    ///
+    /// # Errors
+    /// The first block whose mean voltage no finite resistance explains.
+    pub fn of(rec: &Recording) -> Result<Self, Rail> {
         let s = &rec.samples;
         let step = ((rec.rig.sample_hz / TARGET_HZ).round() as usize).max(1);
         let n = s.time_s.len() / step;
@@ -104,21 +121,30 @@ impl Timeline {
             |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
         let column = |v: &[f64]| -> Vec<f64> { (0..n).map(|k| mean(v, k)).collect() };
         let mut ohm = Vec::with_capacity(s.volts.len());
-        for (volts, sensor) in s.volts.iter().zip(Sensor::ALL) {
-            let divider = rec.rig.divider(sensor)?;
+        // A recording holds one voltage column per divider, one or two (`Recording::read`).
+        for ((c, volts), sensor) in s.volts.iter().enumerate().zip(Sensor::ALL) {
+            let Some(divider) = rec.rig.divider(sensor) else {
+                continue;
+            };
             let r: Vec<f64> = (0..n)
                 .map(|k| {
+                    let v = mean(volts, k);
                     divider
-                        .resistance(mean(volts, k))
+                        .resistance(v)
                         .ok()
                         .filter(|r| r.is_finite())
+                        .ok_or(Rail {
+                            column: c + 1,
+                            time_s: s.time_s[k * step],
+                            volts: v,
+                        })
                 })
-                .collect::<Option<_>>()?;
+                .collect::<Result<_, _>>()?;
             ohm.push(r);
         }
         let stroke_mm = column(&s.stroke_mm);
         let dt_s = step as f64 / rec.rig.sample_hz;
-        Some(Self {
+        Ok(Self {
             time_s: column(&s.time_s),
             rest: super::rest::rest_end(&stroke_mm, dt_s),
             stroke_mm,
@@ -127,6 +153,7 @@ impl Timeline {
             measured: (0..n)
                 .map(|k| (k * step..(k + 1) * step).all(|i| s.angle_valid(i)))
                 .collect(),
+            dt_s,
         })
     }
 
@@ -296,7 +323,7 @@ pub struct TrackerDelay {
 /// # Errors
 /// [`RecordingError::TrackerDelay`] with both delays and their standard errors.
 pub fn check(rec: &Recording, dir: &Path) -> Result<(), RecordingError> {
-    let Some((plant, sensors)) = Timeline::of(rec).and_then(|t| tracker_delay(&t)) else {
+    let Some((plant, sensors)) = Timeline::of(rec).ok().and_then(|t| tracker_delay(&t)) else {
         return Ok(());
     };
     Err(RecordingError::TrackerDelay(Box::new(TrackerDelay {
@@ -345,6 +372,7 @@ mod tests {
             rest: 250,
             measured: vec![true; n],
             time_s,
+            dt_s,
         }
     }
 
