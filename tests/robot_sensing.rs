@@ -707,3 +707,63 @@ fn fit_refuses_a_clipped_voltage_and_a_frozen_angle_by_name() {
         assert!(!out.exists());
     }
 }
+
+/// The tracker 200 ms behind the DAQ (every joint's angle, one tracker: one clock): `fit`
+/// refuses the recording naming both delays (`src/recording/clock.rs`, `check_robot`); on time
+/// it fits.
+#[test]
+fn fit_refuses_a_tracker_late_against_the_daq() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let robot = designs().join("robot-bdb.toml");
+    let (on_time, late) = (d.join("on-time"), d.join("late"));
+    write_generated(&on_time, [0.01; 3], false);
+    write_generated(&late, [0.01; 3], false);
+    // 40 rows at 200 Hz; data.csv: time, 3 strokes, 3 angles (columns 4-6), 3 voltages.
+    let rows = 40;
+    let text = std::fs::read_to_string(late.join("data.csv")).unwrap();
+    let table: Vec<Vec<String>> = text
+        .lines()
+        .map(|l| l.split(',').map(str::to_owned).collect())
+        .collect();
+    // Each row's angles from `rows` rows before; the first `rows` rows, which have none, left
+    // out (held, they would be refused as frozen: the generator's joints move from the start).
+    let mut out = table[0].join(",") + "\n";
+    for i in 1 + rows..table.len() {
+        let mut row = table[i].clone();
+        row[4..7].clone_from_slice(&table[i - rows][4..7]);
+        out.push_str(&row.join(","));
+        out.push('\n');
+    }
+    std::fs::write(late.join("data.csv"), out).unwrap();
+    let fit = |rec: &Path, out: &Path| {
+        dlw(&[
+            "fit",
+            "--design",
+            &arg(&robot),
+            &arg(rec),
+            "--model",
+            "linear",
+            "-o",
+            &arg(out),
+        ])
+    };
+    let out = d.join("late.toml");
+    let o = fit(&late, &out);
+    let err = String::from_utf8_lossy(&o.stderr);
+    eprintln!("{err}");
+    assert!(
+        !o.status.success(),
+        "a robot recording 200 ms late was fitted"
+    );
+    for part in [
+        "angle is late",
+        "against the stroke",
+        "against the sensors' voltages",
+    ] {
+        assert!(err.contains(part), "{part:?} not in {err}");
+    }
+    assert!(!out.exists());
+    let o = fit(&on_time, &d.join("on-time.toml"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

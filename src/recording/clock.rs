@@ -24,6 +24,7 @@
 
 use std::path::{Path, PathBuf};
 
+use super::robot::RobotRecording;
 use super::{Recording, RecordingError, DATA_FILE};
 use crate::sensor::Sensor;
 use crate::stats::interpolate_held;
@@ -157,21 +158,56 @@ impl Timeline {
         })
     }
 
-    fn len(&self) -> usize {
-        self.time_s.len()
+    /// The columns the delays are measured on.
+    pub fn columns(&self) -> Columns<'_> {
+        Columns {
+            time_s: &self.time_s,
+            strokes: vec![&self.stroke_mm],
+            angles: vec![&self.angle_deg],
+            ohm: self.ohm.iter().map(Vec::as_slice).collect(),
+            measured: &self.measured,
+            rest: self.rest,
+        }
     }
+}
+
+/// What the delays are measured on: block-averaged columns, one stroke and angle per joint (one
+/// for a joint, several for a robot) and one resistance per sensor, borrowed from a
+/// [`Timeline`] or a robot's.
+#[derive(Debug, Clone)]
+pub struct Columns<'a> {
+    /// Time (s).
+    pub time_s: &'a [f64],
+    /// Each joint's stroke (mm).
+    pub strokes: Vec<&'a [f64]>,
+    /// Each joint's angle (°), read by one tracker: one clock.
+    pub angles: Vec<&'a [f64]>,
+    /// Each sensor's resistance (Ω).
+    pub ohm: Vec<&'a [f64]>,
+    /// Whether each sample's block has a tracker reading.
+    pub measured: &'a [bool],
+    /// Samples `0..rest` are the rest at the start.
+    pub rest: usize,
 }
 
 /// The angle's delay against the stroke, and against the voltages (their resistances pooled
 /// by inverse variance), over `data`'s motion; `None` when a block cannot be fitted.
 pub fn delays(data: &Timeline) -> Option<(Delay, Delay)> {
-    let first = data.rest.min(data.len());
-    let moving = data.len() - first;
-    let size = moving / BLOCKS;
-    if size < 10 {
+    delays_of(&data.columns())
+}
+
+/// [`delays`] of several joints read by one tracker: each joint's angle against every stroke (a
+/// line in each: a tendon may pass other joints), each resistance against every angle (a
+/// parabola in each: a sensor also feels the joints it does not sit on), all shifted by one
+/// delay; the joints' and the sensors' delays each pooled by inverse variance.
+pub fn delays_of(data: &Columns) -> Option<(Delay, Delay)> {
+    let n = data.time_s.len();
+    let first = data.rest.min(n);
+    let size = (n - first) / BLOCKS;
+    if size < 10 || data.angles.is_empty() {
         return None;
     }
-    let mut plant = Vec::with_capacity(BLOCKS);
+    let mut plant = vec![Vec::with_capacity(BLOCKS); data.angles.len()];
     let mut sensors = vec![Vec::with_capacity(BLOCKS); data.ohm.len()];
     for b in 0..BLOCKS {
         let rows = first + b * size..first + (b + 1) * size;
@@ -180,20 +216,29 @@ pub fn delays(data: &Timeline) -> Option<(Delay, Delay)> {
             return None;
         }
         let t: Vec<f64> = rows.iter().map(|&i| data.time_s[i]).collect();
-        let column = |v: &[f64]| -> Vec<f64> { rows.iter().map(|&i| v[i]).collect() };
-        let angle = column(&data.angle_deg);
-        // The angle later than the stroke by `d`: the stroke shifted by `d` explains it.
-        plant.push(best_shift(&t, &column(&data.stroke_mm), &angle, 1)?);
-        for (s, ohm) in sensors.iter_mut().zip(&data.ohm) {
-            // The resistance later than the angle by `d`: the angle is late by `-d`.
-            s.push(-best_shift(&t, &angle, &column(ohm), 2)?);
+        let columns = |vs: &[&[f64]]| -> Vec<Vec<f64>> {
+            vs.iter()
+                .map(|v| rows.iter().map(|&i| v[i]).collect())
+                .collect()
+        };
+        let (strokes, angles) = (columns(&data.strokes), columns(&data.angles));
+        for (p, angle) in plant.iter_mut().zip(&angles) {
+            // The angle later than the strokes by `d`: the strokes shifted by `d` explain it.
+            p.push(best_shift(&t, &strokes, angle, 1)?);
+        }
+        for (s, ohm) in sensors.iter_mut().zip(columns(&data.ohm)) {
+            // The resistance later than the angles by `d`: the angles are late by `-d`.
+            s.push(-best_shift(&t, &angles, &ohm, 2)?);
         }
     }
-    let sensor_delays: Vec<Delay> = sensors
-        .iter()
-        .map(|s| Delay::of(s))
-        .collect::<Option<_>>()?;
-    Some((Delay::of(&plant)?, pooled(&sensor_delays)?))
+    let each = |estimates: &[Vec<f64>]| -> Option<Delay> {
+        let delays: Vec<Delay> = estimates
+            .iter()
+            .map(|e| Delay::of(e))
+            .collect::<Option<_>>()?;
+        pooled(&delays)
+    };
+    Some((each(&plant)?, each(&sensors)?))
 }
 
 /// Inverse-variance pooling of several measurements of one delay.
@@ -217,15 +262,19 @@ fn pooled(delays: &[Delay]) -> Option<Delay> {
 }
 
 /// The shift `d` (s) of the grid, refined, for which `y(t)` is best fitted by a polynomial of
-/// `degree` in `x(t − d)` (linear interpolation of `x`; held at its ends).
-fn best_shift(t: &[f64], x: &[f64], y: &[f64], degree: usize) -> Option<f64> {
+/// `degree` in each of `xs(t − d)` (linear interpolation of each `x`; held at its ends).
+fn best_shift(t: &[f64], xs: &[Vec<f64>], y: &[f64], degree: usize) -> Option<f64> {
     let steps = (MAX_DELAY_S / STEP_S).round() as i64;
     let ss: Vec<f64> = (-steps..=steps)
         .map(|k| {
             let d = k as f64 * STEP_S;
-            let shifted: Vec<f64> = t
+            let shifted: Vec<Vec<f64>> = xs
                 .iter()
-                .map(|&ti| interpolate_held(t, x, ti - d).unwrap_or(f64::NAN))
+                .map(|x| {
+                    t.iter()
+                        .map(|&ti| interpolate_held(t, x, ti - d).unwrap_or(f64::NAN))
+                        .collect()
+                })
                 .collect();
             residual_ss(&shifted, y, degree)
         })
@@ -248,35 +297,47 @@ fn best_shift(t: &[f64], x: &[f64], y: &[f64], degree: usize) -> Option<f64> {
     Some((i as f64 - steps as f64 + refine) * STEP_S)
 }
 
-/// The residual sum of squares of `y` fitted by a polynomial of `degree` in `x` (least
-/// squares on centred, scaled `x`, by its normal equations: at most three columns, well
-/// conditioned once scaled).
-fn residual_ss(x: &[f64], y: &[f64], degree: usize) -> f64 {
-    let n = x.len() as f64;
-    let mean = x.iter().sum::<f64>() / n;
-    let scale = (x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
-    if scale.is_nan() || scale <= 0.0 {
+/// The residual sum of squares of `y` fitted by an intercept and a polynomial of `degree` in
+/// each of `xs` (least squares on centred, scaled `x`s, by its normal equations: a few columns,
+/// well conditioned once scaled). A column that does not vary is left out; none varying gives
+/// NaN.
+fn residual_ss(xs: &[Vec<f64>], y: &[f64], degree: usize) -> f64 {
+    let n = y.len() as f64;
+    // Each varying `x`'s mean and scale.
+    let scaled: Vec<(&Vec<f64>, f64, f64)> = xs
+        .iter()
+        .filter_map(|x| {
+            let mean = x.iter().sum::<f64>() / n;
+            let scale = (x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
+            (scale.is_finite() && scale > 0.0).then_some((x, mean, scale))
+        })
+        .collect();
+    if scaled.is_empty() {
         return f64::NAN;
     }
     // `y` centred too: the intercept takes its mean, and `yᵀy` below stays of the order of
     // the residual's.
     let y_mean = y.iter().sum::<f64>() / n;
-    let p = degree + 1;
+    let p = 1 + degree * scaled.len();
     let mut gram = nalgebra::DMatrix::<f64>::zeros(p, p);
     let mut xty = nalgebra::DVector::<f64>::zeros(p);
     let mut yty = 0.0;
-    let mut powers = vec![0.0; p];
-    for (&xi, &y_raw) in x.iter().zip(y) {
+    let mut row = vec![0.0; p];
+    for (i, &y_raw) in y.iter().enumerate() {
         let yi = y_raw - y_mean;
-        let u = (xi - mean) / scale;
-        powers[0] = 1.0;
-        for k in 1..p {
-            powers[k] = powers[k - 1] * u;
+        row[0] = 1.0;
+        for (c, (x, mean, scale)) in scaled.iter().enumerate() {
+            let u = (x[i] - mean) / scale;
+            let mut power = 1.0;
+            for k in 0..degree {
+                power *= u;
+                row[1 + c * degree + k] = power;
+            }
         }
         for r in 0..p {
-            xty[r] += powers[r] * yi;
+            xty[r] += row[r] * yi;
             for c in 0..p {
-                gram[(r, c)] += powers[r] * powers[c];
+                gram[(r, c)] += row[r] * row[c];
             }
         }
         yty += yi * yi;
@@ -290,8 +351,8 @@ fn residual_ss(x: &[f64], y: &[f64], degree: usize) -> f64 {
 
 /// The angle's delays against the stroke and the voltages, when they show the tracker's clock
 /// off the DAQ's (module docs): both non-zero, of one sign, and agreeing.
-pub fn tracker_delay(data: &Timeline) -> Option<(Delay, Delay)> {
-    let (plant, sensors) = delays(data)?;
+pub fn tracker_delay(data: &Columns) -> Option<(Delay, Delay)> {
+    let (plant, sensors) = delays_of(data)?;
     let both = plant.z() >= Z_NONZERO && sensors.z() >= Z_NONZERO;
     let same_sign = plant.mean_s.signum() == sensors.mean_s.signum();
     let apart = (plant.mean_s - sensors.mean_s).abs();
@@ -317,13 +378,68 @@ pub struct TrackerDelay {
     pub z: f64,
 }
 
-/// Refuses `rec` (read from folder `dir`) when its angle is late (or early) against both the
-/// stroke and the voltages by one delay (module docs).
+/// Refuses the robot recording `rec` (read from folder `dir`) when its joints' angles, read by
+/// one tracker, are late (or early) by one delay against both the strokes and the voltages
+/// ([`delays_of`]: each angle against every stroke, each voltage against every angle, for the
+/// tendons and sensors that pass other joints). A recording without per-joint angles is not
+/// checked.
 ///
 /// # Errors
 /// [`RecordingError::TrackerDelay`] with both delays and their standard errors.
-pub fn check(rec: &Recording, dir: &Path) -> Result<(), RecordingError> {
-    let Some((plant, sensors)) = Timeline::of(rec).ok().and_then(|t| tracker_delay(&t)) else {
+pub fn check_robot(rec: &RobotRecording, dir: &Path) -> Result<(), RecordingError> {
+    let s = &rec.samples;
+    if s.angle_deg.iter().any(Vec::is_empty) {
+        return Ok(());
+    }
+    let step = ((rec.rig.sample_hz / TARGET_HZ).round() as usize).max(1);
+    let n = s.time_s.len() / step;
+    let mean = |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
+    let column = |v: &[f64]| -> Vec<f64> { (0..n).map(|k| mean(v, k)).collect() };
+    let mut ohm = Vec::with_capacity(s.volts.len());
+    for (volts, &fixed_ohm) in s.volts.iter().zip(&rec.rig.divider_ohm) {
+        let divider = dlw_geometry::Divider {
+            fixed_ohm,
+            supply_v: rec.rig.supply_v,
+        };
+        let r: Option<Vec<f64>> = (0..n)
+            .map(|k| {
+                divider
+                    .resistance(mean(volts, k))
+                    .ok()
+                    .filter(|r| r.is_finite())
+            })
+            .collect();
+        let Some(r) = r else {
+            return Ok(());
+        };
+        ohm.push(r);
+    }
+    let dt_s = step as f64 / rec.rig.sample_hz;
+    let strokes: Vec<Vec<f64>> = s.stroke_mm.iter().map(|v| column(v)).collect();
+    let angles: Vec<Vec<f64>> = s.angle_deg.iter().map(|v| column(v)).collect();
+    let time_s = column(&s.time_s);
+    let measured: Vec<bool> = (0..n)
+        .map(|k| (k * step..(k + 1) * step).all(|i| s.tracker_valid_at(i)))
+        .collect();
+    let columns = Columns {
+        time_s: &time_s,
+        strokes: strokes.iter().map(Vec::as_slice).collect(),
+        angles: angles.iter().map(Vec::as_slice).collect(),
+        ohm: ohm.iter().map(Vec::as_slice).collect(),
+        measured: &measured,
+        // The rest ends where the first joint moves.
+        rest: strokes
+            .iter()
+            .map(|v| super::rest::rest_end(v, dt_s))
+            .min()
+            .unwrap_or(0),
+    };
+    refuse(dir, tracker_delay(&columns))
+}
+
+/// The refusal of [`check`] and [`check_robot`], when `found` holds the delays.
+fn refuse(dir: &Path, found: Option<(Delay, Delay)>) -> Result<(), RecordingError> {
+    let Some((plant, sensors)) = found else {
         return Ok(());
     };
     Err(RecordingError::TrackerDelay(Box::new(TrackerDelay {
@@ -334,6 +450,18 @@ pub fn check(rec: &Recording, dir: &Path) -> Result<(), RecordingError> {
         voltage_se_ms: 1e3 * sensors.se_s,
         z: Z_NONZERO,
     })))
+}
+
+/// Refuses `rec` (read from folder `dir`) when its angle is late (or early) against both the
+/// stroke and the voltages by one delay (module docs).
+///
+/// # Errors
+/// [`RecordingError::TrackerDelay`] with both delays and their standard errors.
+pub fn check(rec: &Recording, dir: &Path) -> Result<(), RecordingError> {
+    let found = Timeline::of(rec)
+        .ok()
+        .and_then(|t| tracker_delay(&t.columns()));
+    refuse(dir, found)
 }
 
 #[cfg(test)]
@@ -378,15 +506,15 @@ mod tests {
 
     /// No tracker delay found.
     fn quiet(data: &Timeline) {
-        assert_eq!(tracker_delay(data), None);
+        assert_eq!(tracker_delay(&data.columns()), None);
     }
 
     #[test]
     fn a_late_tracker_is_refused_with_both_delays() {
-        let (plant, sensors) = tracker_delay(&data(0.0, 0.08, 0.0)).unwrap();
+        let (plant, sensors) = tracker_delay(&data(0.0, 0.08, 0.0).columns()).unwrap();
         assert!((plant.mean_s - 0.08).abs() < 0.005, "{plant:?}");
         assert!((sensors.mean_s - 0.08).abs() < 0.01, "{sensors:?}");
-        let (plant, sensors) = tracker_delay(&data(0.0, -0.08, 0.0)).unwrap();
+        let (plant, sensors) = tracker_delay(&data(0.0, -0.08, 0.0).columns()).unwrap();
         assert!(
             plant.mean_s < 0.0 && sensors.mean_s < 0.0,
             "{plant:?} {sensors:?}"

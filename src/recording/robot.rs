@@ -165,13 +165,14 @@ impl RobotRecording {
     /// one value while its own stroke moves. A voltage is not checked for a hold: the joints its
     /// sensor does not sit on may be the ones moving. `dir` is the folder read, for the message.
     ///
-    /// The tracker's clock is not checked against the DAQ's here, as a joint's is
-    /// ([`super::clock`]): a sensor of a robot also answers the joints it does not sit on.
+    /// Refuses it too when the tracker's clock is off the DAQ's: every joint's angle late
+    /// against the strokes and the voltages by one delay ([`super::clock::check_robot`]).
     ///
     /// [`Recording::check_measured`]: super::Recording::check_measured
     ///
     /// # Errors
-    /// [`RecordingError::Clipped`] and [`RecordingError::Frozen`].
+    /// [`RecordingError::Clipped`], [`RecordingError::Frozen`] and
+    /// [`RecordingError::TrackerDelay`].
     pub fn check_measured(&self, dir: &Path) -> Result<(), RecordingError> {
         let s = &self.samples;
         let valid: Vec<usize> = (0..s.time_s.len())
@@ -211,7 +212,8 @@ impl RobotRecording {
                 stroke: None,
             });
         }
-        refuse_unmeasured(dir, &s.time_s, columns)
+        refuse_unmeasured(dir, &s.time_s, columns)?;
+        super::clock::check_robot(self, dir)
     }
 
     /// Checks the recording by its reader's rules on what [`RobotRecording::write`] would put in
