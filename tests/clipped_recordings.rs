@@ -295,3 +295,78 @@ fn a_late_tracker_is_refused_by_fit_discover_and_characterize() {
         &late(&clean, root, "late-20", (20.0 * rows_per_ms) as usize),
     );
 }
+
+/// A joint with slack in its tendon (a play of 0.03 mm on a 0.7 mm stroke) whose angle is read
+/// by an encoder (0.01° steps, no noise), 200 s at 500 Hz after a 10 s rest, written by this
+/// test's own generator into `dir`; `edit` changes each row's angle (given its time).
+fn encoder_with_slack(dir: &Path, edit: impl Fn(f64, f64) -> f64) {
+    std::fs::create_dir_all(dir).unwrap();
+    std::fs::write(
+        dir.join("rig.toml"),
+        "sample_hz = 500.0\nsupply_v = 5.0\ndivider_ohm = [99600.0]\nnotes = \"encoder with slack, test generator\"\n",
+    )
+    .unwrap();
+    let mut out = String::from("time_s,stroke_mm,angle_deg,v1_V\n");
+    let (mut play, mut state) = (0.0_f64, 11_u64);
+    let half_width = 0.03;
+    for i in 0..100_000 {
+        let t = i as f64 / 500.0;
+        let u = (t - 10.0).max(0.0);
+        let tau = std::f64::consts::TAU;
+        let stroke =
+            0.35 * (1.0 - (tau * u / 20.0).cos()) * (0.6 + 0.4 * (tau * u / 97.0).sin().powi(2));
+        if stroke - play > half_width {
+            play = stroke - half_width;
+        } else if play - stroke > half_width {
+            play = stroke + half_width;
+        }
+        let angle = 35.0 * play.max(0.0);
+        let reading = edit(t, (angle / 0.01).round() * 0.01);
+        let ohm = 180e3 * (1.0 + 14.0 * 0.0035 * angle.to_radians());
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let noise = 1e-3 * ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5);
+        let volts = 5.0 * ohm / (ohm + 99.6e3) + noise;
+        out.push_str(&format!("{t:.6},{stroke:.6},{reading:.4},{volts:.6}\n"));
+    }
+    std::fs::write(dir.join("data.csv"), out).unwrap();
+}
+
+/// An encoder holds its value exactly through a rest and while the slack is taken up after each
+/// turn: neither is a clip nor a frozen reading, and `fit` accepts it (before, it was refused
+/// as clipped at the rest's 0° and at the largest turn's 23.45°). The same encoder clipped at
+/// 20°, or holding one value for 2 s mid-way through a motion, is refused.
+#[test]
+fn an_encoder_holding_through_a_rest_and_the_slack_is_not_refused() {
+    let root = tempfile::tempdir().unwrap();
+    let root = root.path();
+    let slack = root.join("slack");
+    encoder_with_slack(&slack, |_, a| a);
+    assert_fits(root, &slack);
+    let clipped = root.join("clipped");
+    encoder_with_slack(&clipped, |_, a| a.min(20.0));
+    let held = root.join("held");
+    // 64-66 s: the stroke rises through the middle of its cycle.
+    encoder_with_slack(
+        &held,
+        |t, a| if (64.0..66.0).contains(&t) { 11.45 } else { a },
+    );
+    let design = Path::new(env!("CARGO_MANIFEST_DIR")).join("designs/joint-a.toml");
+    for (dir, what) in [(&clipped, "largest"), (&held, "stopped updating")] {
+        let out = root.join("refused.toml");
+        assert_refused(
+            &[
+                "fit",
+                "--design",
+                design.to_str().unwrap(),
+                dir.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            &out,
+            "angle_deg",
+            what,
+        );
+    }
+}

@@ -12,11 +12,61 @@
 //! Before this check, Joint A's clean recording of seed 4 (third generator) with its tracker
 //! angle held for three stretches of 4 s was named `hysteresis` and `rate` on sensor 1 with
 //! exit 0, and `fit` wrote a gauge factor 2.6 % low at four times the RMSE.
+//!
+//! A hold that starts where the stroke turns is physics, not a frozen instrument: a tendon's
+//! slack or a joint's static friction keeps the joint still after the stroke reverses, until
+//! the slack is taken up ([`starts_at_turn`]). A reading without noise (an encoder) shows it as
+//! one value held while the stroke moves back; a frozen instrument holds wherever the stroke
+//! is, mid-way through its motion. A frozen hold that happens to start at a turn is accepted:
+//! it cannot be told from the slack.
 
 /// How many times as long as the column's other runs (their 99th percentile) a run must be.
 pub const RUN_RATIO: usize = 10;
 /// The least share of the stroke's range the stroke must move over during the run.
 pub const MOVED_SHARE: f64 = 0.05;
+
+/// How close to the extreme of the stroke around a hold (before it, as long as the hold, and
+/// during it) the stroke at the hold's start must be, as a share of the stroke's range, for the
+/// hold to start at a turn ([`starts_at_turn`]): 1 %. A frozen reading mid-way through a motion
+/// that moves [`MOVED_SHARE`] during it is far from both extremes.
+pub const TURN_SHARE: f64 = 0.01;
+
+/// Whether a hold of the rows `first..=last` starts where the `stroke` turns (or rests): the
+/// stroke at `first` is within [`TURN_SHARE`] of its range (`range`) of the largest or the
+/// smallest stroke over the hold and as many rows before it. After a turn a joint with slack or
+/// static friction holds still while the stroke moves back; a rest holds too.
+pub fn starts_at_turn(stroke: &[f64], first: usize, last: usize, range: f64) -> bool {
+    let from = first.saturating_sub(last - first + 1);
+    let around = &stroke[from..=last];
+    let hi = around.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let lo = around.iter().copied().fold(f64::INFINITY, f64::min);
+    let tolerance = TURN_SHARE * range;
+    stroke[first] >= hi - tolerance || stroke[first] <= lo + tolerance
+}
+
+/// The runs of one value of `values` on consecutive `rows`, each as its first index and length.
+pub fn runs(values: &[f64], rows: &[usize]) -> Vec<(usize, usize)> {
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    for i in 0..values.len() {
+        let continues = i > 0 && values[i] == values[i - 1] && rows[i] == rows[i - 1] + 1;
+        match runs.last_mut() {
+            Some((_, len)) if continues => *len += 1,
+            _ => runs.push((i, 1)),
+        }
+    }
+    runs
+}
+
+/// The 99th percentile of the runs' lengths (0 for none): how long the column holds one value
+/// otherwise.
+pub fn typical_run(runs: &[(usize, usize)]) -> usize {
+    let mut lengths: Vec<usize> = runs.iter().map(|r| r.1).collect();
+    lengths.sort_unstable();
+    lengths
+        .get(((lengths.len().max(1) - 1) as f64 * 0.99).round() as usize)
+        .copied()
+        .unwrap_or(0)
+}
 
 /// A stretch of one value while the stroke moved.
 #[derive(Debug, Clone, PartialEq)]
@@ -44,25 +94,18 @@ pub fn frozen(values: &[f64], rows: &[usize], stroke: &[f64]) -> Option<Frozen> 
         return None;
     }
     // Runs of one value over consecutive rows, as (first index, length).
-    let mut runs: Vec<(usize, usize)> = Vec::new();
-    for i in 0..values.len() {
-        let continues = i > 0 && values[i] == values[i - 1] && rows[i] == rows[i - 1] + 1;
-        match runs.last_mut() {
-            Some((_, len)) if continues => *len += 1,
-            _ => runs.push((i, 1)),
-        }
-    }
-    let mut lengths: Vec<usize> = runs.iter().map(|r| r.1).collect();
-    lengths.sort_unstable();
-    let typical = lengths[((lengths.len() - 1) as f64 * 0.99).round() as usize];
+    let runs = runs(values, rows);
+    let typical = typical_run(&runs);
     runs.iter()
         .filter(|(_, len)| *len >= RUN_RATIO * typical)
         .filter_map(|&(first, len)| {
-            let during = &stroke[rows[first]..=rows[first + len - 1]];
+            let (start, end) = (rows[first], rows[first + len - 1]);
+            let during = &stroke[start..=end];
             let moved = (during.iter().copied().fold(f64::NEG_INFINITY, f64::max)
                 - during.iter().copied().fold(f64::INFINITY, f64::min))
                 / range;
-            (moved >= MOVED_SHARE).then_some(Frozen {
+            let slack = starts_at_turn(stroke, start, end, range);
+            (moved >= MOVED_SHARE && !slack).then_some(Frozen {
                 first,
                 len,
                 value: values[first],

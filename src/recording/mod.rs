@@ -1069,7 +1069,8 @@ pub(crate) struct Measured<'a> {
     pub stroke: Option<&'a [f64]>,
 }
 
-/// The first of `columns` that the instrument clipped ([`clipping::pile_up`]) or stopped
+/// The first of `columns` that the instrument clipped ([`clipping::pile_up`],
+/// [`clipping::pile_up_moving`] for a column with a stroke) or stopped
 /// updating while its stroke moved ([`frozen::frozen`]), as [`RecordingError::Clipped`] or
 /// [`RecordingError::Frozen`] naming `dir`'s data file and the line (`time_s` gives a frozen
 /// stretch's length in seconds).
@@ -1080,7 +1081,11 @@ pub(crate) fn refuse_unmeasured(
 ) -> Result<(), RecordingError> {
     let path = dir.join(DATA_FILE);
     for c in columns {
-        if let Some(p) = clipping::pile_up(&c.values) {
+        let clip = match c.stroke {
+            Some(stroke) => clipping::pile_up_moving(&c.values, &c.rows, stroke),
+            None => clipping::pile_up(&c.values),
+        };
+        if let Some(p) = clip {
             let first = c.values.iter().position(|v| *v == p.value).unwrap_or(0);
             return Err(RecordingError::Clipped(Box::new(ClippedColumn {
                 path,
