@@ -650,6 +650,20 @@ fn robot_recording_edited(dir: &Path, column: usize, edit: impl Fn(usize, &mut S
     std::fs::write(dir.join("data.csv"), out).unwrap();
 }
 
+/// `dlw fit --design ROBOT REC --model linear -o OUT`.
+fn fit_linear(robot: &Path, rec: &Path, out: &Path) -> std::process::Output {
+    dlw(&[
+        "fit",
+        "--design",
+        &arg(robot),
+        &arg(rec),
+        "--model",
+        "linear",
+        "-o",
+        &arg(out),
+    ])
+}
+
 #[test]
 fn fit_refuses_a_clipped_voltage_and_a_frozen_angle_by_name() {
     let dir = tempfile::tempdir().unwrap();
@@ -688,16 +702,7 @@ fn fit_refuses_a_clipped_voltage_and_a_frozen_angle_by_name() {
         (&frozen, "angle2_deg", "stopped updating"),
     ] {
         let out = d.join("out.toml");
-        let o = dlw(&[
-            "fit",
-            "--design",
-            &arg(&robot),
-            &arg(rec),
-            "--model",
-            "linear",
-            "-o",
-            &arg(&out),
-        ]);
+        let o = fit_linear(&robot, rec, &out);
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
             !o.status.success(),
@@ -736,18 +741,7 @@ fn fit_refuses_a_tracker_late_against_the_daq() {
         out.push('\n');
     }
     std::fs::write(late.join("data.csv"), out).unwrap();
-    let fit = |rec: &Path, out: &Path| {
-        dlw(&[
-            "fit",
-            "--design",
-            &arg(&robot),
-            &arg(rec),
-            "--model",
-            "linear",
-            "-o",
-            &arg(out),
-        ])
-    };
+    let fit = |rec: &Path, out: &Path| fit_linear(&robot, rec, out);
     let out = d.join("late.toml");
     let o = fit(&late, &out);
     let err = String::from_utf8_lossy(&o.stderr);
