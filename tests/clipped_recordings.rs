@@ -353,6 +353,31 @@ fn an_encoder_holding_through_a_rest_and_the_slack_is_not_refused() {
         |t, a| if (64.0..66.0).contains(&t) { 11.45 } else { a },
     );
     let design = Path::new(env!("CARGO_MANIFEST_DIR")).join("designs/joint-a.toml");
+    // Clipped from below at 5°: the rest's hold at the clip's value starts at the stroke's
+    // turn and is not counted, so the message points past the rest (line 5002) at the first
+    // stretch the stroke went past the clip and came back.
+    let low = root.join("clipped-low");
+    encoder_with_slack(&low, |_, a| a.max(5.0));
+    let o = dlw(&[
+        "fit",
+        "--design",
+        design.to_str().unwrap(),
+        low.to_str().unwrap(),
+        "-o",
+        root.join("low.toml").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("smallest value, 5,"),
+        "{err}"
+    );
+    let line: usize = err
+        .split(" line ")
+        .nth(1)
+        .and_then(|rest| rest.split(':').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no line in {err}"));
+    assert!(line > 5002, "line {line}: {err}");
     for (dir, what) in [(&clipped, "largest"), (&held, "stopped updating")] {
         let out = root.join("refused.toml");
         assert_refused(

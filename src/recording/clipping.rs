@@ -61,8 +61,11 @@ pub struct PileUp {
     pub end: End,
     /// The value held.
     pub value: f64,
-    /// How many samples hold it.
+    /// How many samples hold it (on a column with a stroke, outside the holds that start at a
+    /// turn: [`pile_up_moving`]).
     pub count: usize,
+    /// Index (into the values) of the first sample counted.
+    pub first: usize,
     /// How many samples the most held of its [`NEIGHBOURS`] holds.
     pub next_count: usize,
     /// How many samples were looked at.
@@ -72,7 +75,9 @@ pub struct PileUp {
 /// The pile-up at either end of `values`, if one passes the rule of the module docs (the
 /// largest end first); `None` for a column of one distinct value (a constant is not a clip).
 pub fn pile_up(values: &[f64]) -> Option<PileUp> {
-    pile_up_counting(values, |_, count| count)
+    pile_up_counting(values, |value, count| {
+        (count, values.iter().position(|v| *v == value).unwrap_or(0))
+    })
 }
 
 /// [`pile_up`] of a column driven by `stroke` (indexed by row; `rows` the row of each value):
@@ -90,20 +95,25 @@ pub fn pile_up_moving(values: &[f64], rows: &[usize], stroke: &[f64]) -> Option<
     let runs = super::frozen::runs(values, rows);
     let long = super::frozen::RUN_RATIO * super::frozen::typical_run(&runs);
     pile_up_counting(values, |value, _| {
-        runs.iter()
+        let counted: Vec<&(usize, usize)> = runs
+            .iter()
             .filter(|&&(first, _)| values[first] == value)
             .filter(|&&(first, len)| {
                 let (start, end) = (rows[first], rows[first + len - 1]);
                 len < long || !super::frozen::starts_at_turn(stroke, start, end, range)
             })
-            .map(|r| r.1)
-            .sum()
+            .collect();
+        let first = counted.first().map_or(0, |r| r.0);
+        (counted.iter().map(|r| r.1).sum(), first)
     })
 }
 
 /// [`pile_up`] with the end's value counted by `count` (given the value and how many samples
-/// hold it).
-fn pile_up_counting(values: &[f64], count: impl Fn(f64, usize) -> usize) -> Option<PileUp> {
+/// hold it; it returns the count and the index of the first sample counted).
+fn pile_up_counting(
+    values: &[f64],
+    count: impl Fn(f64, usize) -> (usize, usize),
+) -> Option<PileUp> {
     let mut sorted: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
     sorted.sort_by(f64::total_cmp);
     let rows = sorted.len();
@@ -115,12 +125,13 @@ fn pile_up_counting(values: &[f64], count: impl Fn(f64, usize) -> usize) -> Opti
     let at_end = |end: End, ordered: &[f64]| {
         let runs = runs(ordered, NEIGHBOURS + 1);
         let (value, held) = runs[0];
-        let count = count(value, held);
+        let (count, first) = count(value, held);
         let next_count = runs[1..].iter().map(|r| r.1).max().unwrap_or(0);
         (count >= least && count >= PILE_UP_RATIO * next_count.max(1)).then_some(PileUp {
             end,
             value,
             count,
+            first,
             next_count,
             rows,
         })

@@ -1086,10 +1086,9 @@ pub(crate) fn refuse_unmeasured(
             None => clipping::pile_up(&c.values),
         };
         if let Some(p) = clip {
-            let first = c.values.iter().position(|v| *v == p.value).unwrap_or(0);
             return Err(RecordingError::Clipped(Box::new(ClippedColumn {
                 path,
-                line: c.rows.get(first).map_or(2, |r| r + 2),
+                line: c.rows.get(p.first).map_or(2, |r| r + 2),
                 column: c.name,
                 end: p.end.word(),
                 value: p.value,
