@@ -109,6 +109,70 @@ pub struct Rail {
     pub volts: f64,
 }
 
+/// Block averages at about [`TARGET_HZ`]: `n` blocks of `step` consecutive rows each.
+struct Blocks {
+    step: usize,
+    n: usize,
+    dt_s: f64,
+}
+
+impl Blocks {
+    /// The blocks of `rows` rows recorded at `sample_hz`.
+    fn of(rows: usize, sample_hz: f64) -> Self {
+        let step = ((sample_hz / TARGET_HZ).round() as usize).max(1);
+        Self {
+            step,
+            n: rows / step,
+            dt_s: step as f64 / sample_hz,
+        }
+    }
+
+    /// The mean of block `k` of `v`.
+    fn mean(&self, v: &[f64], k: usize) -> f64 {
+        v[k * self.step..(k + 1) * self.step].iter().sum::<f64>() / self.step as f64
+    }
+
+    /// Every block's mean of `v`.
+    fn column(&self, v: &[f64]) -> Vec<f64> {
+        (0..self.n).map(|k| self.mean(v, k)).collect()
+    }
+
+    /// Whether every row of each block is `valid`.
+    fn all(&self, valid: impl Fn(usize) -> bool) -> Vec<bool> {
+        (0..self.n)
+            .map(|k| (k * self.step..(k + 1) * self.step).all(&valid))
+            .collect()
+    }
+
+    /// Each block's sensor resistance through `divider`, from voltage column `column` (1-based)
+    /// at times `time_s`.
+    ///
+    /// # Errors
+    /// The first block whose mean voltage no finite resistance explains.
+    fn resistance(
+        &self,
+        volts: &[f64],
+        divider: dlw_geometry::Divider,
+        column: usize,
+        time_s: &[f64],
+    ) -> Result<Vec<f64>, Rail> {
+        (0..self.n)
+            .map(|k| {
+                let v = self.mean(volts, k);
+                divider
+                    .resistance(v)
+                    .ok()
+                    .filter(|r| r.is_finite())
+                    .ok_or(Rail {
+                        column,
+                        time_s: time_s[k * self.step],
+                        volts: v,
+                    })
+            })
+            .collect()
+    }
+}
+
 impl Timeline {
     /// `rec` block-averaged: each sample the mean of `sample_hz/TARGET_HZ` rows.
     ///
@@ -116,45 +180,24 @@ impl Timeline {
     /// The first block whose mean voltage no finite resistance explains.
     pub fn of(rec: &Recording) -> Result<Self, Rail> {
         let s = &rec.samples;
-        let step = ((rec.rig.sample_hz / TARGET_HZ).round() as usize).max(1);
-        let n = s.time_s.len() / step;
-        let mean =
-            |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
-        let column = |v: &[f64]| -> Vec<f64> { (0..n).map(|k| mean(v, k)).collect() };
+        let blocks = Blocks::of(s.time_s.len(), rec.rig.sample_hz);
         let mut ohm = Vec::with_capacity(s.volts.len());
         // A recording holds one voltage column per divider, one or two (`Recording::read`).
         for ((c, volts), sensor) in s.volts.iter().enumerate().zip(Sensor::ALL) {
             let Some(divider) = rec.rig.divider(sensor) else {
                 continue;
             };
-            let r: Vec<f64> = (0..n)
-                .map(|k| {
-                    let v = mean(volts, k);
-                    divider
-                        .resistance(v)
-                        .ok()
-                        .filter(|r| r.is_finite())
-                        .ok_or(Rail {
-                            column: c + 1,
-                            time_s: s.time_s[k * step],
-                            volts: v,
-                        })
-                })
-                .collect::<Result<_, _>>()?;
-            ohm.push(r);
+            ohm.push(blocks.resistance(volts, divider, c + 1, &s.time_s)?);
         }
-        let stroke_mm = column(&s.stroke_mm);
-        let dt_s = step as f64 / rec.rig.sample_hz;
+        let stroke_mm = blocks.column(&s.stroke_mm);
         Ok(Self {
-            time_s: column(&s.time_s),
-            rest: super::rest::rest_end(&stroke_mm, dt_s),
+            time_s: blocks.column(&s.time_s),
+            rest: super::rest::rest_end(&stroke_mm, blocks.dt_s),
             stroke_mm,
-            angle_deg: column(&s.angle_deg),
+            angle_deg: blocks.column(&s.angle_deg),
             ohm,
-            measured: (0..n)
-                .map(|k| (k * step..(k + 1) * step).all(|i| s.angle_valid(i)))
-                .collect(),
-            dt_s,
+            measured: blocks.all(|i| s.angle_valid(i)),
+            dt_s: blocks.dt_s,
         })
     }
 
@@ -391,36 +434,23 @@ pub fn check_robot(rec: &RobotRecording, dir: &Path) -> Result<(), RecordingErro
     if s.angle_deg.iter().any(Vec::is_empty) {
         return Ok(());
     }
-    let step = ((rec.rig.sample_hz / TARGET_HZ).round() as usize).max(1);
-    let n = s.time_s.len() / step;
-    let mean = |v: &[f64], k: usize| v[k * step..(k + 1) * step].iter().sum::<f64>() / step as f64;
-    let column = |v: &[f64]| -> Vec<f64> { (0..n).map(|k| mean(v, k)).collect() };
+    let blocks = Blocks::of(s.time_s.len(), rec.rig.sample_hz);
     let mut ohm = Vec::with_capacity(s.volts.len());
-    for (volts, &fixed_ohm) in s.volts.iter().zip(&rec.rig.divider_ohm) {
+    for (c, (volts, &fixed_ohm)) in s.volts.iter().zip(&rec.rig.divider_ohm).enumerate() {
         let divider = dlw_geometry::Divider {
             fixed_ohm,
             supply_v: rec.rig.supply_v,
         };
-        let r: Option<Vec<f64>> = (0..n)
-            .map(|k| {
-                divider
-                    .resistance(mean(volts, k))
-                    .ok()
-                    .filter(|r| r.is_finite())
-            })
-            .collect();
-        let Some(r) = r else {
+        // A voltage no resistance explains: the analysis refuses it on its own terms.
+        let Ok(r) = blocks.resistance(volts, divider, c + 1, &s.time_s) else {
             return Ok(());
         };
         ohm.push(r);
     }
-    let dt_s = step as f64 / rec.rig.sample_hz;
-    let strokes: Vec<Vec<f64>> = s.stroke_mm.iter().map(|v| column(v)).collect();
-    let angles: Vec<Vec<f64>> = s.angle_deg.iter().map(|v| column(v)).collect();
-    let time_s = column(&s.time_s);
-    let measured: Vec<bool> = (0..n)
-        .map(|k| (k * step..(k + 1) * step).all(|i| s.tracker_valid_at(i)))
-        .collect();
+    let strokes: Vec<Vec<f64>> = s.stroke_mm.iter().map(|v| blocks.column(v)).collect();
+    let angles: Vec<Vec<f64>> = s.angle_deg.iter().map(|v| blocks.column(v)).collect();
+    let time_s = blocks.column(&s.time_s);
+    let measured = blocks.all(|i| s.tracker_valid_at(i));
     let columns = Columns {
         time_s: &time_s,
         strokes: strokes.iter().map(Vec::as_slice).collect(),
@@ -430,7 +460,7 @@ pub fn check_robot(rec: &RobotRecording, dir: &Path) -> Result<(), RecordingErro
         // The rest ends where the first joint moves.
         rest: strokes
             .iter()
-            .map(|v| super::rest::rest_end(v, dt_s))
+            .map(|v| super::rest::rest_end(v, blocks.dt_s))
             .min()
             .unwrap_or(0),
     };
